@@ -1,0 +1,61 @@
+// The beam as the contact code sees it (DESIGN.md §3): a second-order system
+// in coordinates q (modal for the reduced model, nodal for the FE model) that
+// provides one Moreau–Jean step without contact and the kinematics of the
+// beam at any point. The slider, the gaps, the force directions W, the
+// Moreau step and the prox solver are written once against this interface, so
+// an FE trace and a ROM trace differ only through the beam model.
+//
+// Step structure (Moreau midpoint / Moreau–Jean with θ = 1/2):
+//   q_M    = q_B + Δt/2 u_B                           (where contacts are detected)
+//   u_E    = u_free + S⁻¹ W P                         (P: contact impulses)
+//   q_E    = q_M + Δt/2 u_E
+// u_free is the end velocity without contact impulses; S is the iteration
+// matrix (the mass matrix M for the explicit midpoint scheme; the effective
+// matrix M + θΔt C + θ²Δt² K_t for an implicit scheme). The Delassus matrix
+// is G = Wᵀ S⁻¹ W.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace beamslider
+{
+  // Transverse displacement (relative to the moving base) and slope at one x,
+  // with their gradients with respect to the beam coordinates.
+  struct BeamPointKinematics
+  {
+    double w  = 0;           // [m]
+    double dw = 0;           // w' [-]
+    Eigen::VectorXd grad_w;  // ∂w/∂q
+    Eigen::VectorXd grad_dw; // ∂w'/∂q
+  };
+
+  class BeamSystem
+  {
+  public:
+    virtual ~BeamSystem() = default;
+
+    virtual unsigned int n_dofs() const = 0;
+    virtual double length() const       = 0; // L [m]
+    virtual double thickness() const    = 0; // h [m]
+
+    // w, w' and gradients at x ∈ [0, L] for coordinates q.
+    virtual void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const = 0;
+
+    // End velocity of one step of size dt without contact impulses, given the
+    // midpoint time t_M, midpoint coordinates q_M and start velocity u_B.
+    // May factorise/update the iteration matrix S for solve_iteration_matrix.
+    virtual void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                               Eigen::VectorXd &u_free) = 0;
+
+    // X = S⁻¹ B for the iteration matrix of the last free_velocity call.
+    virtual void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const = 0;
+
+    // Largest time step the scheme can take (infinity for unconditionally
+    // stable schemes). The stepper refuses larger steps with a clear message.
+    virtual double max_stable_time_step() const = 0;
+
+    // Mechanical energy of the beam (kinetic relative to the base + strain) [J],
+    // for energy bookkeeping.
+    virtual double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const = 0;
+  };
+} // namespace beamslider

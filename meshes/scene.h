@@ -1,0 +1,135 @@
+// A scene: every physical and numerical parameter of one beam–slider set-up.
+//
+// The values are read from a deal.II parameter file (meshes/*.prm, see
+// scene_parameters.cc). This header holds plain data only, so that the reduced
+// model, the contact code and the tests can use a scene without pulling in
+// deal.II headers. All quantities are SI (m, kg, s, N, rad) unless a name says
+// otherwise (e.g. `_hz`, `_over_L`).
+//
+// Physics: DESIGN.md §1 (beam on elastic supports, von Kármán kinematics,
+// rigid slider with clearance, base excitation w0 = (a/Ω²) cos Ωt).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  // An error the user can fix: bad input, a missing file, a parameter out of
+  // range. The message names the parameter, its value and what is allowed.
+  class InputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  struct BeamData
+  {
+    double length        = 0.14;    // L [m]
+    double width         = 14.04e-3; // b [m]
+    double thickness     = 1.0e-3;  // h [m]
+    double youngs_modulus = 210e9;  // E [Pa]
+    double density       = 7683.;   // rho [kg/m^3]
+
+    double area() const { return width * thickness; }                        // A [m^2]
+    double second_moment() const { return width * thickness * thickness * thickness / 12.; } // I [m^4]
+    double mass_per_length() const { return density * area(); }              // rho A [kg/m]
+    double bending_stiffness() const { return youngs_modulus * second_moment(); } // EI [N m^2]
+    double axial_stiffness() const { return youngs_modulus * area(); }       // EA [N]
+  };
+
+  // Both ends carry w = 0, a rotational spring on w' and an axial spring on u.
+  // "clamped" is the limit of infinite springs and is imposed by constraints.
+  struct SupportData
+  {
+    bool   ideal_clamp          = false;
+    double rotational_stiffness = 125.;   // k_r [N m/rad]
+    double axial_stiffness      = 1.93e7; // k_t [N/m]
+
+    // Series stiffness of the beam's membrane and the two axial springs,
+    // DESIGN.md §1.2: k_ax = (L/(EA) + 1/k_t)^-1 (k_ax = EA/L for the clamp).
+    double membrane_stiffness(const BeamData &beam) const
+    {
+      const double beam_compliance = beam.length / beam.axial_stiffness();
+      return 1. / (beam_compliance + (ideal_clamp ? 0. : 1. / axial_stiffness));
+    }
+  };
+
+  struct SliderData
+  {
+    double mass              = 46.2e-3; // m [kg]
+    double inertia           = 3.15e-6; // J_C about the centre of mass [kg m^2]
+    double window_width      = 10e-3;   // B, distance of the contact corners [m]
+    double window_height_ratio = 1.05;  // R/h [-], must exceed 1 (clearance)
+    double com_offset        = 4.1e-3;  // d, centre of mass below the window centre [m]
+    double mass_factor       = 1.;      // ablation: scales mass and inertia together
+  };
+
+  struct ContactData
+  {
+    double friction_coefficient = 0.2;  // mu [-]
+    double restitution          = 0.5;  // e_N [-]
+    double gravity              = 9.81; // g [m/s^2], acts on the slider in -z
+  };
+
+  struct ExcitationData
+  {
+    double frequency_hz           = 124.;  // f_ex [Hz]
+    double acceleration_amplitude = 14.;   // base acceleration amplitude a [m/s^2]
+  };
+
+  struct InitialStateData
+  {
+    double slider_position_over_L = 0.3; // x_C / L at t = 0 [-]
+  };
+
+  struct DiscretisationData
+  {
+    unsigned int n_elements   = 16; // beam elements of the FE model
+    unsigned int axial_degree = 2;  // polynomial degree of the axial field u
+    unsigned int n_modes      = 5;  // N, bending modes kept by the reduced model
+    bool geometric_nonlinearity = true; // von Kármán bending–stretching coupling
+  };
+
+  struct TimeSteppingData
+  {
+    double time_step   = 2e-5; // Delta t [s]
+    double end_time    = 60.;  // [s]
+    double output_rate = 1000.; // samples per second written to trace.csv [1/s]
+  };
+
+  struct Scene
+  {
+    std::string name; // file stem, e.g. "mueller2023"
+
+    BeamData           beam;
+    SupportData        supports;
+    SliderData         slider;
+    ContactData        contact;
+    double             damping_ratio = 1e-3; // D, modal damping ratio of every mode [-]
+    ExcitationData     excitation;
+    InitialStateData   initial;
+    DiscretisationData discretisation;
+    TimeSteppingData   time_stepping;
+
+    double slider_mass() const { return slider.mass * slider.mass_factor; }
+    double slider_inertia() const { return slider.inertia * slider.mass_factor; }
+    double window_height() const { return slider.window_height_ratio * beam.thickness; } // R [m]
+  };
+
+  // Reads a scene file, applies overrides of the form "Section/Name=value"
+  // (nested sections separated by '/'), validates, and returns the scene.
+  // Throws InputError for a missing file, an unknown parameter, a value outside
+  // its pattern, or an inconsistent combination (see validate_scene).
+  Scene read_scene(const std::string &filename,
+                   const std::vector<std::string> &overrides = {});
+
+  // Checks the conditions that a single-parameter pattern cannot express
+  // (R > h, slider inside the beam, ...). Throws InputError.
+  void validate_scene(const Scene &scene);
+
+  // Writes a complete, commented scene file with every parameter, its default,
+  // unit and allowed range.
+  std::string scene_template();
+} // namespace beamslider

@@ -1,0 +1,279 @@
+// Reading and checking scene files (meshes/*.prm) with deal.II's
+// ParameterHandler. Every entry is declared with a typed pattern and a
+// documentation string that gives its unit, so that `scene_template()` writes
+// a self-documenting file. Ranges that a pattern cannot express (strict
+// inequalities, relations between parameters) are checked in validate_scene().
+#include "scene.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    using dealii::ParameterHandler;
+    using dealii::Patterns::Bool;
+    using dealii::Patterns::Double;
+    using dealii::Patterns::Integer;
+    using dealii::Patterns::Selection;
+
+    std::string num(const double x)
+    {
+      std::ostringstream s;
+      s.precision(10);
+      s << x;
+      return s.str();
+    }
+
+    // One function per subsection declares its entries; a matching one reads
+    // them. The defaults are those of the default scene (mueller2023).
+    void declare(ParameterHandler &prm)
+    {
+      const Scene d;
+
+      prm.enter_subsection("Beam");
+      prm.declare_entry("Length", num(d.beam.length), Double(0), "L, distance between the supports [m]");
+      prm.declare_entry("Width", num(d.beam.width), Double(0), "b, beam width [m]");
+      prm.declare_entry("Thickness", num(d.beam.thickness), Double(0), "h, beam thickness [m], > 0 and < L/20 (Euler-Bernoulli)");
+      prm.declare_entry("Young's modulus", num(d.beam.youngs_modulus), Double(0), "E [Pa]");
+      prm.declare_entry("Density", num(d.beam.density), Double(0), "rho [kg/m^3]");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Supports");
+      prm.declare_entry("Type", "elastic", Selection("elastic|clamped"),
+                        "elastic: w = 0 with rotational spring k_r and axial spring k_t at both ends; "
+                        "clamped: the ideal clamp w = w' = u = 0 (the springs below are then ignored)");
+      prm.declare_entry("Rotational stiffness", num(d.supports.rotational_stiffness), Double(0), "k_r, on w' at each end [N m/rad]");
+      prm.declare_entry("Axial stiffness", num(d.supports.axial_stiffness), Double(0), "k_t, on u at each end [N/m]");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Slider");
+      prm.declare_entry("Mass", num(d.slider.mass), Double(0), "m [kg]");
+      prm.declare_entry("Rotary inertia", num(d.slider.inertia), Double(0), "J_C about the centre of mass [kg m^2]");
+      prm.declare_entry("Window width", num(d.slider.window_width), Double(0), "B, horizontal distance of the contact corners [m], < L");
+      prm.declare_entry("Window height ratio", num(d.slider.window_height_ratio), Double(0), "R/h, inner window height over beam thickness [-], > 1");
+      prm.declare_entry("Centre of mass offset", num(d.slider.com_offset), Double(0), "d, centre of mass below the window centre [m]");
+      prm.declare_entry("Mass factor", num(d.slider.mass_factor), Double(0), "ablation: multiplies mass and rotary inertia [-], > 0");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Contact");
+      prm.declare_entry("Friction coefficient", num(d.contact.friction_coefficient), Double(0), "mu, Coulomb [-]");
+      prm.declare_entry("Restitution", num(d.contact.restitution), Double(0, 1), "e_N, Newton's normal restitution [-] in [0, 1]");
+      prm.declare_entry("Gravity", num(d.contact.gravity), Double(0), "g, acting on the slider in -z [m/s^2]");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Damping");
+      prm.declare_entry("Modal damping ratio", num(d.damping_ratio), Double(0, 1), "D, the same for every mode [-] in [0, 1)");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Excitation");
+      prm.declare_entry("Frequency", num(d.excitation.frequency_hz), Double(0), "f_ex [Hz], > 0");
+      prm.declare_entry("Acceleration amplitude", num(d.excitation.acceleration_amplitude), Double(0), "base acceleration amplitude [m/s^2]");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Initial state");
+      prm.declare_entry("Slider position", num(d.initial.slider_position_over_L), Double(0, 1), "x_C/L at t = 0 [-]; the window must lie inside the beam");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Discretisation");
+      prm.declare_entry("Number of elements", std::to_string(d.discretisation.n_elements), Integer(1, 4096), "beam elements of the FE model");
+      prm.declare_entry("Axial degree", std::to_string(d.discretisation.axial_degree), Integer(1, 6), "polynomial degree of the axial displacement u");
+      prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 10), "N, bending modes of the reduced model");
+      prm.declare_entry("Geometric nonlinearity", "true", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Time stepping");
+      prm.declare_entry("Time step", num(d.time_stepping.time_step), Double(0), "Delta t [s], > 0");
+      prm.declare_entry("End time", num(d.time_stepping.end_time), Double(0), "[s]");
+      prm.declare_entry("Output rate", num(d.time_stepping.output_rate), Double(0), "samples per second in trace.csv [1/s]");
+      prm.leave_subsection();
+    }
+
+    Scene parse(ParameterHandler &prm)
+    {
+      Scene s;
+      prm.enter_subsection("Beam");
+      s.beam.length         = prm.get_double("Length");
+      s.beam.width          = prm.get_double("Width");
+      s.beam.thickness      = prm.get_double("Thickness");
+      s.beam.youngs_modulus = prm.get_double("Young's modulus");
+      s.beam.density        = prm.get_double("Density");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Supports");
+      s.supports.ideal_clamp          = prm.get("Type") == "clamped";
+      s.supports.rotational_stiffness = prm.get_double("Rotational stiffness");
+      s.supports.axial_stiffness      = prm.get_double("Axial stiffness");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Slider");
+      s.slider.mass                = prm.get_double("Mass");
+      s.slider.inertia             = prm.get_double("Rotary inertia");
+      s.slider.window_width        = prm.get_double("Window width");
+      s.slider.window_height_ratio = prm.get_double("Window height ratio");
+      s.slider.com_offset          = prm.get_double("Centre of mass offset");
+      s.slider.mass_factor         = prm.get_double("Mass factor");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Contact");
+      s.contact.friction_coefficient = prm.get_double("Friction coefficient");
+      s.contact.restitution          = prm.get_double("Restitution");
+      s.contact.gravity              = prm.get_double("Gravity");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Damping");
+      s.damping_ratio = prm.get_double("Modal damping ratio");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Excitation");
+      s.excitation.frequency_hz           = prm.get_double("Frequency");
+      s.excitation.acceleration_amplitude = prm.get_double("Acceleration amplitude");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Initial state");
+      s.initial.slider_position_over_L = prm.get_double("Slider position");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Discretisation");
+      s.discretisation.n_elements             = prm.get_integer("Number of elements");
+      s.discretisation.axial_degree           = prm.get_integer("Axial degree");
+      s.discretisation.n_modes                = prm.get_integer("Number of modes");
+      s.discretisation.geometric_nonlinearity = prm.get_bool("Geometric nonlinearity");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Time stepping");
+      s.time_stepping.time_step   = prm.get_double("Time step");
+      s.time_stepping.end_time    = prm.get_double("End time");
+      s.time_stepping.output_rate = prm.get_double("Output rate");
+      prm.leave_subsection();
+      return s;
+    }
+
+    // The additional-information part of a deal.II exception, without the
+    // banner about source files and line numbers that means nothing to a user.
+    std::string info(const dealii::ExceptionBase &e)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      return s.str();
+    }
+
+    // Applies one "Section/Sub/Name=value" override.
+    void apply_override(ParameterHandler &prm, const std::string &assignment)
+    {
+      const auto eq = assignment.find('=');
+      if (eq == std::string::npos)
+        throw InputError("--set \"" + assignment + "\": expected Section/Name=value");
+      const std::string path  = assignment.substr(0, eq);
+      const std::string value = assignment.substr(eq + 1);
+
+      std::vector<std::string> parts;
+      std::string::size_type start = 0, slash;
+      while ((slash = path.find('/', start)) != std::string::npos)
+        {
+          parts.push_back(path.substr(start, slash - start));
+          start = slash + 1;
+        }
+      const std::string entry = path.substr(start);
+      if (parts.empty())
+        throw InputError("--set \"" + assignment + "\": the parameter must be given with its section, e.g. Beam/Thickness=1e-3");
+
+      for (const auto &p : parts)
+        prm.enter_subsection(p);
+      try
+        {
+          prm.set(entry, value);
+        }
+      catch (const ParameterHandler::ExcEntryUndeclared &)
+        {
+          throw InputError("--set: unknown parameter '" + path + "' (see the scene template for the valid names)");
+        }
+      catch (const ParameterHandler::ExcValueDoesNotMatchPattern &e)
+        {
+          throw InputError("--set: parameter '" + path + "' = '" + value + "' is outside its allowed range:" + info(e));
+        }
+      for (std::size_t i = 0; i < parts.size(); ++i)
+        prm.leave_subsection();
+    }
+
+    void require(const bool condition, const std::string &parameter, const double value, const std::string &allowed)
+    {
+      if (!condition)
+        throw InputError("Parameter '" + parameter + "' = " + num(value) + " is not allowed: " + allowed);
+    }
+  } // namespace
+
+  void validate_scene(const Scene &s)
+  {
+    require(s.beam.length > 0, "Beam/Length", s.beam.length, "must be > 0 m");
+    require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
+    require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
+    require(s.beam.thickness < s.beam.length / 20., "Beam/Thickness", s.beam.thickness,
+            "must be < L/20 = " + num(s.beam.length / 20.) + " m for Euler-Bernoulli theory to hold");
+    require(s.beam.youngs_modulus > 0, "Beam/Young's modulus", s.beam.youngs_modulus, "must be > 0 Pa");
+    require(s.beam.density > 0, "Beam/Density", s.beam.density, "must be > 0 kg/m^3");
+    require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
+            "R/h must be > 1: the slider's window must be taller than the beam is thick");
+    require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
+    require(s.slider.window_width < s.beam.length, "Slider/Window width", s.slider.window_width,
+            "the slider must be narrower than the beam length L = " + num(s.beam.length) + " m");
+    require(s.slider.mass_factor > 0, "Slider/Mass factor", s.slider.mass_factor, "must be > 0");
+    const double half_window_over_L = 0.5 * s.slider.window_width / s.beam.length;
+    require(s.initial.slider_position_over_L >= half_window_over_L &&
+              s.initial.slider_position_over_L <= 1. - half_window_over_L,
+            "Initial state/Slider position", s.initial.slider_position_over_L,
+            "x_C/L must lie in [" + num(half_window_over_L) + ", " + num(1 - half_window_over_L) +
+              "] so that the slider's window is on the beam");
+    require(s.damping_ratio >= 0 && s.damping_ratio < 1, "Damping/Modal damping ratio", s.damping_ratio, "must be in [0, 1)");
+    require(s.excitation.frequency_hz > 0, "Excitation/Frequency", s.excitation.frequency_hz, "must be > 0 Hz");
+    require(s.time_stepping.time_step > 0, "Time stepping/Time step", s.time_stepping.time_step, "must be > 0 s");
+    require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
+    if (!s.supports.ideal_clamp)
+      {
+        require(s.supports.rotational_stiffness > 0, "Supports/Rotational stiffness", s.supports.rotational_stiffness,
+                "must be > 0 N m/rad for elastic supports (use Type = clamped for the ideal clamp)");
+        require(s.supports.axial_stiffness > 0, "Supports/Axial stiffness", s.supports.axial_stiffness,
+                "must be > 0 N/m for elastic supports");
+      }
+  }
+
+  Scene read_scene(const std::string &filename, const std::vector<std::string> &overrides)
+  {
+    if (!std::ifstream(filename))
+      throw InputError("Scene file '" + filename + "' cannot be opened (missing or unreadable)");
+
+    ParameterHandler prm;
+    declare(prm);
+    try
+      {
+        prm.parse_input(filename);
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        throw InputError("Scene file '" + filename + "':" + info(e));
+      }
+    for (const auto &o : overrides)
+      apply_override(prm, o);
+
+    Scene s = parse(prm);
+    const auto slash = filename.find_last_of('/');
+    s.name           = filename.substr(slash == std::string::npos ? 0 : slash + 1);
+    if (const auto dot = s.name.rfind(".prm"); dot != std::string::npos)
+      s.name.erase(dot);
+    validate_scene(s);
+    return s;
+  }
+
+  std::string scene_template()
+  {
+    ParameterHandler prm;
+    declare(prm);
+    std::ostringstream out;
+    prm.print_parameters(out, ParameterHandler::PRM);
+    return out.str();
+  }
+} // namespace beamslider

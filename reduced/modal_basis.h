@@ -1,0 +1,29 @@
+// The modal basis of the reduced-order model: the N lowest mass-normalised
+// bending modes of the beam, and the integrals of DESIGN.md §1.2 built from
+// them. It is filled from the FE model (fem/fe_modal_basis) or, in tests, from
+// analytic mode shapes; the reduced model never needs the analytic formulas.
+//
+// Units: with mass-normalised modes (∫ ρA φ_m φ_n dx = δ_mn) φ has units of
+// kg^-1/2, modal coordinates q of m·kg^1/2.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <functional>
+
+namespace beamslider
+{
+  struct ModalBasis
+  {
+    double length = 0;            // L [m]
+    Eigen::VectorXd omega;        // ω_n, linear natural frequencies [rad/s]
+    Eigen::VectorXd gamma;        // γ_n = -ρA ∫ φ_n dx [kg^1/2]
+    Eigen::MatrixXd stretch;      // K'_jk = ∫ φ_j' φ_k' dx [1/(kg m)]
+    double membrane_stiffness = 0; // k_ax = (L/(EA) + 1/k_t)^-1 [N/m]
+
+    // φ_n(x) and φ_n'(x) for all n at one x in [0, L].
+    std::function<void(double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi)> evaluate;
+
+    unsigned int n_modes() const { return omega.size(); }
+  };
+} // namespace beamslider

@@ -1,0 +1,60 @@
+// The reduced-order model (seed Eqs. 1–3, DESIGN.md §1.2): the second
+// implementation of the beam's second-order system, the FE model being the
+// first. In modal coordinates q (mass-normalised modes)
+//
+//   q'' + 2 D ω_n q_n' + ω_n² q_n + f_n(q) = γ_n ẅ0 ,
+//   f(q) = (k_ax/2) (qᵀ K' q) K' q                      (O(N²) per evaluation)
+//
+// which equals Σ b^(n)_jkl q_j q_k q_l with b^(n)_jkl = (k_ax/2) K'_jk K'_ln.
+// A full cubic tensor (from STEP or ICE) can replace the analytic form.
+#pragma once
+
+#include "reduced/modal_basis.h"
+
+#include <Eigen/Dense>
+
+#include <optional>
+#include <vector>
+
+namespace beamslider
+{
+  // A symmetric cubic polynomial f_n(q) = Σ_{j≤k≤l} c^(n)_jkl q_j q_k q_l,
+  // each coefficient stored once for sorted j ≤ k ≤ l (the sum over the
+  // permutations of (j,k,l) of b^(n)_jkl). Indices are 0-based here; files and
+  // reports use 1-based mode numbers.
+  struct CubicTerm
+  {
+    unsigned int n, j, k, l;
+    double value;
+  };
+
+  class ReducedOrderModel
+  {
+  public:
+    ReducedOrderModel(ModalBasis basis, double damping_ratio, bool geometric_nonlinearity = true);
+
+    // Replace the analytic restoring force by an explicit list of cubic terms.
+    void set_cubic_terms(std::vector<CubicTerm> terms);
+
+    unsigned int n_modes() const { return basis_.n_modes(); }
+    const ModalBasis &basis() const { return basis_; }
+    double damping_ratio() const { return damping_ratio_; }
+
+    // Nonlinear part f(q) of the modal restoring force [N kg^-1/2 = m kg^1/2/s²].
+    Eigen::VectorXd nonlinear_force(const Eigen::VectorXd &q) const;
+    // ∂f/∂q.
+    Eigen::MatrixXd nonlinear_tangent(const Eigen::VectorXd &q) const;
+    // Linear part: ω_n² q_n + 2 D ω_n v_n.
+    Eigen::VectorXd linear_force(const Eigen::VectorXd &q, const Eigen::VectorXd &v) const;
+
+    // The analytic tensor in the sorted storage above (for reports and
+    // comparisons with STEP/ICE).
+    std::vector<CubicTerm> analytic_cubic_terms() const;
+
+  private:
+    ModalBasis basis_;
+    double damping_ratio_;
+    bool nonlinear_;
+    std::optional<std::vector<CubicTerm>> terms_;
+  };
+} // namespace beamslider

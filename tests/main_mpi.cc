@@ -1,0 +1,12 @@
+// GoogleTest main for all test executables: PETSc and SLEPc need MPI and
+// PETSc initialised once per process, which deal.II's MPI_InitFinalize does.
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
+int main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,148 @@
+// Scene files: the shipped scenes parse, and every class of bad input is
+// rejected with a message that names the parameter, its value and the range.
+#include "meshes/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+using namespace beamslider;
+
+namespace
+{
+  const std::string scene_dir = BEAMSLIDER_SOURCE_DIR "/meshes/";
+
+  // Runs read_scene with one override and returns the error message ("" if none).
+  std::string error_for(const std::string &assignment, const std::string &file = "mueller2023.prm")
+  {
+    try
+      {
+        read_scene(scene_dir + file, {assignment});
+      }
+    catch (const InputError &e)
+      {
+        return e.what();
+      }
+    return "";
+  }
+
+  void expect_contains(const std::string &message, const std::string &what)
+  {
+    EXPECT_NE(message.find(what), std::string::npos) << "message: " << message << "\nexpected to contain: " << what;
+  }
+} // namespace
+
+TEST(SceneFiles, DefaultSceneHoldsThePublishedRig)
+{
+  const Scene s = read_scene(scene_dir + "mueller2023.prm");
+  EXPECT_EQ(s.name, "mueller2023");
+  // Beam mass 15.1 g (Müller, Beck & Krack 2023) from rho b h L.
+  EXPECT_NEAR(s.beam.density * s.beam.width * s.beam.thickness * s.beam.length, 15.1e-3, 0.05e-3);
+  EXPECT_FALSE(s.supports.ideal_clamp);
+  EXPECT_DOUBLE_EQ(s.supports.rotational_stiffness, 125.);
+  EXPECT_DOUBLE_EQ(s.slider.inertia, 3.15e-6);
+  EXPECT_DOUBLE_EQ(s.window_height(), 1.05e-3);
+}
+
+TEST(SceneFiles, AllScenesParse)
+{
+  EXPECT_TRUE(read_scene(scene_dir + "mueller2023-ideal.prm").supports.ideal_clamp);
+  const Scene s1 = read_scene(scene_dir + "system1.prm");
+  EXPECT_TRUE(s1.supports.ideal_clamp);
+  // Reconstruction target: slider/beam mass ratio about 2.66.
+  EXPECT_NEAR(s1.slider.mass / (s1.beam.mass_per_length() * s1.beam.length), 2.66, 0.05);
+}
+
+TEST(SceneFiles, OverrideChangesAValue)
+{
+  const Scene s = read_scene(scene_dir + "mueller2023.prm", {"Excitation/Frequency=126"});
+  EXPECT_DOUBLE_EQ(s.excitation.frequency_hz, 126.);
+}
+
+TEST(SceneErrors, NegativeThicknessNamesTheParameter)
+{
+  const std::string m = error_for("Beam/Thickness=-1e-3");
+  expect_contains(m, "Beam/Thickness");
+  expect_contains(m, "-1e-3");
+}
+
+TEST(SceneErrors, ZeroThicknessIsRejected)
+{
+  const std::string m = error_for("Beam/Thickness=0");
+  expect_contains(m, "Beam/Thickness");
+  expect_contains(m, "> 0");
+}
+
+TEST(SceneErrors, WindowNotTallerThanBeam)
+{
+  const std::string m = error_for("Slider/Window height ratio=1.0");
+  expect_contains(m, "Slider/Window height ratio");
+  expect_contains(m, "must be > 1");
+}
+
+TEST(SceneErrors, SliderWiderThanBeam)
+{
+  const std::string m = error_for("Slider/Window width=0.2");
+  expect_contains(m, "Slider/Window width");
+  expect_contains(m, "0.2");
+  expect_contains(m, "narrower than the beam");
+}
+
+TEST(SceneErrors, SliderOutsideTheBeam)
+{
+  // The pattern [0,1] admits 0.01, but the window (B/2 = 5 mm) would overhang.
+  const std::string m = error_for("Initial state/Slider position=0.01");
+  expect_contains(m, "Initial state/Slider position");
+  expect_contains(m, "0.01");
+  expect_contains(m, "must lie in [");
+  const std::string m2 = error_for("Initial state/Slider position=1.5");
+  expect_contains(m2, "Initial state/Slider position");
+  expect_contains(m2, "1.5");
+}
+
+TEST(SceneErrors, NegativeDamping)
+{
+  const std::string m = error_for("Damping/Modal damping ratio=-0.01");
+  expect_contains(m, "Damping/Modal damping ratio");
+  expect_contains(m, "-0.01");
+}
+
+TEST(SceneErrors, UnknownParameterIsAnError)
+{
+  expect_contains(error_for("Beam/Thicknes=1e-3"), "unknown parameter 'Beam/Thicknes'");
+}
+
+TEST(SceneErrors, UnknownParameterInAFileIsAnError)
+{
+  const std::string path = ::testing::TempDir() + "bad_scene.prm";
+  {
+    std::ofstream f(path);
+    f << "subsection Beam\n  set Lenght = 0.1\nend\n";
+  }
+  std::string m;
+  try
+    {
+      read_scene(path);
+    }
+  catch (const InputError &e)
+    {
+      m = e.what();
+    }
+  expect_contains(m, "Lenght");
+}
+
+TEST(SceneErrors, MissingFile)
+{
+  std::string m;
+  try
+    {
+      read_scene(scene_dir + "no-such-scene.prm");
+    }
+  catch (const InputError &e)
+    {
+      m = e.what();
+    }
+  expect_contains(m, "no-such-scene.prm");
+  expect_contains(m, "cannot be opened");
+}
