@@ -1,0 +1,482 @@
+// Harmonic balance backbones with AFT and pseudo-arclength continuation; see
+// harmonic_balance.h for the equations, the choice of harmonics and samples.
+#include "reduced/harmonic_balance.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <chrono>
+#include <limits>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  ConservativeSystem make_conservative_system(const ReducedOrderModel &rom)
+  {
+    const unsigned int N = rom.n_modes();
+    ConservativeSystem s;
+    s.mass      = Eigen::MatrixXd::Identity(N, N);
+    s.stiffness = rom.basis().omega.array().square().matrix().asDiagonal();
+    s.force     = [&rom](const Eigen::VectorXd &q) { return rom.nonlinear_force(q); };
+    s.tangent   = [&rom](const Eigen::VectorXd &q) { return rom.nonlinear_tangent(q); };
+    return s;
+  }
+
+  namespace
+  {
+    // The HB residual R(Q, ω) of the file header, its Jacobian ∂R/∂Q and
+    // ∂R/∂ω, by AFT on N_t equispaced samples of one period.
+    class HarmonicBalanceResidual
+    {
+    public:
+      HarmonicBalanceResidual(const ConservativeSystem &system, std::vector<unsigned int> harmonics,
+                              const unsigned int n_time_samples)
+        : system_(system)
+        , harmonics_(std::move(harmonics))
+        , n_(system.n_dofs())
+        , nb_(harmonics_.size())
+        , cos_(nb_, n_time_samples)
+        , weighted_cos_(nb_, n_time_samples)
+      {
+        const double pi = std::acos(-1.);
+        for (unsigned int b = 0; b < nb_; ++b)
+          for (unsigned int i = 0; i < n_time_samples; ++i)
+            {
+              cos_(b, i)          = std::cos(harmonics_[b] * 2. * pi * i / n_time_samples);
+              weighted_cos_(b, i) = (harmonics_[b] == 0 ? 1. : 2.) / n_time_samples * cos_(b, i);
+            }
+      }
+
+      unsigned int n_unknowns() const { return n_ * nb_; }
+
+      // R; if J_X is non-null also ∂R/∂Q and ∂R/∂ω. Returns ‖KQ‖ + ‖F‖, the
+      // scale against which ‖R‖ is judged.
+      double evaluate(const Eigen::VectorXd &X, const double omega, Eigen::VectorXd &R, Eigen::MatrixXd *J_X,
+                      Eigen::VectorXd *J_omega) const
+      {
+        const Eigen::Map<const Eigen::MatrixXd> Q(X.data(), n_, nb_);
+        const Eigen::MatrixXd q_t = Q * cos_; // q(τ_i), n × N_t
+        Eigen::MatrixXd f_t(n_, cos_.cols());
+        for (Eigen::Index i = 0; i < cos_.cols(); ++i)
+          {
+            f_t.col(i) = system_.force(q_t.col(i));
+            if (!f_t.col(i).allFinite())
+              throw std::runtime_error("harmonic balance: the force callback returned non-finite values");
+          }
+        const Eigen::MatrixXd F  = f_t * weighted_cos_.transpose(); // n × nb
+        const Eigen::MatrixXd KQ = system_.stiffness * Q;
+        const Eigen::MatrixXd MQ = system_.mass * Q;
+        R.resize(n_unknowns());
+        Eigen::Map<Eigen::MatrixXd> Rm(R.data(), n_, nb_);
+        for (unsigned int b = 0; b < nb_; ++b)
+          {
+            const double hw = harmonics_[b] * omega;
+            Rm.col(b)       = KQ.col(b) - hw * hw * MQ.col(b) + F.col(b);
+          }
+        if (J_X != nullptr)
+          {
+            J_X->setZero(n_unknowns(), n_unknowns());
+            for (unsigned int b = 0; b < nb_; ++b)
+              {
+                const double hw = harmonics_[b] * omega;
+                J_X->block(b * n_, b * n_, n_, n_) = system_.stiffness - hw * hw * system_.mass;
+              }
+            // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)).
+            for (Eigen::Index i = 0; i < cos_.cols(); ++i)
+              {
+                const Eigen::MatrixXd T = system_.tangent(q_t.col(i));
+                for (unsigned int b = 0; b < nb_; ++b)
+                  for (unsigned int c = 0; c < nb_; ++c)
+                    J_X->block(b * n_, c * n_, n_, n_) += (weighted_cos_(b, i) * cos_(c, i)) * T;
+              }
+            J_omega->resize(n_unknowns());
+            Eigen::Map<Eigen::MatrixXd> Jw(J_omega->data(), n_, nb_);
+            for (unsigned int b = 0; b < nb_; ++b)
+              Jw.col(b) = -2. * harmonics_[b] * harmonics_[b] * omega * MQ.col(b);
+          }
+        return KQ.norm() + F.norm();
+      }
+
+    private:
+      const ConservativeSystem &system_;
+      std::vector<unsigned int> harmonics_;
+      unsigned int n_, nb_;
+      Eigen::MatrixXd cos_, weighted_cos_;
+    };
+
+    // Continuation state in scaled unknowns z = (Q / s_x, ω / s_ω).
+    class BackboneContinuation
+    {
+    public:
+      BackboneContinuation(const ConservativeSystem &system, const BackboneSettings &settings, Backbone &result)
+        : system_(system)
+        , settings_(settings)
+        , result_(result)
+        , residual_(system, result.harmonics, result.n_time_samples)
+        , n_(system.n_dofs())
+        , m_(residual_.n_unknowns())
+        , s_x_(settings.end_amplitude)
+      {
+        unsigned int first = 0;
+        while (result.harmonics[first] != 1)
+          ++first;
+        // The amplitude functional a = cᵀQ_1, as a row on the scaled unknowns.
+        amplitude_row_ = Eigen::VectorXd::Zero(m_ + 1);
+        amplitude_row_.segment(first * n_, n_) = settings.output * s_x_;
+
+        // Start: the linear mode, normalised to cᵀφ = 1, at frequency ω_mode.
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(system.stiffness, system.mass);
+        if (eig.info() != Eigen::Success)
+          throw std::runtime_error("compute_backbone: the linear eigenproblem (K, M) failed; is M positive definite?");
+        const double lambda = eig.eigenvalues()[settings.mode];
+        if (!(lambda > 0))
+          throw std::invalid_argument("compute_backbone: linear eigenvalue ω² = " + std::to_string(lambda) +
+                                      " of mode " + std::to_string(settings.mode) + "; must be > 0");
+        s_w_                   = std::sqrt(lambda);
+        Eigen::VectorXd phi    = eig.eigenvectors().col(settings.mode);
+        const double c_phi     = settings.output.dot(phi);
+        if (std::abs(c_phi) < 1e-10 * settings.output.norm() * phi.norm())
+          throw std::invalid_argument("compute_backbone: the output functional c does not see mode " +
+                                      std::to_string(settings.mode) + " (cᵀφ ≈ 0); choose another output");
+        phi /= c_phi;
+        mode_shape_ = Eigen::VectorXd::Zero(m_ + 1);
+        mode_shape_.segment(first * n_, n_) = phi / s_x_;
+      }
+
+      void run()
+      {
+        // First point, amplitude-constrained, from the linear mode.
+        Eigen::VectorXd z = settings_.start_amplitude * mode_shape_;
+        z[m_]             = 1.;
+        BackbonePoint p;
+        if (!correct_at_amplitude(z, settings_.start_amplitude, p))
+          throw std::runtime_error(
+            "compute_backbone: no convergence at the first point, amplitude " +
+            std::to_string(settings_.start_amplitude) + " m, residual " + std::to_string(p.relative_residual) +
+            "; reduce start_amplitude");
+        store(z, p);
+        if (settings_.method == BackboneSettings::Method::arclength)
+          run_arclength(z);
+        else
+          run_amplitude(z);
+      }
+
+    private:
+      double amplitude_of(const Eigen::VectorXd &z) const { return amplitude_row_.dot(z); }
+
+      // Newton on R(z) = 0 plus one closing equation rowᵀ z = rhs.
+      bool correct(Eigen::VectorXd &z, const Eigen::VectorXd &row, const double rhs, BackbonePoint &p)
+      {
+        Eigen::VectorXd R, Jw;
+        Eigen::MatrixXd JX;
+        Eigen::MatrixXd A(m_ + 1, m_ + 1);
+        Eigen::VectorXd b(m_ + 1);
+        p.relative_residual = std::numeric_limits<double>::infinity();
+        for (unsigned int it = 1; it <= settings_.max_newton_iterations; ++it)
+          {
+            ++result_.n_newton_iterations;
+            const Eigen::VectorXd X = z.head(m_) * s_x_;
+            residual_.evaluate(X, z[m_] * s_w_, R, &JX, &Jw);
+            A.topLeftCorner(m_, m_) = JX * s_x_;
+            A.topRightCorner(m_, 1) = Jw * s_w_;
+            A.row(m_)               = row.transpose();
+            b.head(m_)              = -R;
+            b[m_]                   = rhs - row.dot(z);
+            const Eigen::VectorXd dz = A.partialPivLu().solve(b);
+            if (!dz.allFinite())
+              return false;
+            z += dz;
+            const double step = dz.lpNorm<Eigen::Infinity>();
+            if (step > 10. || !(z[m_] > 0))
+              return false; // diverging, or through ω = 0
+            if (step <= settings_.tolerance)
+              {
+                const double ref    = residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, nullptr, nullptr);
+                p.relative_residual = R.norm() / std::max(ref, std::numeric_limits<double>::min());
+                p.newton_iterations = it;
+                return p.relative_residual < 1e-8;
+              }
+          }
+        const double ref    = residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, nullptr, nullptr);
+        p.relative_residual = R.norm() / std::max(ref, std::numeric_limits<double>::min());
+        p.newton_iterations = settings_.max_newton_iterations;
+        return false;
+      }
+
+      bool correct_at_amplitude(Eigen::VectorXd &z, const double amplitude, BackbonePoint &p)
+      {
+        return correct(z, amplitude_row_, amplitude, p);
+      }
+
+      // Unit tangent of the solution curve: [∂R/∂z; rowᵀ] t = [0; 1].
+      Eigen::VectorXd tangent(const Eigen::VectorXd &z, const Eigen::VectorXd &row)
+      {
+        Eigen::VectorXd R, Jw;
+        Eigen::MatrixXd JX;
+        residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, &JX, &Jw);
+        Eigen::MatrixXd A(m_ + 1, m_ + 1);
+        A.topLeftCorner(m_, m_) = JX * s_x_;
+        A.topRightCorner(m_, 1) = Jw * s_w_;
+        A.row(m_)               = row.transpose();
+        Eigen::VectorXd rhs     = Eigen::VectorXd::Zero(m_ + 1);
+        rhs[m_]                 = 1.;
+        const Eigen::VectorXd t = A.partialPivLu().solve(rhs);
+        return t / t.norm();
+      }
+
+      void store(const Eigen::VectorXd &z, BackbonePoint &p)
+      {
+        p.harmonics = z.head(m_) * s_x_;
+        p.omega     = z[m_] * s_w_;
+        p.amplitude = amplitude_of(z);
+        result_.points.push_back(p);
+        const unsigned int h_max = result_.harmonics.back();
+        const Eigen::VectorXd y  = output_time_history(result_, result_.points.back(), settings_.output, 16 * h_max + 1);
+        result_.points.back().peak = y.cwiseAbs().maxCoeff();
+      }
+
+      std::string where(const Eigen::VectorXd &z, const BackbonePoint &p) const
+      {
+        std::ostringstream s;
+        s << "amplitude " << amplitude_of(z) << " m, ω " << z[m_] * s_w_ << " rad/s (last converged: amplitude "
+          << result_.points.back().amplitude << " m, ω " << result_.points.back().omega
+          << " rad/s), relative residual " << p.relative_residual;
+        return s.str();
+      }
+
+      // Pseudo-arclength: predictor z + Δs t, corrector on tᵀ(z − z_pred) = 0.
+      void run_arclength(Eigen::VectorXd z)
+      {
+        Eigen::VectorXd t = tangent(z, amplitude_row_);
+        double ds         = settings_.initial_step;
+        while (true)
+          {
+            if (result_.points.size() >= settings_.max_points)
+              {
+                result_.message = "stopped after max_points = " + std::to_string(settings_.max_points) +
+                                  " points at amplitude " + std::to_string(result_.points.back().amplitude) + " m";
+                return;
+              }
+            const Eigen::VectorXd z_pred = z + ds * t;
+            Eigen::VectorXd z_new        = z_pred;
+            BackbonePoint p;
+            bool ok = correct(z_new, t, t.dot(z_pred), p);
+            Eigen::VectorXd t_new;
+            if (ok)
+              {
+                t_new = tangent(z_new, t);
+                // A turn of more than ~25° in one step: the step jumped (to
+                // another branch, or across a sharp fold); retry smaller.
+                ok = t_new.dot(t) > 0.9;
+              }
+            if (!ok)
+              {
+                ds *= 0.5;
+                if (ds < settings_.min_step)
+                  {
+                    result_.message = "continuation failed: no convergence (or a sharp turn) with step " +
+                                      std::to_string(ds) + " < min_step near " + where(z_pred, p);
+                    return;
+                  }
+                continue;
+              }
+            const double a_new = amplitude_of(z_new);
+            if (a_new >= settings_.end_amplitude)
+              {
+                finish_at_end_amplitude(z, z_new, p);
+                return;
+              }
+            if (a_new < 0.5 * settings_.start_amplitude)
+              {
+                store(z_new, p);
+                result_.message = "the branch turned back to amplitude " + std::to_string(a_new) +
+                                  " m (below start_amplitude); stopped";
+                return;
+              }
+            store(z_new, p);
+            z = z_new;
+            t = t_new;
+            if (p.newton_iterations <= 3)
+              ds = std::min(1.5 * ds, settings_.max_step);
+            else if (p.newton_iterations >= 7)
+              ds *= 0.6;
+          }
+      }
+
+      // Natural continuation in the amplitude a (fails at folds in a).
+      void run_amplitude(Eigen::VectorXd z)
+      {
+        double da = settings_.initial_step * settings_.end_amplitude;
+        Eigen::VectorXd z_old;
+        double a_old = 0;
+        while (true)
+          {
+            if (result_.points.size() >= settings_.max_points)
+              {
+                result_.message = "stopped after max_points = " + std::to_string(settings_.max_points) +
+                                  " points at amplitude " + std::to_string(result_.points.back().amplitude) + " m";
+                return;
+              }
+            const double a   = amplitude_of(z);
+            const double a_n = std::min(a + da, settings_.end_amplitude);
+            Eigen::VectorXd z_new;
+            if (z_old.size() == 0) // first step: scale the first point
+              {
+                z_new = z;
+                z_new.head(m_) *= a_n / a;
+              }
+            else // secant predictor in a
+              z_new = z + (a_n - a) / (a - a_old) * (z - z_old);
+            BackbonePoint p;
+            if (!correct_at_amplitude(z_new, a_n, p))
+              {
+                da *= 0.5;
+                if (da < settings_.min_step * settings_.end_amplitude)
+                  {
+                    result_.message = "amplitude continuation failed near " + where(z_new, p) +
+                                      " (a fold in amplitude, e.g. a loop from modal interaction, stops this "
+                                      "method: use Method::arclength)";
+                    return;
+                  }
+                continue;
+              }
+            store(z_new, p);
+            z_old = z;
+            a_old = a;
+            z     = z_new;
+            if (a_n >= settings_.end_amplitude)
+              {
+                result_.completed = true;
+                result_.message   = "reached end_amplitude";
+                return;
+              }
+            if (p.newton_iterations <= 3)
+              da = std::min(1.5 * da, settings_.max_step * settings_.end_amplitude);
+            else if (p.newton_iterations >= 7)
+              da *= 0.6;
+          }
+      }
+
+      // The last arclength step crossed end_amplitude: land exactly on it.
+      void finish_at_end_amplitude(const Eigen::VectorXd &z, const Eigen::VectorXd &z_new, BackbonePoint p_new)
+      {
+        const double a = amplitude_of(z), a_new = amplitude_of(z_new);
+        Eigen::VectorXd z_end = z + (settings_.end_amplitude - a) / (a_new - a) * (z_new - z);
+        BackbonePoint p;
+        result_.completed = true;
+        if (correct_at_amplitude(z_end, settings_.end_amplitude, p))
+          {
+            store(z_end, p);
+            result_.message = "reached end_amplitude";
+          }
+        else
+          {
+            store(z_new, p_new);
+            result_.message = "reached end_amplitude (last point slightly beyond it: the landing solve failed)";
+          }
+      }
+
+      const ConservativeSystem &system_;
+      const BackboneSettings &settings_;
+      Backbone &result_;
+      HarmonicBalanceResidual residual_;
+      unsigned int n_, m_;
+      double s_x_, s_w_ = 1;
+      Eigen::VectorXd amplitude_row_, mode_shape_;
+    };
+  } // namespace
+
+  Backbone compute_backbone(const ConservativeSystem &system, const BackboneSettings &settings)
+  {
+    const auto t0       = std::chrono::steady_clock::now();
+    const unsigned int n = system.n_dofs();
+    auto fail = [](const std::string &what) { throw std::invalid_argument("compute_backbone: " + what); };
+    if (n == 0 || system.stiffness.cols() != n || system.mass.rows() != n || system.mass.cols() != n)
+      fail("mass and stiffness must be square and of the same size (got K " + std::to_string(system.stiffness.rows()) +
+           "×" + std::to_string(system.stiffness.cols()) + ", M " + std::to_string(system.mass.rows()) + "×" +
+           std::to_string(system.mass.cols()) + ")");
+    if (!system.force || !system.tangent)
+      fail("force and tangent callbacks must be set");
+    if (settings.output.size() != n)
+      fail("output has " + std::to_string(settings.output.size()) + " entries; must have n_dofs = " +
+           std::to_string(n));
+    if (settings.mode >= n)
+      fail("mode = " + std::to_string(settings.mode) + "; must be < n_dofs = " + std::to_string(n));
+    if (settings.hb.n_harmonics < 1 || settings.hb.n_harmonics > 200)
+      fail("n_harmonics = " + std::to_string(settings.hb.n_harmonics) + "; allowed 1 … 200");
+    if (!(settings.start_amplitude > 0) || !(settings.end_amplitude > settings.start_amplitude))
+      fail("need 0 < start_amplitude < end_amplitude (got " + std::to_string(settings.start_amplitude) + " m, " +
+           std::to_string(settings.end_amplitude) + " m)");
+    if (!(settings.min_step > 0) || !(settings.initial_step >= settings.min_step) ||
+        !(settings.max_step >= settings.initial_step))
+      fail("need 0 < min_step ≤ initial_step ≤ max_step (got " + std::to_string(settings.min_step) + ", " +
+           std::to_string(settings.initial_step) + ", " + std::to_string(settings.max_step) + ")");
+
+    Backbone result;
+    for (unsigned int h = settings.hb.odd_harmonics_only ? 1 : 0; h <= settings.hb.n_harmonics;
+         h += settings.hb.odd_harmonics_only ? 2 : 1)
+      result.harmonics.push_back(h);
+    const unsigned int exact_samples = 4 * settings.hb.n_harmonics + 1;
+    result.n_time_samples = settings.hb.n_time_samples == 0 ? exact_samples : settings.hb.n_time_samples;
+    if (result.n_time_samples < 2 * settings.hb.n_harmonics + 1)
+      fail("n_time_samples = " + std::to_string(result.n_time_samples) + "; must be ≥ 2H+1 = " +
+           std::to_string(2 * settings.hb.n_harmonics + 1) + " (≥ 4H+1 for exact cubic terms)");
+
+    BackboneContinuation continuation(system, settings, result);
+    continuation.run();
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+
+  Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,
+                                      const Eigen::VectorXd &output, const unsigned int n_samples)
+  {
+    const unsigned int n  = output.size();
+    const unsigned int nb = backbone.harmonics.size();
+    if (point.harmonics.size() != n * nb)
+      throw std::invalid_argument("output_time_history: point has " + std::to_string(point.harmonics.size()) +
+                                  " harmonic coefficients; expected n·|H| = " + std::to_string(n * nb));
+    const Eigen::Map<const Eigen::MatrixXd> Q(point.harmonics.data(), n, nb);
+    const Eigen::VectorXd yh = Q.transpose() * output; // y's harmonic coefficients
+    const double pi          = std::acos(-1.);
+    Eigen::VectorXd y        = Eigen::VectorXd::Zero(n_samples);
+    for (unsigned int i = 0; i < n_samples; ++i)
+      for (unsigned int b = 0; b < nb; ++b)
+        y[i] += yh[b] * std::cos(backbone.harmonics[b] * 2. * pi * i / n_samples);
+    return y;
+  }
+
+  double single_mode_backbone_frequency(const double omega_1, const double b_111, const double q_hat)
+  {
+    const double w2 = omega_1 * omega_1 + 0.75 * b_111 * q_hat * q_hat;
+    if (!(w2 > 0))
+      throw std::invalid_argument("single_mode_backbone_frequency: ω₁² + ¾ b₁₁₁ q̂² = " + std::to_string(w2) +
+                                  " (ω₁ = " + std::to_string(omega_1) + " rad/s, b₁₁₁ = " + std::to_string(b_111) +
+                                  ", q̂ = " + std::to_string(q_hat) + "); must be > 0");
+    return std::sqrt(w2);
+  }
+
+  double single_mode_backbone_frequency_with_slider(const double omega_1, const double b_111, const double q_hat,
+                                                    const double slider_mass, const double slider_inertia,
+                                                    const double phi_1_at_slider, const double dphi_1_at_slider)
+  {
+    if (!(slider_mass >= 0) || !(slider_inertia >= 0))
+      throw std::invalid_argument("single_mode_backbone_frequency_with_slider: slider mass " +
+                                  std::to_string(slider_mass) + " kg and inertia " + std::to_string(slider_inertia) +
+                                  " kg m²; must be ≥ 0");
+    const double w = single_mode_backbone_frequency(omega_1, b_111, q_hat);
+    return w / std::sqrt(1. + slider_mass * phi_1_at_slider * phi_1_at_slider +
+                         slider_inertia * dphi_1_at_slider * dphi_1_at_slider);
+  }
+
+  double single_mode_backbone_coefficient(const double omega_1, const double b_111, const double phi_1_at_output,
+                                          const double thickness)
+  {
+    if (!(omega_1 > 0) || phi_1_at_output == 0 || !(thickness > 0))
+      throw std::invalid_argument("single_mode_backbone_coefficient: need ω₁ > 0 (" + std::to_string(omega_1) +
+                                  "), φ₁(x) ≠ 0 (" + std::to_string(phi_1_at_output) + "), h > 0 (" +
+                                  std::to_string(thickness) + ")");
+    return 0.75 * b_111 * thickness * thickness / (phi_1_at_output * phi_1_at_output * omega_1 * omega_1);
+  }
+} // namespace beamslider

@@ -1,0 +1,136 @@
+// Backbone curves (nonlinear normal modes) of a conservative second-order system
+//
+//   M q̈ + K q + f(q) = 0 ,          q ∈ Rⁿ, M, K symmetric dense,
+//
+// by harmonic balance (HB) with alternating frequency/time (AFT) evaluation of
+// f, and continuation from the linear mode upward in amplitude. The same code
+// serves the reduced model (M = I, K = diag ω_n², f = cubic, n = N ≤ 10) and a
+// condensed finite-element model (n ≈ 70–300, dense).
+//
+// Ansatz (undamped, f depending on q only ⇒ motions symmetric in time, so a
+// cosine series with the time origin at a turning point fixes the phase):
+//
+//   q(τ) = Σ_{h∈𝓗} Q_h cos(h τ),  τ = ω t,   𝓗 = {0, 1, …, H}  or  {1, 3, …}
+//
+// Odd harmonics only are consistent when f is odd, f(−q) = −f(q) (the cubic
+// ROM): a product of three odd harmonics is an odd harmonic, so the residual
+// has no even part. A von Kármán FE model with axial DOFs is NOT odd (u is
+// even under w → −w: it carries the 0th and even harmonics), so use the full
+// set there unless the in-plane DOFs are condensed out.
+//
+// HB residual (Galerkin on cos hτ):  R_h = (K − (hω)² M) Q_h + F_h(Q),
+// F_h = (2/N_t) Σ_i f(q(τ_i)) cos(h τ_i) (1/N_t for h = 0), τ_i = 2π i / N_t.
+// For cubic f, f(q(τ)) cos(hτ) contains harmonics up to 4H, so N_t ≥ 4H + 1
+// samples make F_h and its Jacobian exact (no aliasing). Default N_t = 4H + 1.
+//
+// Unknowns: the Q_h (n·|𝓗|) and ω. Closure: either an amplitude constraint
+// cᵀQ_1 = a (the first-harmonic amplitude of the output y = cᵀq, e.g. w(L/2)
+// [m]) or the pseudo-arclength condition (Keller 1977; Seydel, "Practical
+// Bifurcation and Stability Analysis", 2010), which follows folds and loops
+// of the backbone in amplitude. Reference implementation compared against:
+// NLvib (Krack & Gross, "Harmonic Balance for Nonlinear Vibration Problems",
+// Springer 2019), which the seed used for its NMA (H = 10, N = 7).
+//
+// Cost: the Newton matrix is dense of size n|𝓗|+1; for n = 300, H = 10 (full
+// set) that is 3301² and one LU is seconds: use odd harmonics or fewer.
+//
+// Also here: the single-mode, single-harmonic backbone (seed Eq. 4) and its
+// slider version (seed Eq. 5).
+#pragma once
+
+#include "reduced/rom_operator.h"
+
+#include <Eigen/Dense>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  // M q̈ + K q + f(q) = 0 with f and its tangent ∂f/∂q as callbacks.
+  struct ConservativeSystem
+  {
+    Eigen::MatrixXd mass;      // M [kg] (ROM: I)
+    Eigen::MatrixXd stiffness; // K [N/m] (ROM: diag ω² [1/s²])
+    std::function<Eigen::VectorXd(const Eigen::VectorXd &q)> force;   // f(q) [N]
+    std::function<Eigen::MatrixXd(const Eigen::VectorXd &q)> tangent; // ∂f/∂q [N/m]
+
+    unsigned int n_dofs() const { return stiffness.rows(); }
+  };
+
+  // The ROM as a ConservativeSystem: M = I, K = diag ω_n², f = nonlinear_force
+  // (damping is dropped: the backbone is the undamped one). The ROM must
+  // outlive the returned object.
+  ConservativeSystem make_conservative_system(const ReducedOrderModel &rom);
+
+  struct HarmonicBalanceSettings
+  {
+    unsigned int n_harmonics = 10;  // H ≥ 1
+    bool odd_harmonics_only  = false; // only for odd f (see the file header)
+    unsigned int n_time_samples = 0; // N_t; 0 → 4H + 1 (exact for cubic f)
+  };
+
+  struct BackboneSettings
+  {
+    HarmonicBalanceSettings hb;
+    Eigen::VectorXd output;       // c: amplitude functional y = cᵀq (size n)
+    unsigned int mode = 0;        // linear mode (0-based, by ascending ω) the backbone starts from
+    double start_amplitude = 0;   // first-harmonic amplitude of y at the first point [m]; > 0
+    double end_amplitude   = 0;   // stop when reached [m]; > start_amplitude
+    enum class Method
+    {
+      arclength, // pseudo-arclength in (Q, ω): follows folds/loops
+      amplitude  // natural continuation in a: stops (reported) at a fold
+    } method = Method::arclength;
+    // Step sizes as fractions of end_amplitude (arclength: of the scaled
+    // arclength, where Q is scaled by end_amplitude and ω by ω_mode).
+    double initial_step = 0.02, min_step = 1e-6, max_step = 0.05;
+    unsigned int max_points            = 5000;
+    unsigned int max_newton_iterations = 12;
+    double tolerance = 1e-10; // on the scaled Newton correction
+  };
+
+  struct BackbonePoint
+  {
+    double amplitude = 0; // first-harmonic amplitude of y = cᵀq [m]
+    double peak      = 0; // max_τ |y(τ)| [m]
+    double omega     = 0; // [rad/s]
+    Eigen::VectorXd harmonics; // Q_h stacked in the order of Backbone::harmonics
+    unsigned int newton_iterations = 0;
+    double relative_residual = 0; // ‖R‖ / (‖K Q‖ + ‖F‖) at the converged point
+  };
+
+  struct Backbone
+  {
+    std::vector<unsigned int> harmonics; // the set 𝓗
+    unsigned int n_time_samples = 0;
+    std::vector<BackbonePoint> points;
+    bool completed = false;  // end_amplitude reached
+    std::string message;     // why it stopped (always set)
+    unsigned int n_newton_iterations = 0; // total, all points and retries
+    double seconds = 0;      // wall time
+  };
+
+  // Continuation of the backbone from the linear mode `mode` at start_amplitude
+  // up to end_amplitude. Never throws for a Newton failure during continuation:
+  // it stops, keeps the converged points and says where and why in `message`
+  // (amplitude, ω, residual). Throws std::invalid_argument for bad settings and
+  // std::runtime_error if even the first point fails.
+  Backbone compute_backbone(const ConservativeSystem &system, const BackboneSettings &settings);
+
+  // Evaluate y(τ) = cᵀq(τ) of a backbone point at n_samples equispaced τ in [0, 2π).
+  Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,
+                                      const Eigen::VectorXd &output, unsigned int n_samples);
+
+  // Seed Eq. 4: ω = sqrt(ω₁² + ¾ b₁₁₁ q̂²) [rad/s]; b₁₁₁ [1/(s² m² kg)], q̂ [m kg^1/2].
+  double single_mode_backbone_frequency(double omega_1, double b_111, double q_hat);
+  // Seed Eq. 5: the same divided by 1 + m φ₁(x_C)² + J φ₁'(x_C)² under the
+  // root (slider mass m [kg], inertia J [kg m²], φ₁ [kg^-1/2], φ₁' [kg^-1/2/m]).
+  double single_mode_backbone_frequency_with_slider(double omega_1, double b_111, double q_hat, double slider_mass,
+                                                    double slider_inertia, double phi_1_at_slider,
+                                                    double dphi_1_at_slider);
+  // The coefficient c of (ω/ω₁)² = 1 + c (ŵ/h)² with ŵ = φ₁(x_out) q̂ (Eq. 4
+  // rewritten): c = ¾ b₁₁₁ h² / (φ₁(x_out)² ω₁²) [-].
+  double single_mode_backbone_coefficient(double omega_1, double b_111, double phi_1_at_output, double thickness);
+} // namespace beamslider
