@@ -1,0 +1,339 @@
+// Assembly of the von Kármán beam: see fe_beam.h for the model and the
+// discretisation.
+#include "fem/fe_beam.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  void hermite_shape(const double xi, const double h, std::array<double, 4> &N, std::array<double, 4> &dN,
+                     std::array<double, 4> &ddN)
+  {
+    const double xi2 = xi * xi, xi3 = xi2 * xi;
+    N   = {{1 - 3 * xi2 + 2 * xi3, h * (xi - 2 * xi2 + xi3), 3 * xi2 - 2 * xi3, h * (-xi2 + xi3)}};
+    dN  = {{(-6 * xi + 6 * xi2) / h, 1 - 4 * xi + 3 * xi2, (6 * xi - 6 * xi2) / h, -2 * xi + 3 * xi2}};
+    ddN = {{(-6 + 12 * xi) / (h * h), (-4 + 6 * xi) / h, (6 - 12 * xi) / (h * h), (-2 + 6 * xi) / h}};
+  }
+
+  FEBeam::FEBeam(const Scene &scene, const unsigned int n_elements)
+    : beam(scene.beam)
+    , supports(scene.supports)
+    , nonlinear(scene.discretisation.geometric_nonlinearity)
+    , fe(FE_Q<1>(scene.discretisation.axial_degree), 1, FE_Q<1>(1), 2)
+    , dof_handler(triangulation)
+  {
+    make_grid_and_dofs(n_elements > 0 ? n_elements : scene.discretisation.n_elements);
+    make_constraints();
+  }
+
+  void FEBeam::make_grid_and_dofs(const unsigned int n_elements)
+  {
+    GridGenerator::subdivided_hyper_cube(triangulation, n_elements, 0., beam.length);
+    dof_handler.distribute_dofs(fe);
+
+    // Identify, once, which local DoF plays which role. For the FE_Q(1) bases
+    // the index within the base element is the vertex number (0 = left).
+    axial_local.clear();
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      {
+        const auto [component, index] = fe.system_to_component_index(i);
+        if (component == 0)
+          axial_local.push_back(i);
+        else if (component == 1)
+          hermite_local[2 * index] = i; // w at vertex `index`
+        else
+          hermite_local[2 * index + 1] = i; // θ at vertex `index`
+      }
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      ordered_cells.push_back(cell);
+    std::sort(ordered_cells.begin(), ordered_cells.end(),
+              [](const auto &a, const auto &b) { return a->vertex(0)[0] < b->vertex(0)[0]; });
+
+    is_axial.assign(n_dofs(), false);
+    is_deflection.assign(n_dofs(), false);
+    is_slope.assign(n_dofs(), false);
+    std::vector<global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : ordered_cells)
+      {
+        Assert(cell->vertex(0)[0] < cell->vertex(1)[0], ExcInternalError());
+        cell->get_dof_indices(dofs);
+        for (const unsigned int i : axial_local)
+          is_axial[dofs[i]] = true;
+        for (unsigned int v = 0; v < 2; ++v)
+          {
+            is_deflection[dofs[hermite_local[2 * v]]] = true;
+            is_slope[dofs[hermite_local[2 * v + 1]]]  = true;
+          }
+      }
+
+    // The support DoFs: vertex 0 of the first cell, vertex 1 of the last.
+    for (unsigned int end = 0; end < 2; ++end)
+      {
+        const auto &cell = end == 0 ? ordered_cells.front() : ordered_cells.back();
+        cell->get_dof_indices(dofs);
+        global_dof_index u_dof = 0;
+        for (const unsigned int i : axial_local)
+          if (fe.system_to_component_index(i).second == end)
+            u_dof = dofs[i];
+        end_dofs[end] = {{u_dof, dofs[hermite_local[2 * end]], dofs[hermite_local[2 * end + 1]]}};
+      }
+
+    DynamicSparsityPattern dsp(n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp);
+    sparsity.copy_from(dsp);
+  }
+
+  void FEBeam::make_constraints()
+  {
+    support_constraints.clear();
+    for (unsigned int end = 0; end < 2; ++end)
+      {
+        const auto [u, w, theta] = end_dofs[end];
+        support_constraints.add_line(w);
+        if (supports.ideal_clamp)
+          {
+            support_constraints.add_line(theta);
+            support_constraints.add_line(u);
+          }
+      }
+    support_constraints.close();
+
+    bending_only_constraints.clear();
+    bending_only_constraints.merge(support_constraints);
+    for (global_dof_index i = 0; i < n_dofs(); ++i)
+      if (is_axial[i] && !bending_only_constraints.is_constrained(i))
+        bending_only_constraints.add_line(i);
+    bending_only_constraints.close();
+  }
+
+  void FEBeam::assemble_mass_matrix(SparseMatrix<double> &M, const AffineConstraints<double> &c) const
+  {
+    M.reinit(sparsity);
+    const QGauss<1> quadrature(std::max(3u, fe.degree + 1));
+    FEValues<1> fe_values(fe, quadrature, update_values | update_quadrature_points | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_M(n, n);
+    std::vector<global_dof_index> dofs(n);
+    std::array<double, 4> N, dN, ddN;
+    const double rhoA = beam.mass_per_length();
+
+    for (const auto &cell : ordered_cells)
+      {
+        fe_values.reinit(cell);
+        cell_M           = 0;
+        const double h   = cell->diameter();
+        const double x_0 = cell->vertex(0)[0];
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const double JxW = fe_values.JxW(q);
+            for (const unsigned int i : axial_local)
+              for (const unsigned int j : axial_local)
+                cell_M(i, j) += rhoA * fe_values.shape_value_component(i, q, 0) *
+                                fe_values.shape_value_component(j, q, 0) * JxW;
+            hermite_shape((fe_values.quadrature_point(q)[0] - x_0) / h, h, N, dN, ddN);
+            for (unsigned int a = 0; a < 4; ++a)
+              for (unsigned int b = 0; b < 4; ++b)
+                cell_M(hermite_local[a], hermite_local[b]) += rhoA * N[a] * N[b] * JxW;
+          }
+        cell->get_dof_indices(dofs);
+        c.distribute_local_to_global(cell_M, dofs, M);
+      }
+  }
+
+  void FEBeam::assemble_internal_force(const Vector<double> &q, Vector<double> *f, SparseMatrix<double> *K_t,
+                                       const AffineConstraints<double> &c) const
+  {
+    if (f)
+      f->reinit(n_dofs());
+    if (K_t)
+      K_t->reinit(sparsity);
+
+    // Degree of the integrand N w' N_a' with N = EA(u' + ½w'²): 4 + 2 + 2 = 8
+    // for the cubic w; Gauss with 5 points integrates degree 9 exactly.
+    const QGauss<1> quadrature(std::max(5u, fe.degree + 2));
+    FEValues<1> fe_values(fe, quadrature, update_gradients | update_quadrature_points | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    FullMatrix<double> cell_K(n, n);
+    Vector<double> cell_f(n);
+    std::vector<global_dof_index> dofs(n);
+    std::vector<double> q_local(n);
+    std::array<double, 4> N, dN, ddN;
+    const double EA = beam.axial_stiffness(), EI = beam.bending_stiffness();
+
+    for (const auto &cell : ordered_cells)
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          q_local[i] = q[dofs[i]];
+        cell_K           = 0;
+        cell_f           = 0;
+        const double h   = cell->diameter();
+        const double x_0 = cell->vertex(0)[0];
+
+        for (const unsigned int qp : fe_values.quadrature_point_indices())
+          {
+            const double JxW = fe_values.JxW(qp);
+            hermite_shape((fe_values.quadrature_point(qp)[0] - x_0) / h, h, N, dN, ddN);
+            double du = 0, dw = 0, ddw = 0;
+            for (const unsigned int i : axial_local)
+              du += q_local[i] * fe_values.shape_grad_component(i, qp, 0)[0];
+            for (unsigned int a = 0; a < 4; ++a)
+              {
+                dw += q_local[hermite_local[a]] * dN[a];
+                ddw += q_local[hermite_local[a]] * ddN[a];
+              }
+            // Membrane strain and force, bending moment.
+            const double strain = du + (nonlinear ? 0.5 * dw * dw : 0.);
+            const double normal_force = EA * strain;
+            const double moment       = EI * ddw;
+            // δε = δu' + w' δw' (the second term only with the nonlinearity).
+            const double coupling = nonlinear ? dw : 0.;
+
+            for (const unsigned int i : axial_local)
+              {
+                const double gi = fe_values.shape_grad_component(i, qp, 0)[0];
+                cell_f(i) += normal_force * gi * JxW;
+                if (K_t)
+                  {
+                    for (const unsigned int j : axial_local)
+                      cell_K(i, j) += EA * gi * fe_values.shape_grad_component(j, qp, 0)[0] * JxW;
+                    for (unsigned int b = 0; b < 4; ++b)
+                      {
+                        const double k = EA * gi * coupling * dN[b] * JxW;
+                        cell_K(i, hermite_local[b]) += k;
+                        cell_K(hermite_local[b], i) += k;
+                      }
+                  }
+              }
+            for (unsigned int a = 0; a < 4; ++a)
+              {
+                cell_f(hermite_local[a]) += (normal_force * coupling * dN[a] + moment * ddN[a]) * JxW;
+                if (K_t)
+                  for (unsigned int b = 0; b < 4; ++b)
+                    cell_K(hermite_local[a], hermite_local[b]) +=
+                      (EA * coupling * coupling * dN[a] * dN[b] + (nonlinear ? normal_force : 0.) * dN[a] * dN[b] +
+                       EI * ddN[a] * ddN[b]) *
+                      JxW;
+              }
+          }
+        if (f && K_t)
+          c.distribute_local_to_global(cell_K, cell_f, dofs, *K_t, *f);
+        else if (f)
+          c.distribute_local_to_global(cell_f, dofs, *f);
+        else
+          c.distribute_local_to_global(cell_K, dofs, *K_t);
+      }
+
+    // Support springs: ½ k_r θ² and ½ k_t u² at both ends (the clamp has
+    // constrained these DoFs instead).
+    if (!supports.ideal_clamp)
+      for (unsigned int end = 0; end < 2; ++end)
+        {
+          const auto [u, w, theta] = end_dofs[end];
+          for (const auto &[dof, k] : {std::pair{theta, supports.rotational_stiffness}, std::pair{u, supports.axial_stiffness}})
+            if (!c.is_constrained(dof))
+              {
+                if (f)
+                  (*f)[dof] += k * q[dof];
+                if (K_t)
+                  K_t->add(dof, dof, k);
+              }
+        }
+  }
+
+  void FEBeam::assemble_base_load(Vector<double> &r) const
+  {
+    r.reinit(n_dofs());
+    const QGauss<1> quadrature(3);
+    FEValues<1> fe_values(fe, quadrature, update_quadrature_points | update_JxW_values);
+    std::vector<global_dof_index> dofs(fe.n_dofs_per_cell());
+    std::array<double, 4> N, dN, ddN;
+    for (const auto &cell : ordered_cells)
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        const double h = cell->diameter(), x_0 = cell->vertex(0)[0];
+        for (const unsigned int qp : fe_values.quadrature_point_indices())
+          {
+            hermite_shape((fe_values.quadrature_point(qp)[0] - x_0) / h, h, N, dN, ddN);
+            for (unsigned int a = 0; a < 4; ++a)
+              r[dofs[hermite_local[a]]] -= beam.mass_per_length() * N[a] * fe_values.JxW(qp);
+          }
+      }
+    support_constraints.set_zero(r);
+  }
+
+  FEPointShape FEBeam::point_shape(const double x) const
+  {
+    const double tol = 1e-12 * beam.length;
+    AssertThrow(x >= -tol && x <= beam.length + tol,
+                ExcMessage("FE beam evaluated at x = " + std::to_string(x) + " m, outside the beam [0, " +
+                           std::to_string(beam.length) + "] m"));
+    // The cell whose left vertex is the last one at or before x.
+    auto it = std::upper_bound(ordered_cells.begin(), ordered_cells.end(), x,
+                               [](const double x, const auto &cell) { return x < cell->vertex(0)[0]; });
+    const auto cell = *(it == ordered_cells.begin() ? it : std::prev(it));
+    const double h  = cell->diameter();
+    const double xi = std::clamp((x - cell->vertex(0)[0]) / h, 0., 1.);
+
+    std::vector<global_dof_index> dofs(fe.n_dofs_per_cell());
+    cell->get_dof_indices(dofs);
+    FEPointShape s;
+    hermite_shape(xi, h, s.w_values, s.slope_values, s.curvature_values);
+    for (unsigned int a = 0; a < 4; ++a)
+      s.w_dofs[a] = dofs[hermite_local[a]];
+    // The axial shape functions at ξ on the unit cell (FE_Q is defined there).
+    const Point<1> p(xi);
+    for (const unsigned int i : axial_local)
+      {
+        s.u_dofs.push_back(dofs[i]);
+        s.u_values.push_back(fe.shape_value_component(i, p, 0));
+        s.strain_values.push_back(fe.shape_grad_component(i, p, 0)[0] / h);
+      }
+    return s;
+  }
+
+  double FEBeam::deflection(const Vector<double> &q, const double x) const
+  {
+    const FEPointShape s = point_shape(x);
+    double w             = 0;
+    for (unsigned int a = 0; a < 4; ++a)
+      w += s.w_values[a] * q[s.w_dofs[a]];
+    return w;
+  }
+
+  double FEBeam::slope(const Vector<double> &q, const double x) const
+  {
+    const FEPointShape s = point_shape(x);
+    double dw            = 0;
+    for (unsigned int a = 0; a < 4; ++a)
+      dw += s.slope_values[a] * q[s.w_dofs[a]];
+    return dw;
+  }
+
+  void FEBeam::add_point_inertia(const double x, const double m, const double J, SparseMatrix<double> &M) const
+  {
+    const FEPointShape s = point_shape(x);
+    for (unsigned int a = 0; a < 4; ++a)
+      for (unsigned int b = 0; b < 4; ++b)
+        {
+          const auto i = s.w_dofs[a], j = s.w_dofs[b];
+          if (support_constraints.is_constrained(i) || support_constraints.is_constrained(j))
+            continue;
+          M.add(i, j, m * s.w_values[a] * s.w_values[b] + J * s.slope_values[a] * s.slope_values[b]);
+        }
+  }
+} // namespace beamslider
