@@ -17,6 +17,8 @@
 
 #include <Eigen/Dense>
 
+#include <limits>
+
 namespace beamslider
 {
   // Transverse displacement (relative to the moving base) and slope at one x,
@@ -57,5 +59,20 @@ namespace beamslider
     // Mechanical energy of the beam (kinetic relative to the base + strain) [J],
     // for energy bookkeeping.
     virtual double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const = 0;
+
+    // Work [J] done on the beam during the last step (the one of the last
+    // free_velocity call) by its damping forces and by the base-excitation
+    // load, given that step's end velocity u_E. A midpoint step changes the
+    // kinetic energy by exactly Δt h·(u_B + u_E)/2, so the work of each part of
+    // h is its impulse times the mean velocity.
+    // Why this is in the interface: free_velocity lumps all smooth forces into
+    // u_free, and only the beam model knows which part is damping and which is
+    // the base load; the energy balance of the adaptation runs (DESIGN §4)
+    // needs them separately. A model that cannot split them may return NaN.
+    virtual void step_work(const Eigen::VectorXd & /*u_E*/, double &damping_work, double &excitation_work) const
+    {
+      damping_work    = std::numeric_limits<double>::quiet_NaN();
+      excitation_work = std::numeric_limits<double>::quiet_NaN();
+    }
   };
 } // namespace beamslider

@@ -1,0 +1,311 @@
+// Free-slider and prescribed-position runs, see adaptation_run.h.
+#include "contact/adaptation_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  std::string to_string(const RunStatus status)
+  {
+    switch (status)
+      {
+        case RunStatus::completed:
+          return "completed";
+        case RunStatus::slider_at_support:
+          return "slider_at_support";
+        case RunStatus::contact_solver_failure:
+          return "contact_solver_failure";
+        case RunStatus::non_finite_state:
+          return "non_finite_state";
+      }
+    return "unknown";
+  }
+
+  RunOptions RunOptions::from_scene(const Scene &scene)
+  {
+    RunOptions o;
+    o.end_time    = scene.time_stepping.end_time;
+    o.output_rate = scene.time_stepping.output_rate;
+    return o;
+  }
+
+  AdaptationRun::AdaptationRun(const Scene &scene, BeamSystem &beam, RunOptions options)
+    : beam_(beam)
+    , options_(options)
+    , thickness_(beam.thickness())
+    , stepper_(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene),
+               BaseExcitation::from_scene(scene.excitation), scene.time_stepping.time_step, options.solver)
+  {
+    const BaseExcitation base = BaseExcitation::from_scene(scene.excitation);
+    period_ = std::isfinite(base.period()) ? base.period() : options_.period_without_excitation;
+    if (!(options_.probe_position_over_L >= 0. && options_.probe_position_over_L <= 1.))
+      {
+        std::ostringstream m;
+        m << "probe position x/L = " << options_.probe_position_over_L << " is outside [0, 1]";
+        throw std::invalid_argument(m.str());
+      }
+    if (!(options_.output_rate >= 0.))
+      {
+        std::ostringstream m;
+        m << "output rate = " << options_.output_rate << " 1/s is outside [0, inf)";
+        throw std::invalid_argument(m.str());
+      }
+    const double x_C = scene.initial.slider_position_over_L * beam.length();
+    stepper_.set_state(stepper_.resting_state(x_C, 0.));
+    stepper_.set_prescribed_horizontal_position(options_.prescribed_slider_position);
+  }
+
+  void AdaptationRun::set_state(const SystemState &state)
+  {
+    stepper_.set_state(state);
+    period_open_ = false;
+  }
+
+  void AdaptationRun::set_slider_position(const double x_C)
+  {
+    SystemState s = stepper_.state();
+    s.s[0]        = x_C;
+    set_state(s);
+  }
+
+  void AdaptationRun::set_prescribed_slider_position(const bool prescribed)
+  {
+    options_.prescribed_slider_position = prescribed;
+    stepper_.set_prescribed_horizontal_position(prescribed);
+    period_open_ = false;
+  }
+
+  TraceRow AdaptationRun::make_row() const
+  {
+    const SystemState &s = stepper_.state();
+    const double L       = beam_.length();
+    TraceRow row;
+    row.t               = s.t;
+    row.slider_x_over_L = s.s[0] / L;
+    row.slider_z        = s.s[1];
+    row.slider_beta     = s.s[2];
+    beam_.evaluate(0.5 * L, s.q, point_);
+    row.w_center = point_.w;
+    beam_.evaluate(options_.probe_position_over_L * L, s.q, point_);
+    row.w_probe = point_.w;
+    if (have_amplitude_)
+      row.amplitude_over_h = last_amplitude_over_h_;
+    else if (period_open_)
+      row.amplitude_over_h = 0.5 * (w_max_ - w_min_) / thickness_;
+    return row;
+  }
+
+  void AdaptationRun::begin_period(const double t)
+  {
+    const SystemState &s = stepper_.state();
+    current_             = PeriodRecord();
+    current_.index       = static_cast<unsigned int>(std::llround(t / period_));
+    current_.t_start     = t;
+    current_.energy_start = stepper_.beam_energy() + stepper_.slider_kinetic_energy();
+    beam_.evaluate(0.5 * beam_.length(), s.q, point_);
+    w_min_ = w_max_ = point_.w;
+    x_sum_ = impulse_x_ = 0;
+    period_steps_ = contact_steps_ = 0;
+    period_open_  = true;
+  }
+
+  void AdaptationRun::close_period(const double t)
+  {
+    PeriodRecord &p = current_;
+    p.t_end         = t;
+    p.energy_end    = stepper_.beam_energy() + stepper_.slider_kinetic_energy();
+    const double duration = p.t_end - p.t_start;
+    p.slider_x_over_L     = x_sum_ / std::max<unsigned long>(period_steps_, 1) / beam_.length();
+    p.amplitude_over_h    = 0.5 * (w_max_ - w_min_) / thickness_;
+    p.mean_horizontal_contact_force = impulse_x_ / duration;
+    p.contact_fraction    = static_cast<double>(contact_steps_) / std::max<unsigned long>(period_steps_, 1);
+    p.energy_residual     = (p.energy_end - p.energy_start) -
+                        (p.work_gravity + p.work_damping + p.work_excitation + p.work_impact + p.work_friction +
+                         p.work_base_contact);
+    last_amplitude_over_h_ = p.amplitude_over_h;
+    have_amplitude_        = true;
+    period_open_           = false;
+    if (on_period)
+      on_period(p);
+  }
+
+  RunResult AdaptationRun::run() { return run_until(options_.end_time); }
+
+  RunResult AdaptationRun::run_until(const double t_end)
+  {
+    using clock      = std::chrono::steady_clock;
+    const auto start = clock::now();
+    const double dt  = stepper_.time_step();
+    const double L   = beam_.length();
+    RunResult result;
+
+    const double t0            = stepper_.state().t;
+    const unsigned long n_steps = t_end > t0 ? static_cast<unsigned long>(std::llround((t_end - t0) / dt)) : 0;
+    const double output_interval = options_.output_rate > 0. ? 1. / options_.output_rate : 0.;
+    const double eps             = 1e-9 * dt;
+    double next_output           = t0;
+    double next_progress         = t0 + options_.progress_interval;
+    bool last_row_is_current     = false;
+
+    auto emit_row_if_due = [&]() {
+      const double t = stepper_.state().t;
+      if (t + eps >= next_output)
+        {
+          if (on_trace_row)
+            on_trace_row(make_row());
+          last_row_is_current = true;
+          if (output_interval > 0.)
+            while (next_output <= t + eps)
+              next_output += output_interval;
+        }
+      else
+        last_row_is_current = false;
+    };
+
+    // Periods run on the absolute grid k T; a run that starts off the grid
+    // starts bookkeeping at the next grid point.
+    auto on_grid = [&](const double t) { return std::abs(t - std::round(t / period_) * period_) < 0.5 * dt; };
+    if (!period_open_ && on_grid(t0))
+      begin_period(t0);
+    emit_row_if_due();
+
+    for (unsigned long k = 0; k < n_steps; ++k)
+      {
+        const double t_B = stepper_.state().t;
+        const StepReport *report = nullptr;
+        try
+          {
+            report = &stepper_.step();
+          }
+        catch (const SliderAtSupport &e)
+          {
+            result.status  = RunStatus::slider_at_support;
+            result.message = e.what();
+          }
+        catch (const ContactSolverFailure &e)
+          {
+            result.status  = RunStatus::contact_solver_failure;
+            result.message = e.what();
+          }
+        catch (const NonFiniteState &e)
+          {
+            result.status  = RunStatus::non_finite_state;
+            result.message = e.what();
+          }
+        if (!report)
+          break;
+
+        const SystemState &s = stepper_.state();
+        ++result.n_steps;
+        result.max_solver_iterations = std::max(result.max_solver_iterations, report->iterations);
+
+        if (period_open_)
+          {
+            PeriodRecord &p = current_;
+            p.work_gravity += report->work_gravity;
+            p.work_damping += report->work_damping;
+            p.work_excitation += report->work_excitation;
+            p.work_impact += report->work_impact;
+            p.work_friction += report->work_friction;
+            p.work_base_contact += report->work_base_contact;
+            p.max_solver_iterations = std::max(p.max_solver_iterations, report->iterations);
+            impulse_x_ += report->slider_impulse[0];
+            x_sum_ += s.s[0];
+            ++period_steps_;
+            if (report->n_active > 0)
+              ++contact_steps_;
+            beam_.evaluate(0.5 * L, s.q, point_);
+            w_min_ = std::min(w_min_, point_.w);
+            w_max_ = std::max(w_max_, point_.w);
+          }
+        // Period boundary crossed in this step?
+        if (std::floor(s.t / period_ + 1e-9) > std::floor(t_B / period_ + 1e-9))
+          {
+            if (period_open_)
+              close_period(s.t);
+            begin_period(s.t);
+          }
+
+        emit_row_if_due();
+
+        if (on_progress && s.t + eps >= next_progress)
+          {
+            const double wall = std::chrono::duration<double>(clock::now() - start).count();
+            RunProgress pr;
+            pr.t                = s.t;
+            pr.end_time         = t_end;
+            pr.slider_x_over_L  = s.s[0] / L;
+            pr.amplitude_over_h = last_amplitude_over_h_;
+            pr.steps_per_second = wall > 0 ? result.n_steps / wall : 0.;
+            on_progress(pr);
+            while (next_progress <= s.t + eps)
+              next_progress += options_.progress_interval;
+          }
+      }
+
+    // A stopped run ends its trace with the last good state.
+    if (!last_row_is_current && on_trace_row)
+      on_trace_row(make_row());
+
+    result.t_end            = stepper_.state().t;
+    result.slider_x_over_L  = stepper_.state().s[0] / L;
+    result.wall_seconds     = std::chrono::duration<double>(clock::now() - start).count();
+    result.steps_per_second = result.wall_seconds > 0 ? result.n_steps / result.wall_seconds : 0.;
+    return result;
+  }
+
+  TraceCsvWriter::TraceCsvWriter(std::ostream &out, const unsigned int flush_every)
+    : out_(out)
+    , flush_every_(std::max(1u, flush_every))
+  {
+    out_ << header() << '\n';
+    out_.flush();
+  }
+
+  TraceCsvWriter::~TraceCsvWriter() { out_.flush(); }
+
+  const char *TraceCsvWriter::header()
+  {
+    return "t_s,slider_x_over_L,slider_z_m,slider_beta_rad,w_center_m,w_probe_m,amplitude_over_h";
+  }
+
+  void TraceCsvWriter::write(const TraceRow &r)
+  {
+    out_ << std::setprecision(10) << r.t << ',' << r.slider_x_over_L << ',' << r.slider_z << ',' << r.slider_beta
+         << ',' << r.w_center << ',' << r.w_probe << ',' << r.amplitude_over_h << '\n';
+    if (++pending_ >= flush_every_)
+      {
+        out_.flush();
+        pending_ = 0;
+      }
+  }
+
+  PeriodCsvWriter::PeriodCsvWriter(std::ostream &out)
+    : out_(out)
+  {
+    out_ << header() << '\n';
+    out_.flush();
+  }
+
+  const char *PeriodCsvWriter::header()
+  {
+    return "period,t_start_s,t_end_s,slider_x_over_L,amplitude_over_h,mean_contact_force_x_N,energy_start_J,"
+           "energy_end_J,work_gravity_J,work_damping_J,work_excitation_J,work_impact_J,work_friction_J,"
+           "work_base_contact_J,energy_residual_J,max_solver_iterations,contact_fraction";
+  }
+
+  void PeriodCsvWriter::write(const PeriodRecord &p)
+  {
+    out_ << std::setprecision(10) << p.index << ',' << p.t_start << ',' << p.t_end << ',' << p.slider_x_over_L << ','
+         << p.amplitude_over_h << ',' << p.mean_horizontal_contact_force << ',' << p.energy_start << ','
+         << p.energy_end << ',' << p.work_gravity << ',' << p.work_damping << ',' << p.work_excitation << ','
+         << p.work_impact << ',' << p.work_friction << ',' << p.work_base_contact << ',' << p.energy_residual << ','
+         << p.max_solver_iterations << ',' << p.contact_fraction << '\n';
+    out_.flush();
+  }
+} // namespace beamslider

@@ -1,0 +1,177 @@
+// The free-slider ("self-adaptive") simulation of a scene on any BeamSystem,
+// and the prescribed-position variant for the sweeps of seed §4.2–4.3
+// (DESIGN.md §1.5): steps the MoreauStepper from the current state to an end
+// time and reports, without ever holding the whole history in memory,
+//   - trace rows, decimated to the scene's output rate (trace.csv columns
+//     t_s, slider_x_over_L, slider_z_m, slider_beta_rad, w_center_m,
+//     w_probe_m, amplitude_over_h);
+//   - one record per excitation period: amplitude (peak-to-peak/2 of w(L/2)
+//     over the period, divided by h), mean slider position, the
+//     period-averaged horizontal contact force on the slider F̄_x, and the
+//     energy balance (works of gravity, damping, base load, impacts,
+//     friction, base-through-contacts, and the residual);
+//   - progress.
+// w is the beam's displacement relative to the moving base [m].
+// A run that meets a support, a contact-solver failure or a non-finite state
+// stops cleanly with a status and a message that says when and where; rows
+// and periods written before stay valid (writers flush regularly).
+#pragma once
+
+#include "contact/base_excitation.h"
+#include "contact/beam_system.h"
+#include "contact/moreau_stepper.h"
+#include "meshes/scene.h"
+
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+
+namespace beamslider
+{
+  struct TraceRow
+  {
+    double t                = 0; // [s]
+    double slider_x_over_L  = 0; // x_C / L [-]
+    double slider_z         = 0; // z_C [m], absolute
+    double slider_beta      = 0; // β [rad]
+    double w_center         = 0; // w(L/2) relative to the base [m]
+    double w_probe          = 0; // w(x_probe) relative to the base [m]
+    // Amplitude of the last completed excitation period / h; during the first
+    // period, of the part run so far [-].
+    double amplitude_over_h = 0;
+  };
+
+  struct PeriodRecord
+  {
+    unsigned int index = 0;      // 0-based period number since the run's t = 0
+    double t_start = 0, t_end = 0; // [s]
+    double slider_x_over_L = 0;  // mean over the period [-]
+    double amplitude_over_h = 0; // (max − min)/2 of w(L/2) / h [-]
+    double mean_horizontal_contact_force = 0; // F̄_x on the slider, + toward x = L [N]
+    double energy_start = 0, energy_end = 0;  // beam + slider kinetic [J]
+    double work_gravity = 0, work_damping = 0, work_excitation = 0; // [J]
+    double work_impact = 0, work_friction = 0, work_base_contact = 0; // [J]
+    // (energy_end − energy_start) − Σ works: the discretisation error [J].
+    double energy_residual = 0;
+    unsigned int max_solver_iterations = 0;
+    double contact_fraction = 0; // fraction of steps with ≥ 1 active corner [-]
+  };
+
+  struct RunProgress
+  {
+    double t = 0, end_time = 0;
+    double slider_x_over_L = 0, amplitude_over_h = 0;
+    double steps_per_second = 0; // wall-clock
+  };
+
+  enum class RunStatus
+  {
+    completed,
+    slider_at_support,
+    contact_solver_failure,
+    non_finite_state
+  };
+  std::string to_string(RunStatus status);
+
+  struct RunResult
+  {
+    RunStatus status = RunStatus::completed;
+    std::string message;       // empty when completed
+    double t_end = 0;          // time of the last accepted state [s]
+    double slider_x_over_L = 0; // then
+    unsigned long n_steps = 0;
+    double wall_seconds = 0, steps_per_second = 0;
+    unsigned int max_solver_iterations = 0;
+  };
+
+  struct RunOptions
+  {
+    double end_time    = 60.;   // [s]
+    double output_rate = 1000.; // trace rows per second [1/s]; 0: every step
+    double probe_position_over_L = 4. / 7.;
+    bool prescribed_slider_position = false; // hold x_C (seed §4.2)
+    ProxSolverSettings solver;
+    double progress_interval = 1.; // simulated seconds between progress reports [s]
+    // Period of the bookkeeping when the scene has no excitation [s].
+    double period_without_excitation = 0.01;
+
+    static RunOptions from_scene(const Scene &scene);
+  };
+
+  class AdaptationRun
+  {
+  public:
+    // The beam must outlive the run. The initial state is the beam at rest and
+    // the slider resting on it at the scene's x_C/L, t = 0. Throws
+    // std::invalid_argument for a time step above the beam's stability limit.
+    AdaptationRun(const Scene &scene, BeamSystem &beam, RunOptions options);
+
+    std::function<void(const TraceRow &)> on_trace_row;
+    std::function<void(const PeriodRecord &)> on_period;
+    std::function<void(const RunProgress &)> on_progress;
+
+    // Runs from the current state to options.end_time (or to t_end).
+    RunResult run();
+    RunResult run_until(double t_end);
+
+    // State access, for sweeps that continue from the previous state.
+    const SystemState &state() const { return stepper_.state(); }
+    void set_state(const SystemState &state);
+    // Move the slider horizontally to x_C (everything else kept), e.g. one
+    // step Δx_C of a prescribed-position sweep.
+    void set_slider_position(double x_C);
+    void set_prescribed_slider_position(bool prescribed);
+
+    MoreauStepper &stepper() { return stepper_; }
+    const RunOptions &options() const { return options_; }
+    double period() const { return period_; }
+
+  private:
+    void begin_period(double t);
+    void close_period(double t);
+    TraceRow make_row() const;
+
+    BeamSystem &beam_;
+    RunOptions options_;
+    double thickness_;
+    MoreauStepper stepper_;
+    double period_;
+
+    // Running period.
+    bool period_open_ = false;
+    PeriodRecord current_;
+    double w_min_ = 0, w_max_ = 0, x_sum_ = 0, impulse_x_ = 0;
+    unsigned long period_steps_ = 0, contact_steps_ = 0;
+    double last_amplitude_over_h_ = 0;
+    bool have_amplitude_          = false;
+    mutable BeamPointKinematics point_;
+  };
+
+  // trace.csv: header, one row per call, flushes every `flush_every` rows and
+  // on destruction, so a long run never loses finished work.
+  class TraceCsvWriter
+  {
+  public:
+    explicit TraceCsvWriter(std::ostream &out, unsigned int flush_every = 1000);
+    ~TraceCsvWriter();
+    void write(const TraceRow &row);
+    static const char *header();
+
+  private:
+    std::ostream &out_;
+    unsigned int flush_every_, pending_ = 0;
+  };
+
+  // periods.csv: one row per excitation period (PeriodRecord), flushed each row.
+  class PeriodCsvWriter
+  {
+  public:
+    explicit PeriodCsvWriter(std::ostream &out);
+    void write(const PeriodRecord &record);
+    static const char *header();
+
+  private:
+    std::ostream &out_;
+  };
+} // namespace beamslider

@@ -1,0 +1,261 @@
+// Moreau midpoint step for beam + slider, see moreau_stepper.h.
+#include "contact/moreau_stepper.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    const char *corner_name(const unsigned int k)
+    {
+      static const char *names[n_slider_corners] = {"upper-left", "upper-right", "lower-left", "lower-right"};
+      return names[k];
+    }
+
+    std::string solver_failure_message(const double t, const unsigned int n_active, const std::string &corners,
+                                       const double residual, const unsigned int iterations)
+    {
+      std::ostringstream m;
+      m << "contact solver failed at t = " << t << " s: " << n_active << " active contact(s) (" << corners
+        << "), relative residual " << residual << " after " << iterations
+        << " Gauss-Seidel sweeps (the iteration cap); the step is not accepted";
+      return m.str();
+    }
+
+    std::string support_message(const double t, const double x_C, const double x_corner, const double L)
+    {
+      std::ostringstream m;
+      m << "the slider reached the support at x = " << (x_corner < 0 ? "0" : "L") << " at t = " << t
+        << " s: x_C = " << x_C << " m (x_C/L = " << x_C / L << "), a window corner at x = " << x_corner
+        << " m is outside the beam [0, " << L << "] m; the run stops here, everything before t is kept";
+      return m.str();
+    }
+  } // namespace
+
+  ContactSolverFailure::ContactSolverFailure(const double t_, const unsigned int n_active_,
+                                             std::string active_corners_, const double residual_,
+                                             const unsigned int iterations_)
+    : std::runtime_error(solver_failure_message(t_, n_active_, active_corners_, residual_, iterations_))
+    , t(t_)
+    , n_active(n_active_)
+    , active_corners(std::move(active_corners_))
+    , residual(residual_)
+    , iterations(iterations_)
+  {}
+
+  SliderAtSupport::SliderAtSupport(const double t_, const double x_C_, const double x_corner_, const double length)
+    : std::runtime_error(support_message(t_, x_C_, x_corner_, length))
+    , t(t_)
+    , x_C(x_C_)
+    , x_corner(x_corner_)
+    , support(x_corner_ < 0 ? 0. : length)
+  {}
+
+  MoreauStepper::MoreauStepper(BeamSystem &beam, const SliderParameters &slider, const ContactLaw &law,
+                               const BaseExcitation &base, const double time_step, const ProxSolverSettings solver)
+    : beam_(beam)
+    , slider_(slider)
+    , geometry_(slider, beam.thickness())
+    , law_(law)
+    , base_(base)
+    , dt_(time_step)
+    , solver_(solver)
+  {
+    const double limit = beam_.max_stable_time_step();
+    if (!(dt_ > 0.) || dt_ > limit)
+      {
+        std::ostringstream m;
+        m << "time step Delta t = " << dt_ << " s is outside the allowed range (0, " << limit
+          << "] s (the beam model's stability limit)";
+        throw std::invalid_argument(m.str());
+      }
+    if (!(law_.friction_coefficient >= 0.))
+      {
+        std::ostringstream m;
+        m << "friction coefficient mu = " << law_.friction_coefficient << " is outside [0, inf)";
+        throw std::invalid_argument(m.str());
+      }
+    if (!(law_.restitution >= 0. && law_.restitution <= 1.))
+      {
+        std::ostringstream m;
+        m << "restitution e_N = " << law_.restitution << " is outside [0, 1]";
+        throw std::invalid_argument(m.str());
+      }
+    for (auto &p : warm_)
+      p.setZero();
+    set_state(resting_state(0.5 * beam_.length()));
+  }
+
+  SystemState MoreauStepper::resting_state(const double x_C, const double t) const
+  {
+    SystemState s;
+    s.t = t;
+    s.q = Eigen::VectorXd::Zero(beam_.n_dofs());
+    s.u = Eigen::VectorXd::Zero(beam_.n_dofs());
+    s.s = geometry_.resting_position(x_C, t, beam_, base_, s.q);
+    s.v.setZero();
+    return s;
+  }
+
+  void MoreauStepper::set_state(const SystemState &state)
+  {
+    if (state.q.size() != beam_.n_dofs() || state.u.size() != beam_.n_dofs())
+      {
+        std::ostringstream m;
+        m << "state has " << state.q.size() << " coordinates and " << state.u.size() << " velocities, the beam "
+          << beam_.n_dofs();
+        throw std::invalid_argument(m.str());
+      }
+    state_       = state;
+    t_origin_    = state.t;
+    steps_taken_ = 0;
+    for (auto &p : warm_)
+      p.setZero();
+  }
+
+  double MoreauStepper::slider_kinetic_energy() const
+  {
+    const auto &v = state_.v;
+    return 0.5 * slider_.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * slider_.inertia * v[2] * v[2];
+  }
+
+  const StepReport &MoreauStepper::step()
+  {
+    const unsigned int n = beam_.n_dofs();
+    const double L       = beam_.length();
+    const double t_B     = state_.t;
+    const double t_M     = t_B + 0.5 * dt_;
+    report_              = StepReport();
+
+    // Midpoint configuration; no beam evaluation before the corners are known
+    // to lie on the beam.
+    Eigen::Vector3d v_B = state_.v;
+    if (prescribed_x_)
+      v_B[0] = 0.;
+    const Eigen::Vector3d s_M = state_.s + 0.5 * dt_ * v_B;
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      {
+        const double x = geometry_.corner_x(k, s_M);
+        if (!(x >= 0. && x <= L))
+          throw SliderAtSupport(t_B, state_.s[0], x, L);
+      }
+    q_M_ = state_.q + 0.5 * dt_ * state_.u;
+
+    // Free motion.
+    beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
+    Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
+    const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
+
+    // Active set and force directions at the midpoint.
+    std::array<unsigned int, n_slider_corners> active{};
+    unsigned int m = 0;
+    W_b_.resize(n, 2 * n_slider_corners);
+    W_s_.resize(3, 2 * n_slider_corners);
+    imposed_.resize(2 * n_slider_corners);
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      {
+        geometry_.evaluate(k, t_M, beam_, base_, q_M_, s_M, corner_);
+        if (!(corner_.gap <= 0.))
+          {
+            if (!std::isfinite(corner_.gap))
+              {
+                std::ostringstream msg;
+                msg << "non-finite gap at corner " << corner_name(k) << " at t = " << t_B << " s";
+                throw NonFiniteState(msg.str());
+              }
+            continue;
+          }
+        W_b_.col(2 * m)     = corner_.beam_normal;
+        W_b_.col(2 * m + 1) = corner_.beam_tangent;
+        W_s_.col(2 * m)     = corner_.slider_normal;
+        W_s_.col(2 * m + 1) = corner_.slider_tangent;
+        imposed_[2 * m]     = corner_.imposed_normal;
+        imposed_[2 * m + 1] = corner_.imposed_tangent;
+        active[m++]         = k;
+      }
+    report_.n_active = m;
+
+    Eigen::VectorXd u_E;
+    Eigen::Vector3d v_E;
+    std::array<Eigen::Vector2d, n_slider_corners> new_warm;
+    for (auto &p : new_warm)
+      p.setZero();
+
+    if (m == 0)
+      {
+        u_E = u_free_;
+        v_E = v_free;
+      }
+    else
+      {
+        const auto Wb  = W_b_.leftCols(2 * m);
+        const auto Ws  = W_s_.leftCols(2 * m);
+        const auto imp = imposed_.head(2 * m);
+        beam_.solve_iteration_matrix(Wb, X_b_);
+        G_ = Wb.transpose() * X_b_ + Ws.transpose() * inv_mass.asDiagonal() * Ws;
+
+        gamma_B_ = Wb.transpose() * state_.u + Ws.transpose() * v_B + imp;
+        c_       = Wb.transpose() * u_free_ + Ws.transpose() * v_free + imp;
+        P_.resize(2 * m);
+        mu_.resize(m);
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            c_[2 * i] += law_.restitution * gamma_B_[2 * i];
+            P_.segment<2>(2 * i) = warm_[active[i]];
+            mu_[i]               = law_.friction_coefficient;
+          }
+
+        const ProxSolverResult result = solver_.solve(G_, c_, mu_, P_);
+        report_.iterations            = result.iterations;
+        report_.residual              = result.residual;
+        if (!result.converged)
+          {
+            std::string names;
+            for (unsigned int i = 0; i < m; ++i)
+              names += std::string(i ? ", " : "") + corner_name(active[i]);
+            throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
+          }
+
+        u_E = u_free_ + X_b_ * P_;
+        report_.slider_impulse = Ws * P_;
+        v_E                    = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
+        for (unsigned int i = 0; i < m; ++i)
+          new_warm[active[i]] = P_.segment<2>(2 * i);
+
+        // Contact work: impulse × mean relative velocity, per direction.
+        const Eigen::VectorXd u_mean = 0.5 * (state_.u + u_E);
+        const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
+        const Eigen::VectorXd gamma_mean = Wb.transpose() * u_mean + Ws.transpose() * v_mean + imp;
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            report_.work_impact += P_[2 * i] * gamma_mean[2 * i];
+            report_.work_friction += P_[2 * i + 1] * gamma_mean[2 * i + 1];
+          }
+        report_.work_base_contact = -P_.dot(imp);
+      }
+
+    SystemState next;
+    next.t = t_origin_ + (steps_taken_ + 1) * dt_;
+    next.u = std::move(u_E);
+    next.q = q_M_ + 0.5 * dt_ * next.u;
+    next.v = v_E;
+    next.s = s_M + 0.5 * dt_ * v_E;
+    if (!next.q.allFinite() || !next.u.allFinite() || !next.s.allFinite() || !next.v.allFinite())
+      {
+        std::ostringstream msg;
+        msg << "non-finite state after the step from t = " << t_B << " s (x_C = " << state_.s[0]
+            << " m); the step is not accepted";
+        throw NonFiniteState(msg.str());
+      }
+
+    report_.work_gravity = -slider_.mass * slider_.gravity * (next.s[1] - state_.s[1]);
+    beam_.step_work(next.u, report_.work_damping, report_.work_excitation);
+
+    state_ = std::move(next);
+    warm_  = new_warm;
+    ++steps_taken_;
+    return report_;
+  }
+} // namespace beamslider

@@ -1,0 +1,96 @@
+// Augmented-Lagrangian Gauss–Seidel prox solver, see prox_solver.h.
+#include "contact/prox_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  ProxSolver::ProxSolver(const ProxSolverSettings settings)
+    : settings_(settings)
+  {
+    if (!(settings_.relaxation > 0. && settings_.relaxation <= 2.))
+      {
+        std::ostringstream m;
+        m << "prox solver relaxation = " << settings_.relaxation << " is outside the allowed range (0, 2]";
+        throw std::invalid_argument(m.str());
+      }
+    if (settings_.max_iterations == 0)
+      throw std::invalid_argument("prox solver max_iterations = 0; it must be at least 1");
+    if (!(settings_.tolerance > 0.))
+      {
+        std::ostringstream m;
+        m << "prox solver tolerance = " << settings_.tolerance << " must be positive";
+        throw std::invalid_argument(m.str());
+      }
+  }
+
+  ProxSolverResult ProxSolver::solve(const Eigen::MatrixXd &G, const Eigen::VectorXd &c, const Eigen::VectorXd &mu,
+                                     Eigen::VectorXd &P) const
+  {
+    const Eigen::Index n = c.size();
+    if (G.rows() != n || G.cols() != n || P.size() != n || 2 * mu.size() != n)
+      throw std::invalid_argument("prox solver: G, c, P must have size 2 n_contacts and mu n_contacts");
+
+    ProxSolverResult result;
+    if (n == 0)
+      {
+        result.converged = true;
+        return result;
+      }
+
+    // Step sizes from the diagonal of G. A zero diagonal would mean a contact
+    // that no mass can move; refuse it rather than divide by zero.
+    Eigen::VectorXd r(n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      {
+        if (!(G(i, i) > 0.))
+          {
+            std::ostringstream m;
+            m << "prox solver: Delassus diagonal G(" << i << "," << i << ") = " << G(i, i)
+              << " is not positive (a contact direction no mass can move)";
+            throw std::runtime_error(m.str());
+          }
+        r[i] = settings_.relaxation / G(i, i);
+      }
+
+    // Convergence is judged on the relative velocities, G ΔP over one sweep,
+    // not on P itself: with redundant contacts (two corners on a rigid beam
+    // share one tangent direction) the split of P is not unique and
+    // Gauss–Seidel creeps along that null space while ξ is already converged.
+    Eigen::VectorXd P_old(n), dxi(n);
+    for (unsigned int it = 1; it <= settings_.max_iterations; ++it)
+      {
+        P_old = P;
+        for (Eigen::Index i = 0; i < n / 2; ++i)
+          {
+            const Eigen::Index iN = 2 * i, iT = 2 * i + 1;
+            const double xi_N     = G.row(iN).dot(P) + c[iN];
+            const double P_N      = std::max(0., P[iN] - r[iN] * xi_N);
+            P[iN]                 = P_N;
+
+            const double xi_T  = G.row(iT).dot(P) + c[iT];
+            const double bound = mu[i] * P_N;
+            P[iT]              = std::clamp(P[iT] - r[iT] * xi_T, -bound, bound);
+          }
+        dxi.noalias() = G * (P - P_old);
+        // Velocity scale: the free relative velocities and what the impulses do.
+        double scale = c.cwiseAbs().maxCoeff();
+        for (Eigen::Index i = 0; i < n; ++i)
+          scale = std::max(scale, G(i, i) * std::abs(P[i]));
+        const double change = dxi.cwiseAbs().maxCoeff();
+        result.iterations   = it;
+        result.residual     = scale > 0. ? change / scale : change;
+        if (!std::isfinite(result.residual))
+          return result; // not converged: a NaN in G or c
+        if (change <= settings_.tolerance * scale)
+          {
+            result.converged = true;
+            return result;
+          }
+      }
+    return result;
+  }
+} // namespace beamslider

@@ -1,0 +1,54 @@
+// Augmented-Lagrangian Gauss–Seidel solver for the contact impulses of one
+// Moreau step (DESIGN.md §1.4; Studer, "Numerics of Unilateral Contacts and
+// Friction", 2009, §5; Leine & Nijmeijer 2004).
+//
+// Numerics only (Siconos' split): the solver knows a Delassus matrix G, a
+// free relative velocity c and friction coefficients μ_i, nothing about
+// beams or sliders. With ξ = G P + c, contact i (unknowns P_i = (P_N, P_T),
+// rows 2i and 2i+1) satisfies
+//
+//   P_N = prox_{R+}(P_N − r_N ξ_N) = max(0, P_N − r_N ξ_N)
+//   P_T = prox_{[−μ P_N, μ P_N]}(P_T − r_T ξ_T)
+//
+// which is Signorini/Newton (ξ_N ≥ 0, P_N ≥ 0, ξ_N P_N = 0) and Coulomb on
+// impulse level. r = ρ/G_ii (ρ the relaxation, 0 < ρ ≤ 1 is safe). One
+// Gauss–Seidel sweep updates the contacts in order with the newest P.
+// Convergence: the change of the relative velocities G ΔP over one sweep is at
+// most `tolerance` times the velocity scale max(|c_i|, G_ii |P_i|). Reaching `max_iterations` first is a failure the caller
+// must report; the solver never pretends it converged.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace beamslider
+{
+  struct ProxSolverSettings
+  {
+    unsigned int max_iterations = 2000; // Gauss–Seidel sweeps
+    double tolerance            = 1e-10; // relative change of ξ = G P + c per sweep
+    double relaxation           = 1.0;  // ρ in r_i = ρ / G_ii
+  };
+
+  struct ProxSolverResult
+  {
+    bool converged          = false;
+    unsigned int iterations = 0;
+    double residual         = 0; // last sweep's max |G ΔP| / velocity scale [-]
+  };
+
+  class ProxSolver
+  {
+  public:
+    explicit ProxSolver(ProxSolverSettings settings = {});
+
+    // Solves for P (size 2 n_contacts, layout (N0, T0, N1, T1, ...)); P holds
+    // the warm start on entry. mu has one entry per contact.
+    ProxSolverResult solve(const Eigen::MatrixXd &G, const Eigen::VectorXd &c, const Eigen::VectorXd &mu,
+                           Eigen::VectorXd &P) const;
+
+    const ProxSolverSettings &settings() const { return settings_; }
+
+  private:
+    ProxSolverSettings settings_;
+  };
+} // namespace beamslider

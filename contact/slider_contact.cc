@@ -1,0 +1,129 @@
+// Slider corners, gaps and force directions: see slider_contact.h for the
+// model (DESIGN.md §1.3).
+#include "contact/slider_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  SliderParameters SliderParameters::from_scene(const Scene &scene)
+  {
+    SliderParameters p;
+    p.mass          = scene.slider_mass();
+    p.inertia       = scene.slider_inertia();
+    p.window_width  = scene.slider.window_width;
+    p.window_height = scene.window_height();
+    p.com_offset    = scene.slider.com_offset;
+    p.gravity       = scene.contact.gravity;
+    return p;
+  }
+
+  void SliderParameters::validate(const double beam_thickness) const
+  {
+    auto require = [](const bool ok, const char *name, const double value, const char *range) {
+      if (!ok)
+        {
+          std::ostringstream m;
+          m << "slider parameter " << name << " = " << value << " is outside the allowed range " << range;
+          throw std::invalid_argument(m.str());
+        }
+    };
+    require(mass > 0, "mass m [kg]", mass, "(0, inf)");
+    require(inertia > 0, "inertia J_C [kg m^2]", inertia, "(0, inf)");
+    require(window_width > 0, "window width B [m]", window_width, "(0, inf)");
+    require(window_height > beam_thickness, "window height R [m]", window_height,
+            "(h, inf), the window must be taller than the beam thickness h");
+    require(std::isfinite(com_offset), "centre of mass offset d [m]", com_offset, "finite");
+    require(gravity >= 0, "gravity g [m/s^2]", gravity, "[0, inf)");
+  }
+
+  SliderGeometry::SliderGeometry(const SliderParameters &slider, const double beam_thickness)
+    : slider_(slider)
+    , thickness_(beam_thickness)
+  {
+    slider_.validate(beam_thickness);
+  }
+
+  Eigen::Vector2d SliderGeometry::corner_offset(const unsigned int k, const double beta) const
+  {
+    // Corner in the slider frame, measured from the centre of mass C = S − (0, d).
+    const double px = corner_side(k) * 0.5 * slider_.window_width;
+    const double pz = corner_zeta(k) * 0.5 * slider_.window_height + slider_.com_offset;
+    const double cb = std::cos(beta), sb = std::sin(beta);
+    return {cb * px - sb * pz, sb * px + cb * pz};
+  }
+
+  void SliderGeometry::evaluate(const unsigned int k, const double t, const BeamSystem &beam,
+                                const BaseExcitation &base, const Eigen::VectorXd &q, const Eigen::Vector3d &s,
+                                CornerKinematics &out) const
+  {
+    const double zeta        = corner_zeta(k);
+    const Eigen::Vector2d r  = corner_offset(k, s[2]);
+    const double x_P         = s[0] + r[0];
+    const double z_P         = s[1] + r[1];
+    beam.evaluate(x_P, q, point_);
+
+    const double w = point_.w, dw = point_.dw;
+    const double c  = 1. / std::sqrt(1. + dw * dw); // cos α
+    const double dz = z_P - base.displacement(t) - w;
+
+    // n = ζ c (−w', 1), t = ζ c (−1, −w')
+    const double n_x = -zeta * c * dw, n_z = zeta * c;
+    const double t_x = -zeta * c, t_z = -zeta * c * dw;
+
+    out.x   = x_P;
+    out.gap = zeta * c * dz - 0.5 * thickness_ / c;
+
+    // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
+    const double dg_dw  = -zeta * c;
+    const double dg_ddw = -dw * c * (zeta * dz * c * c + 0.5 * thickness_);
+    out.beam_normal     = dg_dw * point_.grad_w + dg_ddw * point_.grad_dw;
+    // Beam part of W_T = −t·v_B with v_B = (−ζ(h/2) ẇ', ẇ) (+ the base part).
+    out.beam_tangent = (zeta * 0.5 * thickness_ * t_x) * point_.grad_dw - t_z * point_.grad_w;
+
+    // Slider part: v_P = (ẋ_C − β̇ r_z, ż_C + β̇ r_x).
+    out.slider_normal  = Eigen::Vector3d(n_x, n_z, -r[1] * n_x + r[0] * n_z);
+    out.slider_tangent = Eigen::Vector3d(t_x, t_z, -r[1] * t_x + r[0] * t_z);
+
+    const double base_velocity = base.velocity(t);
+    out.imposed_normal         = -n_z * base_velocity;
+    out.imposed_tangent        = -t_z * base_velocity;
+  }
+
+  Eigen::Vector3d SliderGeometry::resting_position(const double x_C, const double t, const BeamSystem &beam,
+                                                   const BaseExcitation &base, const Eigen::VectorXd &q) const
+  {
+    beam.evaluate(x_C, q, point_);
+    Eigen::Vector3d s(x_C, 0., std::atan(point_.dw));
+    // The gap of an upper corner grows like c·z_C with the slider's height, so
+    // each upper corner asks for z_C − g/c; the higher demand wins.
+    CornerKinematics corner;
+    double z_C = -std::numeric_limits<double>::infinity();
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        evaluate(k, t, beam, base, q, s, corner);
+        z_C = std::max(z_C, -corner.gap / corner.slider_normal[1]);
+      }
+    s[1] = z_C;
+    // "Resting" means in contact: round-off may leave a gap of +1e-19 m, which
+    // the Moreau step would treat as open for one free-fall step. Lower the
+    // slider by a few ulps until both upper gaps are ≤ 0.
+    for (unsigned int it = 0; it < 64; ++it)
+      {
+        double max_gap = -std::numeric_limits<double>::infinity();
+        for (unsigned int k = 0; k < 2; ++k)
+          {
+            evaluate(k, t, beam, base, q, s, corner);
+            max_gap = std::max(max_gap, corner.gap);
+          }
+        if (max_gap <= 0.)
+          break;
+        s[1] = std::nextafter(s[1], -std::numeric_limits<double>::infinity());
+      }
+    return s;
+  }
+} // namespace beamslider

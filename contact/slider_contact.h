@@ -1,0 +1,108 @@
+// The rigid slider and its four contact corners (seed §2.3, DESIGN.md §1.3;
+// Krack et al. 2017; Müller et al. 2023).
+//
+// Slider coordinates s = (x_C, z_C, β): centre of mass in absolute
+// coordinates [m] and rotation [rad]; mass block diag(m, m, J_C); gravity −m g
+// on z_C. Slider frame: origin S at the centre of the inner window, centre of
+// mass at (0, −d) from S. Contact corners at (±B/2, ζ R/2) from S; ζ = +1 for
+// the two upper corners (they touch the beam's top surface), ζ = −1 for the
+// two lower ones (bottom surface).
+//
+// For a corner P at x_P, with w, w' the beam's displacement relative to the
+// base and its slope there (c = cos α = 1/√(1+w'²)):
+//   n   = ζ(−sin α, cos α),  t = ζ(−cos α, −sin α)
+//   r_B = (x_P, w0 + w) + ζ (h/2)(−w', 1)
+//   g_N = n·(r_P − r_B) = ζ c (z_P − w0 − w) − (h/2)/c             [m]
+// Force directions: W_N = (∂g_N/∂(q, s))ᵀ, and the explicit time dependence
+// ∂g_N/∂t = −n_z ẇ0 (the imposed velocity). The tangential direction has no
+// gap function; W_T is the tangential relative velocity of the two material
+// points, t·(v_P − v_B), where the beam's surface point moves with
+// (−ζ(h/2) ẇ', ẇ0 + ẇ) (axial inertia neglected, DESIGN §1.2).
+// The slider part of W_N neglects ∂w'/∂x_P (the beam's curvature times
+// ∂g/∂w' ≈ −w' c h): BeamPointKinematics carries no w''; the term is of order
+// h w'' relative to the kept w' term, below 1e-3 for the beams here.
+#pragma once
+
+#include "contact/base_excitation.h"
+#include "contact/beam_system.h"
+#include "meshes/scene.h"
+
+#include <Eigen/Dense>
+
+#include <array>
+
+namespace beamslider
+{
+  // Geometry and inertia of the slider, all SI.
+  struct SliderParameters
+  {
+    double mass          = 0; // m [kg]
+    double inertia       = 0; // J_C about the centre of mass [kg m²]
+    double window_width  = 0; // B [m]
+    double window_height = 0; // R [m]
+    double com_offset    = 0; // d, centre of mass below S [m]
+    double gravity       = 0; // g [m/s²]
+
+    static SliderParameters from_scene(const Scene &scene);
+    // Throws std::invalid_argument naming a parameter outside its range.
+    void validate(double beam_thickness) const;
+  };
+
+  // Contact law of every corner.
+  struct ContactLaw
+  {
+    double friction_coefficient = 0; // μ [-]
+    double restitution          = 0; // e_N [-], tangential restitution is 0
+
+    static ContactLaw from_scene(const Scene &scene)
+    {
+      return {scene.contact.friction_coefficient, scene.contact.restitution};
+    }
+  };
+
+  constexpr unsigned int n_slider_corners = 4;
+
+  // Corner k: sx = −1, +1, −1, +1 and ζ = +1, +1, −1, −1.
+  inline double corner_side(const unsigned int k) { return (k % 2 == 0) ? -1. : 1.; }
+  inline double corner_zeta(const unsigned int k) { return (k < 2) ? 1. : -1.; }
+
+  // Everything the Moreau step needs about one corner at one configuration.
+  struct CornerKinematics
+  {
+    double x = 0;   // x_P [m]
+    double gap = 0; // g_N [m]
+    Eigen::VectorXd beam_normal;  // ∂γ_N/∂u (beam part of W_N)
+    Eigen::VectorXd beam_tangent; // ∂γ_T/∂u (beam part of W_T)
+    Eigen::Vector3d slider_normal;  // slider part of W_N
+    Eigen::Vector3d slider_tangent; // slider part of W_T
+    double imposed_normal  = 0; // ∂g_N/∂t through ẇ0 [m/s]
+    double imposed_tangent = 0; // tangential relative velocity due to ẇ0 [m/s]
+  };
+
+  class SliderGeometry
+  {
+  public:
+    SliderGeometry(const SliderParameters &slider, double beam_thickness);
+
+    // Position of corner k relative to the centre of mass, in absolute axes,
+    // for rotation β [m].
+    Eigen::Vector2d corner_offset(unsigned int k, double beta) const;
+    // Absolute x of corner k [m]; used to keep beam evaluations inside [0, L].
+    double corner_x(unsigned int k, const Eigen::Vector3d &s) const { return s[0] + corner_offset(k, s[2])[0]; }
+
+    // Gap and force directions of corner k at time t for beam coordinates q
+    // and slider coordinates s. The caller guarantees x_P ∈ [0, L].
+    void evaluate(unsigned int k, double t, const BeamSystem &beam, const BaseExcitation &base,
+                  const Eigen::VectorXd &q, const Eigen::Vector3d &s, CornerKinematics &out) const;
+
+    // Slider coordinates with the window's upper edge resting on the beam at
+    // x_C (β from the local slope, both upper gaps ≥ 0 and the smaller one 0).
+    Eigen::Vector3d resting_position(double x_C, double t, const BeamSystem &beam, const BaseExcitation &base,
+                                     const Eigen::VectorXd &q) const;
+
+  private:
+    SliderParameters slider_;
+    double thickness_;
+    mutable BeamPointKinematics point_; // scratch, avoids allocations per step
+  };
+} // namespace beamslider

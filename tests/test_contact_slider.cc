@@ -1,0 +1,343 @@
+// Tests of the contact code (contact/) on rigid beams, where every answer is
+// known in closed form: a slider at rest stays at rest, Coulomb's block on an
+// incline, Newton's impact law, the prox solver on a single contact, the
+// solver's failure path and the end stop at a support.
+//
+// The rigid beam is a BeamSystem with no coordinates: w(x) = x tan α relative
+// to a base that does not move, so the Delassus matrix is the slider's alone.
+#include "contact/adaptation_run.h"
+#include "contact/moreau_stepper.h"
+#include "contact/prox_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+using namespace beamslider;
+
+namespace
+{
+  // A beam that never moves: w(x) = slope · x [m], no coordinates.
+  class RigidBeam : public BeamSystem
+  {
+  public:
+    RigidBeam(const double length, const double thickness, const double slope = 0.)
+      : length_(length)
+      , thickness_(thickness)
+      , slope_(slope)
+    {}
+    unsigned int n_dofs() const override { return 0; }
+    double length() const override { return length_; }
+    double thickness() const override { return thickness_; }
+    void evaluate(const double x, const Eigen::VectorXd &, BeamPointKinematics &out) const override
+    {
+      if (!(x >= 0. && x <= length_))
+        throw std::out_of_range("rigid beam evaluated outside [0, L]");
+      out.w  = slope_ * x;
+      out.dw = slope_;
+      out.grad_w.resize(0);
+      out.grad_dw.resize(0);
+    }
+    void free_velocity(double, const Eigen::VectorXd &, const Eigen::VectorXd &u_B, double,
+                       Eigen::VectorXd &u_free) override
+    {
+      u_free = u_B;
+    }
+    void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const override { X = B; }
+    double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
+    double energy(const Eigen::VectorXd &, const Eigen::VectorXd &) const override { return 0.; }
+    void step_work(const Eigen::VectorXd &, double &d, double &e) const override { d = e = 0.; }
+
+  private:
+    double length_, thickness_, slope_;
+  };
+
+  // The mueller2023 slider (scene.h defaults) without base motion.
+  Scene static_scene()
+  {
+    Scene scene;
+    scene.excitation.acceleration_amplitude = 0.;
+    return scene;
+  }
+} // namespace
+
+TEST(ProxSolver, SingleContactMatchesClosedForm)
+{
+  // One contact, G = diag(2, 3): P_N = −c_N/2 if c_N < 0; P_T = −c_T/3 if that
+  // lies inside ±μ P_N (stick), else ∓μ P_N (slip).
+  const ProxSolver solver;
+  Eigen::MatrixXd G = Eigen::Vector2d(2., 3.).asDiagonal();
+  Eigen::VectorXd mu(1);
+  mu << 0.3;
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(2);
+
+  auto result = solver.solve(G, Eigen::Vector2d(-1., 0.5), mu, P); // slip: −0.5/3 beyond 0.15
+  ASSERT_TRUE(result.converged);
+  EXPECT_NEAR(P[0], 0.5, 1e-14);
+  EXPECT_NEAR(P[1], -0.15, 1e-14);
+
+  P.setZero();
+  result = solver.solve(G, Eigen::Vector2d(-1., 0.3), mu, P); // stick: −0.1
+  ASSERT_TRUE(result.converged);
+  EXPECT_NEAR(P[0], 0.5, 1e-14);
+  EXPECT_NEAR(P[1], -0.1, 1e-14);
+
+  P << 1., 1.; // warm start from a wrong guess; separating contact
+  result = solver.solve(G, Eigen::Vector2d(0.2, 1.), mu, P);
+  ASSERT_TRUE(result.converged);
+  EXPECT_EQ(P[0], 0.);
+  EXPECT_EQ(P[1], 0.);
+}
+
+TEST(ProxSolver, CoupledContactsSatisfyComplementarity)
+{
+  // Two coupled frictionless-direction contacts: check the solution of the
+  // LCP directly, ξ = G P + c ≥ 0, P ≥ 0, ξ·P = 0 (μ = 0 zeroes P_T).
+  Eigen::MatrixXd G(4, 4);
+  G << 2.0, 0.1, 0.8, 0.0, //
+    0.1, 1.0, 0.0, 0.2,    //
+    0.8, 0.0, 1.5, 0.1,    //
+    0.0, 0.2, 0.1, 1.2;
+  const Eigen::Vector4d c(-1.0, 0.3, -0.2, -0.5);
+  const Eigen::Vector2d mu(0., 0.);
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(4);
+  const auto result = ProxSolver().solve(G, c, mu, P);
+  ASSERT_TRUE(result.converged);
+  const Eigen::VectorXd xi = G * P + c;
+  EXPECT_EQ(P[1], 0.);
+  EXPECT_EQ(P[3], 0.);
+  for (int i : {0, 2})
+    {
+      EXPECT_GE(P[i], 0.);
+      EXPECT_GE(xi[i], -1e-9);
+      EXPECT_NEAR(P[i] * xi[i], 0., 1e-9);
+    }
+  // Contact 0 pushes contact 2 off: P_N2 = 0, P_N0 = 1/2.
+  EXPECT_NEAR(P[0], 0.5, 1e-9);
+  EXPECT_EQ(P[2], 0.);
+}
+
+TEST(ProxSolver, IterationCapIsReportedAsFailure)
+{
+  Eigen::MatrixXd G(2, 2);
+  G << 1., 0.9, 0.9, 1.;
+  Eigen::MatrixXd G4 = Eigen::MatrixXd::Identity(4, 4);
+  G4.block(0, 0, 2, 2) = G; // normals of two contacts strongly coupled
+  G4(0, 2) = G4(2, 0) = 0.9;
+  G4(0, 1) = G4(1, 0) = 0.;
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(4);
+  ProxSolverSettings settings;
+  settings.max_iterations = 3;
+  const auto result = ProxSolver(settings).solve(G4, Eigen::Vector4d(-1., 0., -1., 0.), Eigen::Vector2d(0.2, 0.2), P);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.iterations, 3u);
+  EXPECT_GT(result.residual, settings.tolerance);
+}
+
+TEST(RestingSlider, StaysPutOnStaticBeamFor1e5Steps)
+{
+  // Placed with zero gap, the slider is held from the first step; it may
+  // settle at most by the midpoint scheme's penetration g Δt² (Moreau's scheme
+  // has no position correction); after that it must not move at all.
+  const Scene scene = static_scene();
+  const double dt   = scene.time_stepping.time_step;
+  RigidBeam beam(scene.beam.length, scene.beam.thickness);
+  MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{},
+                        dt);
+  const SystemState start = stepper.resting_state(0.3 * scene.beam.length);
+  stepper.set_state(start);
+  for (unsigned int k = 0; k < 100; ++k)
+    stepper.step();
+  const SystemState settled = stepper.state();
+  EXPECT_LT(std::abs(settled.s[1] - start.s[1]), scene.contact.gravity * dt * dt);
+  unsigned int max_active = 0, max_iterations = 0;
+  for (unsigned int k = 0; k < 100000; ++k)
+    {
+      const StepReport &r = stepper.step();
+      max_active          = std::max(max_active, r.n_active);
+      max_iterations      = std::max(max_iterations, r.iterations);
+    }
+  const SystemState &end = stepper.state();
+  EXPECT_EQ(max_active, 2u); // the two upper corners carry the slider
+  EXPECT_NEAR(end.t, 100100 * dt, 1e-12);
+  EXPECT_NEAR(end.s[0], start.s[0], 1e-15);
+  EXPECT_NEAR(end.s[1], settled.s[1], 1e-15);
+  EXPECT_NEAR(end.s[2], start.s[2], 1e-15);
+  EXPECT_LT(end.v.norm(), 1e-12);
+  // The corners' normal impulses carry the weight: Σ P_N = m g Δt.
+  const double weight_impulse = scene.slider_mass() * scene.contact.gravity * dt;
+  EXPECT_NEAR(stepper.corner_impulses()[0][0] + stepper.corner_impulses()[1][0], weight_impulse,
+              1e-9 * weight_impulse);
+  std::cout << "resting slider: at most " << max_iterations << " Gauss-Seidel sweeps per step\n";
+}
+
+namespace
+{
+  // Block on a rigid beam with slope tan α: displacement along x after time T.
+  double incline_displacement(const double tan_alpha, const double mu, const double T, const double dt)
+  {
+    Scene scene                         = static_scene();
+    scene.contact.friction_coefficient = mu;
+    RigidBeam beam(scene.beam.length, scene.beam.thickness, tan_alpha);
+    MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene),
+                          BaseExcitation{}, dt);
+    const SystemState start = stepper.resting_state(0.1);
+    stepper.set_state(start);
+    const unsigned int n = std::lround(T / dt);
+    for (unsigned int k = 0; k < n; ++k)
+      stepper.step();
+    // Slides without tipping (Moreau leaves O(g Δt²) penetrations, so the two
+    // corners may differ by 1e-11 m).
+    EXPECT_NEAR(stepper.state().s[2], start.s[2], 1e-7);
+    return stepper.state().s[0] - start.s[0];
+  }
+} // namespace
+
+TEST(InclinedRigidBeam, SlidesWithCoulombAccelerationWhenSteeperThanFriction)
+{
+  // tan α = 0.3 > μ = 0.2: a = g (sin α − μ cos α) down the slope, so
+  // Δx = −½ a T² cos α (the beam rises with x).
+  const double tan_alpha = 0.3, mu = 0.2, g = 9.81, T = 0.2;
+  const double alpha = std::atan(tan_alpha);
+  const double a     = g * (std::sin(alpha) - mu * std::cos(alpha));
+  const double dx    = incline_displacement(tan_alpha, mu, T, 1e-5);
+  const double expected = -0.5 * a * T * T * std::cos(alpha);
+  EXPECT_NEAR(dx / expected, 1., 1e-4) << "dx = " << dx << " m, expected " << expected << " m";
+}
+
+TEST(InclinedRigidBeam, SticksWhenFlatterThanFriction)
+{
+  // tan α = 0.1 < μ = 0.2: the block stays.
+  const double dx = incline_displacement(0.1, 0.2, 0.2, 1e-5);
+  EXPECT_LT(std::abs(dx), 1e-12) << "dx = " << dx << " m";
+}
+
+TEST(DroppedSlider, LosesOneMinusRestitutionSquaredOfNormalKineticEnergy)
+{
+  // The slider falls onto the flat beam with both upper corners at once; the
+  // Newton law gives v_E = −e_N v_B in the impact step, so the kinetic energy
+  // after is e_N² of that before.
+  Scene scene               = static_scene();
+  scene.contact.restitution = 0.5;
+  RigidBeam beam(scene.beam.length, scene.beam.thickness);
+  MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{},
+                        1e-6);
+  SystemState start = stepper.resting_state(0.07);
+  start.s[1] += 2e-5; // 20 µm above contact (the clearance R − h is 50 µm)
+  start.v[1] = -0.05; // [m/s]
+  stepper.set_state(start);
+  for (unsigned int k = 0; k < 100000; ++k)
+    {
+      const SystemState before = stepper.state();
+      const StepReport &report = stepper.step();
+      if (report.n_active == 0)
+        continue;
+      const SystemState &after = stepper.state();
+      const double m          = scene.slider_mass();
+      const double T_before   = 0.5 * m * before.v.squaredNorm();
+      const double T_after    = 0.5 * m * after.v.squaredNorm();
+      EXPECT_EQ(report.n_active, 2u);
+      EXPECT_NEAR(after.v[1] / before.v[1], -0.5, 1e-9);
+      EXPECT_NEAR((T_before - T_after) / T_before, 1. - 0.5 * 0.5, 1e-9);
+      // The step's energy identity: ΔT = work of gravity + work of the impact.
+      EXPECT_NEAR(T_after - T_before, report.work_gravity + report.work_impact, 1e-12 * T_before);
+      EXPECT_LT(report.work_impact, 0.);
+      return;
+    }
+  FAIL() << "the slider never reached the beam";
+}
+
+TEST(MoreauStepper, SolverIterationCapThrowsWithTimeAndContacts)
+{
+  const Scene scene = static_scene();
+  RigidBeam beam(scene.beam.length, scene.beam.thickness);
+  ProxSolverSettings settings;
+  settings.max_iterations = 1; // two coupled corners need more than one sweep
+  MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{},
+                        scene.time_stepping.time_step, settings);
+  const SystemState start = stepper.resting_state(0.05);
+  stepper.set_state(start);
+  // The first steps may be contact-free (zero gap up to round-off); the first
+  // step with the two corners active must throw.
+  for (unsigned int k = 0; k < 10; ++k)
+    {
+      const SystemState before = stepper.state();
+      try
+        {
+          stepper.step();
+        }
+      catch (const ContactSolverFailure &e)
+        {
+          EXPECT_EQ(e.t, before.t);
+          EXPECT_LT(e.t, 10 * scene.time_stepping.time_step);
+          EXPECT_EQ(e.n_active, 2u);
+          EXPECT_EQ(e.iterations, 1u);
+          EXPECT_GT(e.residual, 0.);
+          EXPECT_NE(std::string(e.what()).find("upper-left, upper-right"), std::string::npos) << e.what();
+          EXPECT_EQ(stepper.state().t, before.t); // nothing accepted
+          EXPECT_EQ(stepper.state().s, before.s);
+          return;
+        }
+    }
+  FAIL() << "the capped solver was accepted";
+}
+
+TEST(MoreauStepper, RefusesTimeStepAboveBeamLimit)
+{
+  struct LimitedBeam : RigidBeam
+  {
+    using RigidBeam::RigidBeam;
+    double max_stable_time_step() const override { return 1e-5; }
+  };
+  const Scene scene = static_scene();
+  LimitedBeam beam(scene.beam.length, scene.beam.thickness);
+  try
+    {
+      MoreauStepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{}, 2e-5);
+      FAIL();
+    }
+  catch (const std::invalid_argument &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("time step"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("1e-05"), std::string::npos) << e.what();
+    }
+}
+
+TEST(EndStop, RunStopsCleanlyWhenTheWindowReachesTheSupport)
+{
+  // Frictionless flat beam, slider pushed toward x = L at 0.1 m/s: the right
+  // corners (x_C + B/2) reach L after (L − B/2 − x_C0)/v. The run must stop
+  // there with a message, keep the rows written, and never evaluate the beam
+  // outside [0, L] (RigidBeam throws if it were).
+  Scene scene                          = static_scene();
+  scene.contact.friction_coefficient   = 0.;
+  scene.time_stepping.time_step        = 1e-5;
+  scene.time_stepping.end_time         = 1.;
+  scene.initial.slider_position_over_L = 0.85;
+  RigidBeam beam(scene.beam.length, scene.beam.thickness);
+  AdaptationRun run(scene, beam, RunOptions::from_scene(scene));
+  SystemState s = run.state();
+  s.v[0]        = 0.1;
+  run.set_state(s);
+
+  std::vector<TraceRow> rows;
+  run.on_trace_row = [&](const TraceRow &r) { rows.push_back(r); };
+  const RunResult result = run.run();
+
+  const double L = scene.beam.length, B = scene.slider.window_width;
+  const double t_expected = (L - 0.5 * B - 0.85 * L) / 0.1;
+  EXPECT_EQ(result.status, RunStatus::slider_at_support);
+  EXPECT_NEAR(result.t_end, t_expected, 2e-5);
+  EXPECT_NEAR(result.slider_x_over_L * L, L - 0.5 * B, 1e-5);
+  EXPECT_NE(result.message.find("x = L"), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("t = "), std::string::npos) << result.message;
+  ASSERT_FALSE(rows.empty());
+  EXPECT_NEAR(rows.back().t, result.t_end, 1e-12); // the trace ends at the stop
+  EXPECT_GT(rows.size(), 150u);                    // ~1000 rows/s for 0.16 s, all kept
+  for (const auto &r : rows)
+    for (double v : {r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h})
+      ASSERT_TRUE(std::isfinite(v));
+  EXPECT_LE(rows.back().slider_x_over_L * L + 0.5 * B, L);
+}
