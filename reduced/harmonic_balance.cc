@@ -46,6 +46,10 @@ namespace beamslider
               cos_(b, i)          = std::cos(harmonics_[b] * 2. * pi * i / n_time_samples);
               weighted_cos_(b, i) = (harmonics_[b] == 0 ? 1. : 2.) / n_time_samples * cos_(b, i);
             }
+        sample_weights_.resize(n_time_samples, nb_ * nb_);
+        for (unsigned int b = 0; b < nb_; ++b)
+          for (unsigned int c = 0; c < nb_; ++c)
+            sample_weights_.col(b * nb_ + c) = (weighted_cos_.row(b).array() * cos_.row(c).array()).matrix().transpose();
       }
 
       unsigned int n_unknowns() const { return n_ * nb_; }
@@ -82,14 +86,19 @@ namespace beamslider
                 const double hw = harmonics_[b] * omega;
                 J_X->block(b * n_, b * n_, n_, n_) = system_.stiffness - hw * hw * system_.mass;
               }
-            // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)).
+            // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)), as one
+            // product: vec(∂F_b/∂Q_c) = [vec T_1 … vec T_Nt] · S(:, b·nb + c).
+            Eigen::MatrixXd T_all(n_ * n_, cos_.cols());
             for (Eigen::Index i = 0; i < cos_.cols(); ++i)
               {
                 const Eigen::MatrixXd T = system_.tangent(q_t.col(i));
-                for (unsigned int b = 0; b < nb_; ++b)
-                  for (unsigned int c = 0; c < nb_; ++c)
-                    J_X->block(b * n_, c * n_, n_, n_) += (weighted_cos_(b, i) * cos_(c, i)) * T;
+                T_all.col(i)            = Eigen::Map<const Eigen::VectorXd>(T.data(), n_ * n_);
               }
+            const Eigen::MatrixXd blocks = T_all * sample_weights_; // n² × nb²
+            for (unsigned int b = 0; b < nb_; ++b)
+              for (unsigned int c = 0; c < nb_; ++c)
+                J_X->block(b * n_, c * n_, n_, n_) +=
+                  Eigen::Map<const Eigen::MatrixXd>(blocks.col(b * nb_ + c).data(), n_, n_);
             J_omega->resize(n_unknowns());
             Eigen::Map<Eigen::MatrixXd> Jw(J_omega->data(), n_, nb_);
             for (unsigned int b = 0; b < nb_; ++b)
@@ -103,6 +112,7 @@ namespace beamslider
       std::vector<unsigned int> harmonics_;
       unsigned int n_, nb_;
       Eigen::MatrixXd cos_, weighted_cos_;
+      Eigen::MatrixXd sample_weights_; // N_t × nb²: w_b cos(h_b τ_i) cos(h_c τ_i)
     };
 
     // Continuation state in scaled unknowns z = (Q / s_x, ω / s_ω).
@@ -156,6 +166,7 @@ namespace beamslider
             std::to_string(settings_.start_amplitude) + " m, residual " + std::to_string(p.relative_residual) +
             "; reduce start_amplitude");
         store(z, p);
+        start_norm_ = z.head(m_).norm();
         if (settings_.method == BackboneSettings::Method::arclength)
           run_arclength(z);
         else
@@ -250,6 +261,7 @@ namespace beamslider
       {
         Eigen::VectorXd t = tangent(z, amplitude_row_);
         double ds         = settings_.initial_step;
+        double a_max      = amplitude_of(z);
         while (true)
           {
             if (result_.points.size() >= settings_.max_points)
@@ -287,14 +299,29 @@ namespace beamslider
                 finish_at_end_amplitude(z, z_new, p);
                 return;
               }
-            if (a_new < 0.5 * settings_.start_amplitude)
+            // The zero solution Q = 0 solves R = 0 for every ω: a step that
+            // lands near it has left the backbone.
+            if (z_new.head(m_).norm() < 0.5 * start_norm_)
               {
-                store(z_new, p);
-                result_.message = "the branch turned back to amplitude " + std::to_string(a_new) +
-                                  " m (below start_amplitude); stopped";
+                result_.message = "continuation stopped: the step fell back onto the trivial solution Q = 0 near " +
+                                  where(z_new, p);
                 return;
               }
             store(z_new, p);
+            a_max = std::max(a_max, a_new);
+            // An internal resonance (k ω ≈ ω_j of another mode) opens a tongue:
+            // the branch turns, the other mode's harmonic takes over and the
+            // first harmonic of the output shrinks. A loop that comes back is
+            // followed; a branch that leaves for good is reported.
+            if (a_new < settings_.tongue_exit_fraction * a_max)
+              {
+                std::ostringstream s;
+                s << "left the backbone along an internal-resonance tongue: the first-harmonic amplitude fell to "
+                  << a_new << " m after a maximum of " << a_max << " m; stopped at ω " << z_new[m_] * s_w_
+                  << " rad/s (set tongue_exit_fraction = 0 to follow it)";
+                result_.message = s.str();
+                return;
+              }
             z = z_new;
             t = t_new;
             if (p.newton_iterations <= 3)
@@ -383,6 +410,7 @@ namespace beamslider
       HarmonicBalanceResidual residual_;
       unsigned int n_, m_;
       double s_x_, s_w_ = 1;
+      double start_norm_ = 0; // ‖Q/s_x‖ at the first point
       Eigen::VectorXd amplitude_row_, mode_shape_;
     };
   } // namespace

@@ -86,7 +86,12 @@ namespace beamslider
     // Step sizes as fractions of end_amplitude (arclength: of the scaled
     // arclength, where Q is scaled by end_amplitude and ω by ω_mode).
     double initial_step = 0.02, min_step = 1e-6, max_step = 0.05;
-    unsigned int max_points            = 5000;
+    // Arclength: stop (reported, not completed) when the first-harmonic
+    // amplitude falls below this fraction of the largest one reached so far,
+    // i.e. the branch has left along an internal-resonance tongue rather than
+    // making a loop. 0 follows the branch wherever it goes.
+    double tongue_exit_fraction = 0.5;
+    unsigned int max_points            = 2000;
     unsigned int max_newton_iterations = 12;
     double tolerance = 1e-10; // on the scaled Newton correction
   };
