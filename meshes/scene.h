@@ -86,7 +86,7 @@ namespace beamslider
 
   struct DiscretisationData
   {
-    unsigned int n_elements   = 16; // beam elements of the FE model
+    unsigned int n_elements   = 32; // beam elements of the FE model
     unsigned int axial_degree = 2;  // polynomial degree of the axial field u
     unsigned int n_modes      = 5;  // N, bending modes kept by the reduced model
     bool geometric_nonlinearity = true; // von Kármán bending–stretching coupling

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages beamslider needs (if missing) and builds it in
+# ./build (Release). Safe to run again: apt-get and CMake skip what is done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
+          libbenchmark-dev libcli11-dev python3-matplotlib)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "== installing Debian packages: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+echo "== building (Release) in ./build"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
+cmake --build build -j "$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+echo "== built build/beamslider"
