@@ -1,0 +1,94 @@
+// The reduced-order model as a BeamSystem, see rom_beam_system.h.
+#include "reduced/rom_beam_system.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  RomBeamSystem::RomBeamSystem(ReducedOrderModel rom, const double thickness, const BaseExcitation excitation)
+    : rom_(std::move(rom))
+    , thickness_(thickness)
+    , excitation_(excitation)
+  {
+    const ModalBasis &basis = rom_.basis();
+    if (rom_.n_modes() == 0)
+      throw std::invalid_argument("reduced model: the modal basis has no modes (N = 0)");
+    if (!basis.evaluate)
+      throw std::invalid_argument("reduced model: the modal basis has no evaluate function for φ(x), φ'(x)");
+    if (!(basis.length > 0.))
+      {
+        std::ostringstream m;
+        m << "reduced model: beam length L = " << basis.length << " m must be positive";
+        throw std::invalid_argument(m.str());
+      }
+    if (!(thickness_ > 0.))
+      {
+        std::ostringstream m;
+        m << "reduced model: beam thickness h = " << thickness_ << " m must be positive";
+        throw std::invalid_argument(m.str());
+      }
+    if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
+      throw std::invalid_argument("reduced model: ω must be positive and γ must have one entry per mode");
+  }
+
+  RomBeamSystem RomBeamSystem::from_scene(const Scene &scene, ModalBasis basis)
+  {
+    return RomBeamSystem(ReducedOrderModel(std::move(basis), scene.damping_ratio,
+                                           scene.discretisation.geometric_nonlinearity),
+                         scene.beam.thickness, BaseExcitation::from_scene(scene.excitation));
+  }
+
+  void RomBeamSystem::evaluate(const double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const
+  {
+    const double L = length();
+    if (!(x >= 0. && x <= L))
+      {
+        std::ostringstream m;
+        m << "reduced model: beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
+        throw std::out_of_range(m.str());
+      }
+    rom_.basis().evaluate(x, phi_, dphi_);
+    out.w       = phi_.dot(q);
+    out.dw      = dphi_.dot(q);
+    out.grad_w  = phi_;
+    out.grad_dw = dphi_;
+  }
+
+  double RomBeamSystem::max_stable_time_step() const { return 2. / rom_.basis().omega.maxCoeff(); }
+
+  void RomBeamSystem::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
+                                    const double dt, Eigen::VectorXd &u_free)
+  {
+    const double limit = max_stable_time_step();
+    if (!(dt > 0.) || dt > limit)
+      {
+        std::ostringstream m;
+        m << "reduced model: time step Delta t = " << dt << " s is outside the allowed range (0, " << limit
+          << "] s; the explicit midpoint step is stable only for Delta t <= 2/omega_max with omega_max = "
+          << rom_.basis().omega.maxCoeff() << " rad/s of the highest kept mode";
+        throw std::invalid_argument(m.str());
+      }
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_dofs());
+    last_damping_force_        = -rom_.linear_force(zero, u_B);
+    last_excitation_force_     = rom_.basis().gamma * excitation_.acceleration(t_M);
+    const Eigen::VectorXd h =
+      last_damping_force_ - rom_.linear_force(q_M, zero) - rom_.nonlinear_force(q_M) + last_excitation_force_;
+    u_free    = u_B + dt * h;
+    last_dt_  = dt;
+    last_u_B_ = u_B;
+  }
+
+  double RomBeamSystem::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
+  {
+    const Eigen::ArrayXd w = rom_.basis().omega.array();
+    return 0.5 * u.squaredNorm() + 0.5 * (w * w * q.array().square()).sum() + 0.25 * q.dot(rom_.nonlinear_force(q));
+  }
+
+  void RomBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
+  {
+    const Eigen::VectorXd u_mean = 0.5 * (last_u_B_ + u_E);
+    damping_work                 = last_dt_ * last_damping_force_.dot(u_mean);
+    excitation_work              = last_dt_ * last_excitation_force_.dot(u_mean);
+  }
+} // namespace beamslider

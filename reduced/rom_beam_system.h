@@ -1,0 +1,67 @@
+// The reduced-order model (seed Eqs. 1–3, DESIGN.md §1.2) as a BeamSystem, so
+// that the contact code of contact/ runs on it unchanged.
+//
+// Mass-normalised modes give M = I. One explicit Moreau midpoint step
+// (DESIGN §1.4) of the smooth part:
+//
+//   h(t_M, q_M, u_B) = −(2 D ω ∘ u_B + ω² ∘ q_M + f_nl(q_M)) + γ ẅ0(t_M)
+//   u_free = u_B + Δt h,     S = I
+//
+// [q] = m kg^1/2, [u] = m kg^1/2/s, [h] = m kg^1/2/s². The scheme is explicit
+// in the stiffness: stable only for Δt ≤ 2/ω_max (ω_max the highest kept
+// mode; the cubic term lowers the limit a little at large amplitude).
+//
+// Energy: T + V = ½ uᵀu + ½ Σ ω_n² q_n² + V_nl(q), with V_nl = ¼ qᵀ f_nl(q)
+// (exact for any cubic force that derives from a potential, Euler's theorem on
+// homogeneous functions). w(x) = Σ φ_n(x) q_n via ModalBasis::evaluate.
+#pragma once
+
+#include "contact/base_excitation.h"
+#include "contact/beam_system.h"
+#include "meshes/scene.h"
+#include "reduced/rom_operator.h"
+
+namespace beamslider
+{
+  class RomBeamSystem : public BeamSystem
+  {
+  public:
+    // thickness h [m] of the beam (for the contact surfaces).
+    RomBeamSystem(ReducedOrderModel rom, double thickness, BaseExcitation excitation);
+
+    // The ROM of a scene on a given modal basis: damping ratio, geometric
+    // nonlinearity switch, thickness and excitation from the scene.
+    static RomBeamSystem from_scene(const Scene &scene, ModalBasis basis);
+
+    unsigned int n_dofs() const override { return rom_.n_modes(); }
+    double length() const override { return rom_.basis().length; }
+    double thickness() const override { return thickness_; }
+
+    // Throws std::out_of_range for x outside [0, L]: modes are not defined there.
+    void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
+
+    // Throws std::invalid_argument for dt above max_stable_time_step().
+    void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                       Eigen::VectorXd &u_free) override;
+    void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const override { X = B; }
+
+    // 2/ω_max [s].
+    double max_stable_time_step() const override;
+
+    double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
+    void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
+
+    const ReducedOrderModel &model() const { return rom_; }
+    const BaseExcitation &excitation() const { return excitation_; }
+
+  private:
+    ReducedOrderModel rom_;
+    double thickness_;
+    BaseExcitation excitation_;
+    mutable Eigen::VectorXd phi_, dphi_; // scratch for evaluate
+
+    // Kept from the last free_velocity call, for step_work.
+    double last_dt_ = 0;
+    Eigen::VectorXd last_u_B_, last_damping_force_, last_excitation_force_;
+  };
+} // namespace beamslider
