@@ -24,7 +24,7 @@ namespace beamslider
 {
   struct ProxSolverSettings
   {
-    unsigned int max_iterations = 2000; // Gauss–Seidel sweeps
+    unsigned int max_iterations = 5000; // Gauss–Seidel sweeps (the mueller2023 smoke run needed up to ~1000)
     double tolerance            = 1e-10; // relative change of ξ = G P + c per sweep
     double relaxation           = 1.0;  // ρ in r_i = ρ / G_ii
   };

@@ -341,3 +341,35 @@ TEST(EndStop, RunStopsCleanlyWhenTheWindowReachesTheSupport)
       ASSERT_TRUE(std::isfinite(v));
   EXPECT_LE(rows.back().slider_x_over_L * L + 0.5 * B, L);
 }
+
+TEST(PrescribedPosition, HorizontalContactForceHoldsSliderOnFrictionlessIncline)
+{
+  // x_C held fixed on a frictionless rigid incline (tan α = 0.2): z_C and β
+  // free, so the vertical balance N cos α = m g gives N = m g / cos α, whose
+  // horizontal part on the slider is −N sin α = −m g tan α. That is F̄_x in
+  // every excitation period. Also: x_C never moves, and the trace has
+  // output_rate · T + 1 rows.
+  Scene scene                             = static_scene();
+  scene.excitation.acceleration_amplitude = 0.; // periods of 1/124 s, no motion
+  scene.contact.friction_coefficient      = 0.;
+  scene.time_stepping.end_time            = 0.2;
+  scene.initial.slider_position_over_L    = 0.5;
+  const double tan_alpha                  = 0.2;
+  RigidBeam beam(scene.beam.length, scene.beam.thickness, tan_alpha);
+  RunOptions options                 = RunOptions::from_scene(scene);
+  options.prescribed_slider_position = true;
+  AdaptationRun run(scene, beam, options);
+  const double x0 = run.state().s[0];
+  unsigned int n_rows = 0;
+  std::vector<PeriodRecord> periods;
+  run.on_trace_row = [&](const TraceRow &) { ++n_rows; };
+  run.on_period    = [&](const PeriodRecord &p) { periods.push_back(p); };
+  const RunResult result = run.run();
+  ASSERT_EQ(result.status, RunStatus::completed) << result.message;
+  EXPECT_EQ(run.state().s[0], x0);
+  EXPECT_EQ(n_rows, 201u);
+  ASSERT_GE(periods.size(), 20u);
+  const double expected = -scene.slider_mass() * scene.contact.gravity * tan_alpha;
+  for (std::size_t i = 1; i < periods.size(); ++i) // the first period includes the settling step
+    EXPECT_NEAR(periods[i].mean_horizontal_contact_force / expected, 1., 1e-6) << "period " << i;
+}
