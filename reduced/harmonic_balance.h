@@ -89,7 +89,12 @@ namespace beamslider
     // Arclength: stop (reported, not completed) when the first-harmonic
     // amplitude falls below this fraction of the largest one reached so far,
     // i.e. the branch has left along an internal-resonance tongue rather than
-    // making a loop. 0 follows the branch wherever it goes.
+    // making a loop. 0 follows it until the first harmonic changes sign. On
+    // the mueller2023 ideal-clamp ROM (N = 5…7, H = 10) this happens at
+    // ŵ/h ≈ 2.7, ω ≈ 2.2 ω₁: the 3:1 interaction with mode 3 (3ω ≈ ω₃ of the
+    // stretched beam); followed, the branch ends on the mode-3 motion seen at
+    // a third of its frequency (a₁ → 0 at ω ≈ 3.19 ω₁). Jumping over the tongue
+    // to the continuation of the mode-1 backbone is not implemented.
     double tongue_exit_fraction = 0.5;
     unsigned int max_points            = 2000;
     unsigned int max_newton_iterations = 12;

@@ -289,6 +289,14 @@ TEST(MultiModeBackbone, SevenModesTenHarmonicsUpToFourThicknesses)
                 << ", folds in amplitude: " << n_turns << ", " << bb.seconds << " s; " << bb.message << '\n';
       ASSERT_FALSE(bb.points.empty());
       EXPECT_FALSE(bb.message.empty());
+      if (method == BackboneSettings::Method::arclength)
+        {
+          // Past the narrow 5:1 tongue near ŵ/h ≈ 0.64 (where the natural
+          // continuation stops), then out along the 3:1 tongue with mode 3 at
+          // ŵ/h ≈ 2.7 — where the seed sees Eq. 4 and the NMA part (≈ 2.6).
+          EXPECT_GT(a_max / s.beam.h, 2.5);
+          EXPECT_NE(bb.message.find("tongue"), std::string::npos) << bb.message;
+        }
     }
 }
 
