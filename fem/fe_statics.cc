@@ -1,0 +1,142 @@
+#include "fem/fe_statics.h"
+
+#include <deal.II/lac/sparse_direct.h>
+
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  FEStatics::FEStatics(const FEBeam &beam, const FEModes &modes, const unsigned int n_modes, NewtonSettings settings)
+    : beam(beam)
+    , settings(settings)
+    , Phi(modes.shapes.begin(), modes.shapes.begin() + n_modes)
+  {
+    beam.assemble_mass_matrix(M, beam.constraints());
+    // Constrained rows of M carry a diagonal filler; the loads M Φ f̂ must be
+    // zero there (Φ is zero on constrained DoFs, so only the filler matters).
+    axial_only.merge(beam.constraints());
+    for (unsigned int i = 0; i < beam.n_dofs(); ++i)
+      if (!beam.axial_dofs()[i] && !axial_only.is_constrained(i))
+        axial_only.add_line(i);
+    axial_only.close();
+  }
+
+  Vector<double> FEStatics::displacement_from_modes(const Eigen::VectorXd &q) const
+  {
+    Vector<double> x(beam.n_dofs());
+    for (unsigned int k = 0; k < Phi.size(); ++k)
+      x.add(q[k], Phi[k]);
+    return x;
+  }
+
+  Eigen::VectorXd FEStatics::project(const Vector<double> &f) const
+  {
+    Eigen::VectorXd p(Phi.size());
+    for (unsigned int k = 0; k < Phi.size(); ++k)
+      p[k] = Phi[k] * f;
+    return p;
+  }
+
+  Eigen::VectorXd FEStatics::modal_force_plain(const Eigen::VectorXd &q)
+  {
+    Vector<double> f;
+    beam.assemble_internal_force(displacement_from_modes(q), &f, nullptr, beam.constraints());
+    return project(f);
+  }
+
+  Eigen::VectorXd FEStatics::modal_force_condensed(const Eigen::VectorXd &q)
+  {
+    // For given w the axial equilibrium f_u(u; w) = 0 is linear in u (the
+    // strain u' + ½ w'² is), so one Newton step from u = 0 solves it exactly.
+    Vector<double> x = displacement_from_modes(q), f, du(beam.n_dofs());
+    SparseMatrix<double> K;
+    beam.assemble_internal_force(x, &f, &K, axial_only);
+    SparseDirectUMFPACK solver;
+    solver.initialize(K);
+    f *= -1.;
+    solver.vmult(du, f);
+    axial_only.distribute(du);
+    x += du;
+    ++linear_solves;
+    ++static_solves;
+    beam.assemble_internal_force(x, &f, nullptr, beam.constraints());
+    return project(f);
+  }
+
+  Eigen::VectorXd FEStatics::modal_static_response(const Eigen::VectorXd &f_hat)
+  {
+    Vector<double> F(beam.n_dofs()), x(beam.n_dofs());
+    for (unsigned int k = 0; k < Phi.size(); ++k)
+      {
+        Vector<double> MPhi(beam.n_dofs());
+        M.vmult(MPhi, Phi[k]);
+        F.add(f_hat[k], MPhi);
+      }
+    beam.constraints().set_zero(F);
+    solve(F, x);
+    Vector<double> Mx(beam.n_dofs());
+    M.vmult(Mx, x);
+    return project(Mx);
+  }
+
+  unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x)
+  {
+    ++static_solves;
+    const auto &constraints = beam.constraints();
+    const double load_norm  = std::max(F.l2_norm(), 1e-300);
+    double lambda = 0, step = settings.initial_load_step;
+    unsigned int total_iterations = 0;
+    Vector<double> f, residual, dx(beam.n_dofs()), x_start;
+    SparseMatrix<double> K;
+    SparseDirectUMFPACK solver;
+
+    while (lambda < 1.)
+      {
+        const double target = std::min(1., lambda + step);
+        x_start             = x;
+        bool converged      = false;
+        double rel_residual = 0;
+        for (unsigned int it = 0; it < settings.max_iterations; ++it)
+          {
+            beam.assemble_internal_force(x, &f, &K, constraints);
+            residual = F;
+            residual *= target;
+            residual -= f;
+            constraints.set_zero(residual);
+            rel_residual = residual.l2_norm() / (target * load_norm);
+            if (rel_residual < settings.relative_tolerance)
+              {
+                converged = true;
+                break;
+              }
+            solver.initialize(K);
+            solver.vmult(dx, residual);
+            constraints.distribute(dx);
+            x += dx;
+            ++linear_solves;
+            ++total_iterations;
+          }
+        if (converged)
+          {
+            lambda = target;
+            step   = std::min(2 * step, 1. - lambda + 1e-15);
+          }
+        else
+          {
+            x = x_start;
+            step *= 0.5;
+            if (step < settings.min_load_step)
+              {
+                std::ostringstream msg;
+                msg << "Newton's method for the FE statics did not converge: stuck at load fraction " << lambda
+                    << " (next increment below " << settings.min_load_step << "), relative residual " << rel_residual
+                    << " after " << settings.max_iterations << " iterations; |F| = " << load_norm << " N";
+                throw StaticSolveError(msg.str());
+              }
+          }
+      }
+    return total_iterations;
+  }
+} // namespace beamslider

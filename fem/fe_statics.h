@@ -1,0 +1,76 @@
+// Nonlinear statics of the FE beam, and the three ways the reduced model's
+// cubic coefficients are obtained from it (DESIGN.md §1.2):
+//
+//  - plain STEP: prescribe w = Φ q with the axial DoFs held at zero and
+//    return Φᵀ f(Φ q). The membrane cannot relax, so the axial strain is
+//    ½ w'² pointwise instead of its mean: the coefficients are over-predicted.
+//  - condensed STEP: at the prescribed w solve the axial equilibrium for u
+//    (linear in u for given w: one sparse solve), then return Φᵀ f(x).
+//  - ICE: apply the load M Φ f̂, solve f(x) = M Φ f̂ by Newton's method with
+//    load stepping, and return q = Φᵀ M x.
+//
+// Newton: tangent K_t(x) from FEBeam, sparse direct solves (UMFPACK). A
+// Newton solve that does not converge is cut back in load; below a minimum
+// load increment it throws a StaticSolveError that says at which load level
+// and with which residual it stopped.
+#pragma once
+
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <Eigen/Dense>
+
+#include <stdexcept>
+
+namespace beamslider
+{
+  class StaticSolveError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  struct NewtonSettings
+  {
+    double relative_tolerance  = 1e-11; // on ‖residual‖ / ‖load‖
+    unsigned int max_iterations = 25;   // per load step
+    double initial_load_step   = 1.0;   // fraction of the full load
+    double min_load_step       = 1e-4;
+  };
+
+  class FEStatics
+  {
+  public:
+    // The first n_modes of `modes` form Φ.
+    FEStatics(const FEBeam &beam, const FEModes &modes, unsigned int n_modes, NewtonSettings settings = {});
+
+    // STEP callbacks: q [m kg^1/2] ↦ Φᵀ f(x) [N kg^-1/2], the full restoring
+    // force including its linear part diag(ω²) q.
+    Eigen::VectorXd modal_force_plain(const Eigen::VectorXd &q);
+    Eigen::VectorXd modal_force_condensed(const Eigen::VectorXd &q);
+    // ICE callback: f̂ [N kg^-1/2] ↦ q = Φᵀ M x [m kg^1/2].
+    Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
+
+    // Solves f(x) = F for x (starting from x, which is overwritten), with
+    // load stepping. Returns the number of Newton iterations.
+    unsigned int solve(const dealii::Vector<double> &F, dealii::Vector<double> &x);
+
+    unsigned int n_linear_solves() const { return linear_solves; }
+    unsigned int n_static_solves() const { return static_solves; }
+    const dealii::SparseMatrix<double> &mass_matrix() const { return M; }
+
+  private:
+    dealii::Vector<double> displacement_from_modes(const Eigen::VectorXd &q) const;
+    Eigen::VectorXd project(const dealii::Vector<double> &f) const; // Φᵀ f
+
+    const FEBeam &beam;
+    NewtonSettings settings;
+    std::vector<dealii::Vector<double>> Phi;
+    dealii::SparseMatrix<double> M;
+    dealii::AffineConstraints<double> axial_only; // supports + every w and θ DoF
+    unsigned int linear_solves = 0, static_solves = 0;
+  };
+} // namespace beamslider

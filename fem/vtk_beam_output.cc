@@ -1,0 +1,81 @@
+#include "fem/vtk_beam_output.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkQuad.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <stdexcept>
+
+namespace beamslider
+{
+  void write_beam_shapes_vtu(const FEBeam &beam, const std::vector<NamedShape> &shapes, const std::string &filename,
+                             const std::vector<std::pair<std::string, double>> &field_data,
+                             const unsigned int samples_per_element)
+  {
+    const double L = beam.length(), h = beam.beam_data().thickness;
+    const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
+
+    vtkNew<vtkPoints> points;
+    for (unsigned int i = 0; i < n_x; ++i)
+      for (const double z : {-0.5 * h, 0.5 * h})
+        points->InsertNextPoint(L * i / (n_x - 1), 0., z);
+
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(points);
+    for (unsigned int i = 0; i + 1 < n_x; ++i)
+      {
+        // Counter-clockwise in the x–z plane: bottom-left, bottom-right, top-right, top-left.
+        const vtkIdType ids[4] = {vtkIdType(2 * i), vtkIdType(2 * i + 2), vtkIdType(2 * i + 3), vtkIdType(2 * i + 1)};
+        grid->InsertNextCell(VTK_QUAD, 4, ids);
+      }
+
+    for (const auto &s : shapes)
+      {
+        vtkNew<vtkDoubleArray> displacement;
+        displacement->SetName(s.name.c_str());
+        displacement->SetNumberOfComponents(3);
+        for (unsigned int i = 0; i < n_x; ++i)
+          {
+            const FEPointShape p = beam.point_shape(L * i / (n_x - 1));
+            double u = 0, w = 0, dw = 0;
+            for (unsigned int a = 0; a < 4; ++a)
+              {
+                w += p.w_values[a] * s.shape[p.w_dofs[a]];
+                dw += p.slope_values[a] * s.shape[p.w_dofs[a]];
+              }
+            for (unsigned int k = 0; k < p.u_dofs.size(); ++k)
+              u += p.u_values[k] * s.shape[p.u_dofs[k]];
+            for (const double z : {-0.5 * h, 0.5 * h})
+              {
+                const double d[3] = {s.scale * (u - z * dw), 0., s.scale * w};
+                displacement->InsertNextTuple(d);
+              }
+          }
+        grid->GetPointData()->AddArray(displacement);
+
+        vtkNew<vtkDoubleArray> scale;
+        scale->SetName(("scale_" + s.name).c_str());
+        scale->InsertNextValue(s.scale);
+        grid->GetFieldData()->AddArray(scale);
+      }
+    for (const auto &[name, value] : field_data)
+      {
+        vtkNew<vtkDoubleArray> a;
+        a->SetName(name.c_str());
+        a->InsertNextValue(value);
+        grid->GetFieldData()->AddArray(a);
+      }
+
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetFileName(filename.c_str());
+    writer->SetInputData(grid);
+    writer->SetDataModeToAppended();
+    if (writer->Write() != 1)
+      throw std::runtime_error("Cannot write VTK file '" + filename + "'");
+  }
+} // namespace beamslider
