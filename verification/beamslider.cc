@@ -3,9 +3,14 @@
 // (--set "Section/Name=value"), and writes CSV + plots into an output folder
 // (default reports/<scene>/<command>).
 //
-//   beamslider modes SCENE [--slider-at S]   linear bending modes (SLEPc)
-//   beamslider verify [SCENE] [--full]       the verification report
-//   beamslider scene-template                every parameter with unit and range
+//   beamslider modes SCENE [--slider-at S]          linear bending modes (SLEPc)
+//   beamslider coefficients SCENE --method M        modal cubic coefficients
+//   beamslider backbone SCENE --model rom|fe        backbone curves (harmonic balance)
+//   beamslider simulate SCENE --model rom|fe|auto   free-slider adaptation run
+//   beamslider sweep SCENE                          prescribed slider position sweeps
+//   beamslider animate SCENE --model fe|rom         ParaView time series (.pvd)
+//   beamslider verify [SCENE] [--full]              the verification report
+//   beamslider scene-template                       every parameter with unit and range
 #include "meshes/scene.h"
 #include "verification/commands.h"
 
@@ -43,6 +48,47 @@ int main(int argc, char **argv)
   modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(CLI::Range(1, 50));
   modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(CLI::Range(1, 4096));
 
+  CoefficientsOptions coefficients;
+  auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
+  add_common(coefficients_cmd, true);
+  coefficients_cmd->add_option("--method", coefficients.method, "analytic | step | step-condensed | ice")
+    ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
+  coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(CLI::Range(1, 10));
+
+  BackboneOptions backbone;
+  auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
+  add_common(backbone_cmd, true);
+  backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(CLI::Range(1, 10));
+  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(CLI::Range(1, 40));
+  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h")->check(CLI::PositiveNumber);
+
+  SimulateOptions simulate;
+  auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
+  add_common(simulate_cmd, true);
+  simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
+  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
+  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(CLI::PositiveNumber);
+  simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "error tolerance for --model auto")->check(CLI::PositiveNumber);
+
+  SweepOptions sweep;
+  auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
+  add_common(sweep_cmd, true);
+  sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(CLI::Range(1e-4, 0.1));
+  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position [s]")->check(CLI::PositiveNumber);
+
+  AnimateOptions animate;
+  auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
+  add_common(animate_cmd, true);
+  animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
+  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation");
+  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(CLI::PositiveNumber);
+  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(CLI::NonNegativeNumber);
+  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(CLI::PositiveNumber);
+  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(CLI::PositiveNumber);
+
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd, false);
@@ -56,6 +102,16 @@ int main(int argc, char **argv)
     {
       if (*modes_cmd)
         return run_modes(common, modes);
+      if (*coefficients_cmd)
+        return run_coefficients(common, coefficients);
+      if (*backbone_cmd)
+        return run_backbone(common, backbone);
+      if (*simulate_cmd)
+        return run_simulate(common, simulate);
+      if (*sweep_cmd)
+        return run_sweep(common, sweep);
+      if (*animate_cmd)
+        return run_animate(common, animate);
       if (*verify_cmd)
         return run_verify(common, verify);
       if (*template_cmd)

@@ -21,7 +21,18 @@ namespace beamslider
     report.text << "# beamslider verification report: scene `" << scene.name << "`\n\n"
                 << "Written by `beamslider verify`. Every number below is computed by this run; CSV files with the same data "
                    "sit beside this file.\n\n";
+    // Each section appends to report.md and is flushed to disk before the
+    // next starts, so a failure late in the report keeps the earlier ones.
+    auto flush = [&report] { std::ofstream(report.dir + "/report.md") << report.text.str(); };
     add_frequency_section(report, scene);
+    flush();
+    add_coefficient_section(report, scene, options.full);
+    flush();
+    add_backbone_section(report, scene, options.full);
+    flush();
+    add_contact_section(report, scene, options.full);
+    flush();
+    add_fe_rom_section(report, scene, options.full);
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.text << "---\nTotal time of this report: " << seconds << " s.\n";

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,51 @@ namespace beamslider
     bool full = false; // the long studies (minutes to hours)
   };
   int run_verify(const CommonOptions &common, const VerifyOptions &options);
+
+  struct CoefficientsOptions
+  {
+    std::string method = "analytic"; // analytic | step | step-condensed | ice
+    unsigned int n_modes = 0;        // 0 = the scene's N
+  };
+  int run_coefficients(const CommonOptions &common, const CoefficientsOptions &options);
+
+  struct BackboneOptions
+  {
+    std::string model = "rom"; // rom | fe
+    unsigned int n_modes = 0;  // ROM: 0 = the scene's N
+    unsigned int n_harmonics = 10;
+    double max_amplitude_over_h = 4.;
+  };
+  int run_backbone(const CommonOptions &common, const BackboneOptions &options);
+
+  struct SimulateOptions
+  {
+    std::string model = "rom";        // rom | fe | auto
+    std::string case_name;            // a published case or ablation ("" = the scene as it is)
+    std::optional<double> end_time;   // [s], overrides the scene's/case's
+    bool animate = false;             // also write a .pvd animation
+    std::optional<double> tolerance;  // for --model auto
+  };
+  int run_simulate(const CommonOptions &common, const SimulateOptions &options);
+
+  struct SweepOptions
+  {
+    std::string model = "rom";
+    double step_over_L = 0.003;       // Δx_C/L
+    std::optional<double> settle_time; // [s] per position
+  };
+  int run_sweep(const CommonOptions &common, const SweepOptions &options);
+
+  struct AnimateOptions
+  {
+    std::string model = "fe";
+    std::optional<double> end_time;   // [s]
+    double start_time = 0;            // [s] first frame written
+    double frame_rate = 2000;         // frames per simulated second
+    double magnification = 1;         // deformation scale written into the files
+    std::string case_name;
+  };
+  int run_animate(const CommonOptions &common, const AnimateOptions &options);
 
   // Resolves a scene argument: the path as given, else relative to the
   // source tree's meshes/ (so `beamslider modes mueller2023` works anywhere).

@@ -21,4 +21,19 @@ namespace beamslider
   // observed order per mode), the bonded slider against seed Eq. 5, and the
   // choice of the default mesh.
   void add_frequency_section(Report &report, const Scene &scene);
+
+  // Section 2: cubic coefficients, analytic vs STEP (plain, condensed) vs ICE
+  // vs FE-implied, with the load-level study (report_coefficients.cc).
+  void add_coefficient_section(Report &report, const Scene &scene, bool full);
+
+  // Section 3: backbone curves, ROM (N, H) against FE (report_backbones.cc).
+  void add_backbone_section(Report &report, const Scene &scene, bool full);
+
+  // Section 4: slider contact dynamics on the ROM: published cases and
+  // ablations, PCS sweeps (report_contact.cc).
+  void add_contact_section(Report &report, const Scene &scene, bool full);
+
+  // Section 5: FE against ROM adaptation traces, speed against accuracy,
+  // failure chart (report_fe_rom.cc).
+  void add_fe_rom_section(Report &report, const Scene &scene, bool full);
 } // namespace beamslider
