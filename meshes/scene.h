@@ -47,12 +47,17 @@ namespace beamslider
     double rotational_stiffness = 125.;   // k_r [N m/rad]
     double axial_stiffness      = 1.93e7; // k_t [N/m]
 
-    // Series stiffness of the beam's membrane and the two axial springs,
-    // DESIGN.md §1.2: k_ax = (L/(EA) + 1/k_t)^-1 (k_ax = EA/L for the clamp).
+    // Stiffness of the membrane in series with the axial springs: the axial
+    // force of a beam stretched by Δ is N = k_ax Δ with
+    //   k_ax = (L/(EA) + 2/k_t)^-1      (one spring k_t at each end),
+    //   k_ax = EA/L                     (ideal clamp).
+    // DESIGN.md §1.2 writes (L/(EA) + 1/k_t)^-1, which is right for a spring at
+    // one end only; our supports (§1.1) have one at each end, and the FE model
+    // with them agrees with this formula (tests/test_fem_coefficients.cc).
     double membrane_stiffness(const BeamData &beam) const
     {
       const double beam_compliance = beam.length / beam.axial_stiffness();
-      return 1. / (beam_compliance + (ideal_clamp ? 0. : 1. / axial_stiffness));
+      return 1. / (beam_compliance + (ideal_clamp ? 0. : 2. / axial_stiffness));
     }
   };
 

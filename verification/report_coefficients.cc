@@ -1,10 +1,166 @@
-// Verification section placeholder: not implemented yet.
+// Verification section "Cubic coefficients": analytic (seed Eq. 3) against
+// STEP, condensed STEP and ICE on the FE model; the membrane over-prediction
+// of plain STEP explained by a number; cost; ICE against its load level.
+#include "fem/fe_beam.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "fem/fe_statics.h"
+#include "verification/coefficient_methods.h"
+#include "verification/commands.h"
+#include "verification/csv_writer.h"
 #include "verification/report.h"
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
 
 namespace beamslider
 {
-  void add_coefficient_section(Report &report, const Scene &, bool)
+  namespace
   {
-    report.text << "## (section coefficient: not implemented yet)\n\n";
+    std::string sci(const double x, const int digits = 3)
+    {
+      std::ostringstream s;
+      s << std::scientific << std::setprecision(digits) << x;
+      return s.str();
+    }
+    std::string fixed(const double x, const int digits = 3)
+    {
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(digits) << x;
+      return s.str();
+    }
+    std::string label(const CubicTerm &t)
+    {
+      return "c^(" + std::to_string(t.n + 1) + ")_" + std::to_string(t.j + 1) + std::to_string(t.k + 1) + std::to_string(t.l + 1);
+    }
+  } // namespace
+
+  void add_coefficient_section(Report &report, const Scene &scene, const bool full)
+  {
+    auto &md = report.text;
+    std::cout << "[verify] cubic coefficients ..." << std::endl;
+    md << "## 2. Cubic modal coefficients\n\n"
+       << "Seed Eq. 3 with the membrane stiffness k_ax of the supports, against the three ways of extracting the cubic "
+          "modal stiffness from the FE model (DESIGN.md §1.2). All on the scene's FE mesh and its mass-normalised modes. "
+          "Coefficients c^(n)_jkl are stored once per sorted j ≤ k ≤ l (the sum over the permutations), "
+          "f_n = Σ c^(n)_jkl q_j q_k q_l, in 1/(s² m² kg).\n\n";
+
+    const FEBeam beam(scene);
+    const unsigned int N_max = 7;
+    const FEModes modes = compute_bending_modes(beam, N_max);
+
+    // 2.1: N = 3, every method.
+    const unsigned int N = 3;
+    const ModalBasis basis3 = make_modal_basis(beam, modes, N);
+    std::vector<CoefficientResult> results;
+    for (const auto &m : coefficient_methods())
+      results.push_back(compute_coefficients(beam, modes, basis3, m, m == "ice" ? 0.03 : 1.0));
+    const auto &analytic = results[0].fit.cubic;
+    double largest = 0;
+    for (const auto &t : analytic)
+      largest = std::max(largest, std::abs(t.value));
+
+    CsvWriter csv(report.dir + "/coefficients_n3.csv", {"n", "j", "k", "l", "analytic", "step", "step_condensed", "ice"});
+    md << "### 2.1 N = 3, the terms above 1e-3 of the largest\n\n"
+       << "| term | analytic | step / analytic | step-condensed / analytic | ice / analytic |\n|---|---|---|---|---|\n";
+    double worst_condensed = 0, worst_ice = 0;
+    for (std::size_t i = 0; i < analytic.size(); ++i)
+      {
+        const CubicTerm &t = analytic[i];
+        std::vector<double> v;
+        for (const auto &r : results)
+          v.push_back(r.fit.cubic_coefficient(t.n, t.j, t.k, t.l));
+        csv.row({CsvWriter::cell(t.n + 1), CsvWriter::cell(t.j + 1), CsvWriter::cell(t.k + 1), CsvWriter::cell(t.l + 1),
+                 CsvWriter::cell(v[0]), CsvWriter::cell(v[1]), CsvWriter::cell(v[2]), CsvWriter::cell(v[3])});
+        if (std::abs(t.value) < 1e-3 * largest)
+          continue;
+        worst_condensed = std::max(worst_condensed, std::abs(v[2] / v[0] - 1));
+        worst_ice       = std::max(worst_ice, std::abs(v[3] / v[0] - 1));
+        md << "| " << label(t) << " | " << sci(v[0]) << " | " << fixed(v[1] / v[0], 4) << " | " << fixed(v[2] / v[0], 6)
+           << " | " << fixed(v[3] / v[0], 6) << " |\n";
+      }
+    md << "\nCondensed STEP agrees with the analytic coefficients to " << sci(worst_condensed, 1) << " and ICE (load level: "
+       << "linear displacement 0.03 h) to " << sci(worst_ice, 1)
+       << " on these terms. The quadratic coefficients, zero for a flat beam, come out at most "
+       << sci(results[2].fit.max_abs_quadratic() / (largest * results[2].fit.amplitudes[0]), 1) << " (condensed STEP) and "
+       << sci(results[3].fit.max_abs_quadratic() / (largest * results[3].fit.amplitudes[0]), 1)
+       << " (ICE) of the largest cubic one, both taken at the amplitude a_1 (|a| a_1² against |c| a_1³).\n\n";
+
+    // 2.2: the over-prediction of plain STEP.
+    const double EA = scene.beam.axial_stiffness(), L = scene.beam.length, k_ax = basis3.membrane_stiffness;
+    const double I2 = basis3.stretch(0, 0), I4 = integral_slope_fourth_power(beam, modes.shapes[0]);
+    const double shape_factor = L * I4 / (I2 * I2), support_factor = EA / (L * k_ax);
+    const double measured     = results[1].fit.cubic_coefficient(0, 0, 0, 0) / analytic[0].value;
+    md << "### 2.2 Why plain STEP over-predicts\n\n"
+       << "With the axial DoFs held at zero the membrane strain is ½w'² at every point and the supports do not give: "
+          "b_111 becomes (EA/2)∫φ₁'⁴ dx instead of (k_ax/2)(∫φ₁'² dx)². The ratio is the product of a shape factor "
+          "L∫φ₁'⁴/(∫φ₁'²)² = "
+       << fixed(shape_factor, 5) << " (the membrane cannot even out the strain along the beam) and a support factor EA/(L k_ax) = "
+       << fixed(support_factor, 5) << " (the axial springs cannot give): predicted " << fixed(shape_factor * support_factor, 5)
+       << ", measured " << fixed(measured, 5) << ". Condensed STEP and ICE let the membrane relax and have neither error.\n\n";
+
+    // 2.3: cost for N = 5 and 7.
+    md << "### 2.3 Cost\n\n| method | N | modal force evaluations | FE static solves | sparse solves | wall time [s] |\n|---|---|---|---|---|---|\n";
+    CsvWriter cost(report.dir + "/coefficient_cost.csv",
+                   {"method", "n_modes", "evaluations", "static_solves", "linear_solves", "seconds"});
+    for (const unsigned int n : {5u, 7u})
+      {
+        const ModalBasis basis = make_modal_basis(beam, modes, n);
+        for (const auto &m : coefficient_methods())
+          {
+            const CoefficientResult r = compute_coefficients(beam, modes, basis, m, m == "ice" ? 0.03 : 1.0);
+            md << "| " << m << " | " << n << " | " << r.fit.n_evaluations << " | " << r.n_static_solves << " | "
+               << r.n_linear_solves << " | " << sci(r.seconds, 2) << " |\n";
+            cost.row({m, CsvWriter::cell(n), CsvWriter::cell(r.fit.n_evaluations), CsvWriter::cell(r.n_static_solves),
+                      CsvWriter::cell(r.n_linear_solves), CsvWriter::cell(r.seconds, 4)});
+          }
+      }
+    md << "\nA STEP point costs one internal-force evaluation (plain) or one linear axial solve (condensed: for given w the "
+          "axial equilibrium is linear in u); an ICE point is a full Newton solve with load stepping.\n\n";
+
+    // 2.4: the load level.
+    std::cout << "[verify] cubic coefficients: load-level study ..." << std::endl;
+    md << "### 2.4 Coefficient against the load level\n\n"
+       << "Relative error of b_111 against the analytic value when the STEP amplitude or the ICE load level (given as the "
+          "linear displacement it causes, in thicknesses) changes, for N = 1 and N = 3.\n\n"
+       << "| level [h] | step-condensed N=1 | ice N=1 | ice N=3 |\n|---|---|---|---|\n";
+    CsvWriter levels(report.dir + "/coefficient_load_levels.csv",
+                     {"level_over_h", "method", "n_modes", "b111_relative_error", "status"});
+    std::vector<double> scales{0.01, 0.03, 0.1, 0.3, 1.0, 2.0};
+    if (full)
+      scales.insert(scales.end(), {3.0, 5.0});
+    const ModalBasis basis1 = make_modal_basis(beam, modes, 1);
+    for (const double s : scales)
+      {
+        md << "| " << s << " |";
+        for (const auto &[method, basis] : {std::pair<std::string, const ModalBasis *>{"step-condensed", &basis1},
+                                            {"ice", &basis1}, {"ice", &basis3}})
+          {
+            try
+              {
+                const CoefficientResult r = compute_coefficients(beam, modes, *basis, method, s);
+                const double err = r.fit.cubic_coefficient(0, 0, 0, 0) / analytic[0].value - 1;
+                md << " " << sci(err, 2) << " |";
+                levels.row({CsvWriter::cell(s), method, CsvWriter::cell(basis->n_modes()), CsvWriter::cell(err, 6), "ok"});
+              }
+            catch (const std::exception &e)
+              {
+                md << " failed |";
+                levels.row({CsvWriter::cell(s), method, CsvWriter::cell(basis->n_modes()), "", "failed"});
+                std::cout << "  " << method << " at " << s << " h failed: " << e.what() << std::endl;
+              }
+          }
+        md << "\n";
+      }
+    md << "\nCondensed STEP does not depend on the amplitude: for given w the condensed FE force is a cubic polynomial. What "
+          "remains of its difference is the discretisation of the axial field (the exact membrane force is uniform along the "
+          "beam; the FE one, from u of degree "
+       << scene.discretisation.axial_degree << " per element, is not quite). ICE's "
+          "error grows with the square of the load: the static response also contains the modes outside the basis, whose "
+          "effect enters the fit as quintic and higher terms aliased into the cubic ones, so the coefficient drifts with "
+          "the load at which it is identified. The default ICE level (0.03 h) keeps it below 1e-3.\n\n"
+       << "![Coefficient against load level](coefficient_load_levels.png)\n\n";
+    run_plot_script("plot_coefficients.py", {report.dir});
   }
 } // namespace beamslider
