@@ -1,0 +1,142 @@
+#include "verification/fe_rom_study.h"
+
+#include "contact/beam_system.h"
+#include "fem/fe_beam.h"
+#include "fem/fe_beam_system.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "reduced/rom_beam_system.h"
+#include "verification/coefficient_methods.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace beamslider
+{
+  std::string ModelSetting::label() const
+  {
+    std::ostringstream s;
+    if (family == "fe")
+      s << "FE " << n_elements << " el.";
+    else
+      s << "ROM N=" << n_modes << " " << coefficients;
+    s << " dt=" << time_step; // no comma: labels go into CSV cells
+    return s.str();
+  }
+
+  std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene_in, const ModelSetting &setting)
+  {
+    Scene scene                     = scene_in;
+    scene.time_stepping.time_step   = setting.time_step;
+    if (setting.family == "fe")
+      {
+        if (setting.n_elements)
+          scene.discretisation.n_elements = setting.n_elements;
+        return make_fe_beam_system(scene);
+      }
+    if (setting.family != "rom")
+      throw InputError("model family '" + setting.family + "' is not one of fe, rom");
+
+    const FEBeam beam(scene);
+    const FEModes modes = compute_bending_modes(beam, setting.n_modes);
+    ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
+    ReducedOrderModel rom(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+    if (setting.coefficients != "analytic")
+      {
+        // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).
+        const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
+        rom.set_cubic_terms(compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
+      }
+    return std::make_unique<RomBeamSystem>(std::move(rom), scene.beam.thickness,
+                                           BaseExcitation::from_scene(scene.excitation));
+  }
+
+  ModelRun run_setting(const Scene &scene_in, const ModelSetting &setting, const double window)
+  {
+    ModelRun run;
+    run.setting      = setting;
+    const auto start = std::chrono::steady_clock::now();
+    try
+      {
+        Scene scene                   = scene_in;
+        scene.time_stepping.time_step = setting.time_step;
+        if (setting.family == "fe" && setting.n_elements)
+          scene.discretisation.n_elements = setting.n_elements;
+        auto beam          = make_beam_model(scene, setting);
+        RunOptions options = RunOptions::from_scene(scene);
+        options.end_time   = window;
+        options.progress_interval = 1e9;
+        AdaptationRun adaptation(scene, *beam, options);
+        adaptation.on_period = [&run](const PeriodRecord &p) { run.periods.push_back(p); };
+        run.result = adaptation.run();
+        run.ok     = run.result.status == RunStatus::completed;
+        run.message = run.result.message;
+      }
+    catch (const std::exception &e)
+      {
+        run.ok      = false;
+        run.message = e.what();
+      }
+    run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return run;
+  }
+
+  namespace
+  {
+    // Trailing mean of the per-period amplitude over `span` periods.
+    std::vector<double> envelope(const std::vector<PeriodRecord> &periods, const std::size_t n, const std::size_t span)
+    {
+      std::vector<double> e(n);
+      double sum = 0;
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          sum += periods[k].amplitude_over_h;
+          if (k >= span)
+            sum -= periods[k - span].amplitude_over_h;
+          e[k] = sum / std::min(k + 1, span);
+        }
+      return e;
+    }
+  } // namespace
+
+  void compare_with_reference(ModelRun &run, const ModelRun &reference)
+  {
+    const std::size_t n = std::min(run.periods.size(), reference.periods.size());
+    if (!run.ok || !reference.ok || n == 0)
+      return;
+    const double period    = reference.periods[0].t_end - reference.periods[0].t_start;
+    const std::size_t span = std::max<std::size_t>(1, std::lround(0.1 / period));
+    const auto a = envelope(run.periods, n, span), a_ref = envelope(reference.periods, n, span);
+    double diff2 = 0, ref2 = 0, dx = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      {
+        diff2 += (a[k] - a_ref[k]) * (a[k] - a_ref[k]);
+        ref2 += a_ref[k] * a_ref[k];
+        dx = std::max(dx, std::abs(run.periods[k].slider_x_over_L - reference.periods[k].slider_x_over_L));
+      }
+    const double drift = std::abs(reference.periods[n - 1].slider_x_over_L - reference.periods[0].slider_x_over_L);
+    run.envelope_error = std::sqrt(diff2 / std::max(ref2, 1e-300));
+    run.position_error = dx;
+    run.drift_error    = dx / std::max(drift, 1e-9);
+  }
+
+  std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs)
+  {
+    std::vector<std::size_t> front;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      {
+        if (runs[i].drift_error < 0)
+          continue;
+        bool dominated = false;
+        for (std::size_t j = 0; j < runs.size() && !dominated; ++j)
+          dominated = j != i && runs[j].drift_error >= 0 && runs[j].wall_seconds <= runs[i].wall_seconds &&
+                      runs[j].drift_error <= runs[i].drift_error &&
+                      (runs[j].wall_seconds < runs[i].wall_seconds || runs[j].drift_error < runs[i].drift_error);
+        if (!dominated)
+          front.push_back(i);
+      }
+    return front;
+  }
+} // namespace beamslider
