@@ -139,4 +139,50 @@ namespace beamslider
       }
     return front;
   }
+
+  ModelSetting choose_model(const Scene &scene, const double tolerance, std::string &why, const double window)
+  {
+    const double dt = scene.time_stepping.time_step;
+    ModelSetting reference_setting;
+    reference_setting.family     = "fe";
+    reference_setting.n_elements = scene.discretisation.n_elements;
+    reference_setting.time_step  = dt / 2;
+    const ModelRun reference = run_setting(scene, reference_setting, window);
+    std::ostringstream log;
+    if (!reference.ok)
+      throw std::runtime_error("--model auto needs the FE reference, which failed: " + reference.message);
+
+    std::vector<ModelSetting> candidates;
+    for (const unsigned int N : {1u, 3u, 5u, 7u})
+      for (const double step : {2 * dt, dt})
+        {
+          ModelSetting s;
+          s.n_modes = N, s.time_step = step;
+          candidates.push_back(s);
+        }
+    ModelSetting fe = reference_setting;
+    fe.time_step    = dt;
+    candidates.push_back(fe);
+
+    log << "model selection over " << window << " s against " << reference_setting.label() << " (tolerance " << tolerance
+        << " on the slider drift error):\n";
+    std::vector<ModelRun> runs;
+    for (const auto &c : candidates)
+      {
+        runs.push_back(run_setting(scene, c, window));
+        compare_with_reference(runs.back(), reference);
+        const auto &r = runs.back();
+        log << "  " << c.label() << ": " << (r.ok ? "drift error " + std::to_string(r.drift_error) : "failed (" + r.message + ")")
+            << ", " << r.wall_seconds << " s\n";
+      }
+    const ModelRun *best = nullptr;
+    for (const auto &r : runs)
+      if (r.ok && r.drift_error >= 0 && r.drift_error <= tolerance && (!best || r.wall_seconds < best->wall_seconds))
+        best = &r;
+    ModelSetting chosen = best ? best->setting : fe;
+    log << "picked " << chosen.label() << ": "
+        << (best ? "the cheapest model within the tolerance" : "no cheaper model met the tolerance, so the FE model") << "\n";
+    why = log.str();
+    return chosen;
+  }
 } // namespace beamslider

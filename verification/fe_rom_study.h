@@ -66,4 +66,11 @@ namespace beamslider
   // Indices of the runs on the Pareto front of (wall time, drift error):
   // no other run is both faster and more accurate.
   std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs);
+
+  // `simulate --model auto`: runs the candidate settings (ROM N = 1, 3, 5, 7
+  // at the scene's Δt and 2Δt, the FE model) over a short window against the
+  // FE reference at Δt/2, and returns the cheapest setting whose drift error
+  // is within `tolerance`, or the FE model at the scene's Δt if none is. The
+  // reasoning (errors, times, what was picked and why) goes to `why`.
+  ModelSetting choose_model(const Scene &scene, double tolerance, std::string &why, double window = 0.5);
 } // namespace beamslider
