@@ -1,11 +1,12 @@
 #include "fem/fe_beam_system.h"
 
-#include <stdexcept>
+#include "contact/base_excitation.h"
+#include "fem/fe_transient.h"
 
 namespace beamslider
 {
-  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &)
+  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, const unsigned int n_elements)
   {
-    throw std::runtime_error("the FE beam with the slider (--model fe) is not implemented yet");
+    return std::make_unique<FETransientBeam>(scene, BaseExcitation::from_scene(scene.excitation), n_elements);
   }
 } // namespace beamslider

@@ -1,6 +1,7 @@
 // The FE beam as a BeamSystem (contact/beam_system.h) for the shared contact
-// code: implicit Moreau–Jean θ-scheme on the von Kármán forces (DESIGN.md §1.4).
-// PLACEHOLDER: to be implemented.
+// code: the implicit Moreau–Jean θ-scheme (θ = 1/2, implicit midpoint rule)
+// on the von Kármán forces, DESIGN.md §1.4. The scheme, its linear algebra
+// and its energy bookkeeping are documented in fem/fe_transient.h.
 #pragma once
 
 #include "contact/beam_system.h"
@@ -10,7 +11,8 @@
 
 namespace beamslider
 {
-  // The FE beam of `scene` (its mesh, supports, damping on the scene's N
-  // modes, base excitation) as a BeamSystem.
-  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene);
+  // The FE beam of `scene` (its mesh, supports, damping ratio D on the
+  // scene's N lowest bending modes and none on the others, base excitation)
+  // as a BeamSystem. n_elements = 0 takes the scene's mesh.
+  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, unsigned int n_elements = 0);
 } // namespace beamslider

@@ -1,0 +1,308 @@
+// The FE beam as a BeamSystem: implicit midpoint (Moreau–Jean θ = 1/2), see fe_transient.h.
+#include "fem/fe_transient.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string newton_failure_message(const double t_M, const unsigned int iteration, const double correction,
+                                       const double velocity_norm)
+    {
+      std::ostringstream m;
+      m << "FE transient: Newton on the von Karman forces did not converge in the step with midpoint t = " << t_M
+        << " s: after " << iteration << " iterations the velocity correction is " << correction
+        << " m/s (|u| = " << velocity_norm
+        << " m/s); try a smaller time step or check the state for a blow-up; the step is not accepted";
+      return m.str();
+    }
+  } // namespace
+
+  TransientNewtonFailure::TransientNewtonFailure(const double t_M_, const unsigned int iteration_,
+                                                 const double correction_, const double velocity_norm)
+    : std::runtime_error(newton_failure_message(t_M_, iteration_, correction_, velocity_norm))
+    , t_M(t_M_)
+    , iteration(iteration_)
+    , correction(correction_)
+  {}
+
+  FETransientBeam::FETransientBeam(const Scene &scene, const BaseExcitation &excitation,
+                                   const unsigned int n_elements, const FETransientSettings settings)
+    : beam_(std::make_unique<FEBeam>(scene, n_elements))
+    , excitation_(excitation)
+    , settings_(settings)
+    , damping_ratio_(scene.damping_ratio)
+  {
+    const FEBeam &beam = *beam_;
+    const unsigned int n = beam.n_dofs();
+    const auto &c        = beam.constraints();
+
+    // The supports are homogeneous single-DoF constraints (w = 0, and θ = u =
+    // 0 for the clamp): keeping those DoFs at zero is all they ask.
+    constrained_.assign(n, false);
+    for (unsigned int i = 0; i < n; ++i)
+      if (c.is_constrained(i))
+        {
+          const auto *entries = c.get_constraint_entries(i);
+          if (c.is_inhomogeneously_constrained(i) || (entries && !entries->empty()))
+            throw std::logic_error("FE transient: support constraint on DoF " + std::to_string(i) +
+                                   " is not of the form q_i = 0");
+          constrained_[i] = true;
+        }
+
+    beam.assemble_mass_matrix(M_, c);
+    beam.assemble_base_load(r_);
+    K_.reinit(beam.sparsity_pattern());
+    S0_.reinit(beam.sparsity_pattern());
+
+    const unsigned int n_kept = scene.discretisation.n_modes;
+    if (n_kept > 0)
+      modes_ = compute_bending_modes(beam, n_kept);
+    damping_ = std::make_unique<ModalDamping>(M_, modes_, damping_ratio_ > 0. ? n_kept : 0, damping_ratio_);
+    const unsigned int rank = damping_->rank();
+    U_.resize(n, rank);
+    for (unsigned int k = 0; k < rank; ++k)
+      for (unsigned int i = 0; i < n; ++i)
+        U_(i, k) = damping_->mass_weighted_modes()[k][i];
+
+    for (auto *v : {&tmp_a_, &tmp_b_, &tmp_c_, &q_bar_, &u_, &res_, &du_, &f_, &uB_, &qM_})
+      v->reinit(n);
+  }
+
+  void FETransientBeam::to_dealii(const Eigen::VectorXd &a, dealii::Vector<double> &b)
+  {
+    if (b.size() != static_cast<unsigned int>(a.size()))
+      b.reinit(a.size());
+    std::copy(a.data(), a.data() + a.size(), b.begin());
+  }
+
+  void FETransientBeam::to_eigen(const dealii::Vector<double> &a, Eigen::VectorXd &b)
+  {
+    b.resize(a.size());
+    std::copy(a.begin(), a.end(), b.data());
+  }
+
+  void FETransientBeam::evaluate(const double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const
+  {
+    const double L = length();
+    if (!(x >= 0. && x <= L))
+      {
+        std::ostringstream m;
+        m << "FE beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
+        throw std::out_of_range(m.str());
+      }
+    const FEPointShape p = beam_->point_shape(x);
+    const unsigned int n = n_dofs();
+    out.grad_w.setZero(n);
+    out.grad_dw.setZero(n);
+    for (unsigned int a = 0; a < 4; ++a)
+      {
+        const auto dof = p.w_dofs[a];
+        if (constrained_[dof])
+          continue;
+        out.grad_w[dof] += p.w_values[a];
+        out.grad_dw[dof] += p.slope_values[a];
+      }
+    out.w  = out.grad_w.dot(q);
+    out.dw = out.grad_dw.dot(q);
+  }
+
+  void FETransientBeam::factorise(const dealii::Vector<double> &q_bar, const double dt)
+  {
+    beam_->assemble_internal_force(q_bar, nullptr, &K_, beam_->constraints());
+    S0_.copy_from(M_);
+    S0_.add(0.25 * dt * dt, K_);
+    solver_.factorize(S0_);
+
+    // Woodbury terms of the rank-N damping, S = S₀ + U Dg Uᵀ.
+    const unsigned int rank = damping_->rank();
+    if (rank > 0)
+      {
+        const unsigned int n = n_dofs();
+        Z_.resize(n, rank);
+        Dg_.resize(rank);
+        for (unsigned int k = 0; k < rank; ++k)
+          {
+            tmp_a_ = damping_->mass_weighted_modes()[k];
+            solver_.solve(tmp_a_);
+            for (unsigned int i = 0; i < n; ++i)
+              Z_(i, k) = tmp_a_[i];
+            Dg_[k] = 0.5 * dt * damping_->modal_coefficients()[k];
+          }
+        const Eigen::MatrixXd cap =
+          Eigen::MatrixXd::Identity(rank, rank) + Dg_.asDiagonal() * (U_.transpose() * Z_);
+        capacitance_.compute(cap);
+      }
+    factorised_      = true;
+    factorised_dt_   = dt;
+    factorised_step_ = stats_.steps;
+    ++stats_.factorisations;
+  }
+
+  void FETransientBeam::solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const
+  {
+    x = b;
+    solver_.solve(x);
+    const unsigned int rank = damping_->rank();
+    if (rank == 0)
+      return;
+    const Eigen::Map<Eigen::VectorXd> y(x.begin(), x.size());
+    const Eigen::VectorXd v = capacitance_.solve(Dg_.asDiagonal() * (U_.transpose() * y));
+    Eigen::Map<Eigen::VectorXd>(x.begin(), x.size()) -= Z_ * v;
+  }
+
+  void FETransientBeam::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
+                                      const double dt, Eigen::VectorXd &u_free)
+  {
+    if (!(dt > 0.))
+      throw std::invalid_argument("FE transient: time step Delta t = " + std::to_string(dt) + " s must be positive");
+    const unsigned int n = n_dofs();
+    const auto &c        = beam_->constraints();
+    const bool nonlinear = beam_->geometric_nonlinearity();
+    to_dealii(q_M, qM_);
+    to_dealii(u_B, uB_);
+    const double a = excitation_.acceleration(t_M);
+
+    // Predictor: the start velocity plus the last step's smooth velocity change.
+    u_ = uB_;
+    if (have_last_ && last_dt_ == dt)
+      for (unsigned int i = 0; i < n; ++i)
+        u_[i] += last_u_free_[i] - last_u_B_[i];
+    for (unsigned int i = 0; i < n; ++i)
+      if (constrained_[i])
+        u_[i] = 0.;
+
+    bool refactor = !factorised_ || factorised_dt_ != dt ||
+                    (nonlinear && settings_.refactor_interval > 0 &&
+                     stats_.steps - factorised_step_ >= settings_.refactor_interval);
+    double previous = std::numeric_limits<double>::infinity(), correction = 0;
+    unsigned int it = 0;
+    bool converged  = false;
+    while (it < settings_.max_iterations)
+      {
+        ++it;
+        // q̄ = q_M + Δt/4 (u − u_B).
+        q_bar_ = qM_;
+        q_bar_.add(0.25 * dt, u_, -0.25 * dt, uB_);
+        beam_->assemble_internal_force(q_bar_, &f_, nullptr, c);
+        if (refactor)
+          {
+            factorise(q_bar_, dt);
+            refactor = false;
+          }
+        // R = M(u − u_B) + Δt [f(q̄) + C(u_B + u)/2 − r ẅ0].
+        tmp_a_ = u_;
+        tmp_a_ -= uB_;
+        M_.vmult(res_, tmp_a_);
+        tmp_b_ = u_;
+        tmp_b_ += uB_;
+        damping_->vmult(tmp_c_, tmp_b_); // C (u + u_B)
+        res_.add(dt, f_, 0.5 * dt, tmp_c_);
+        res_.add(-dt * a, r_);
+        for (unsigned int i = 0; i < n; ++i)
+          if (constrained_[i])
+            res_[i] = 0.;
+        solve(res_, du_);
+        u_ -= du_;
+        ++stats_.newton_iterations;
+
+        correction = du_.l2_norm();
+        if (!std::isfinite(correction))
+          break;
+        // Converged when the correction moves q_E by less than rtol of the
+        // step's scale (Δt/2 δu against Δt u and q̄): this also sets the
+        // floor above the round-off of f(q̄), which grows with ‖q̄‖/Δt.
+        if (correction <= settings_.relative_tolerance * (u_.l2_norm() + q_bar_.l2_norm() / dt) +
+                            settings_.absolute_tolerance)
+          {
+            converged = true;
+            break;
+          }
+        // A linear beam with an exact factorisation is solved in one step
+        // (up to round-off).
+        if (!nonlinear && it == 1)
+          {
+            converged = true;
+            break;
+          }
+        if (nonlinear && correction > settings_.max_contraction * previous)
+          refactor = true;
+        previous = correction;
+      }
+    if (!converged)
+      throw TransientNewtonFailure(t_M, it, correction, u_.l2_norm());
+
+    to_eigen(u_, u_free);
+    last_u_B_          = u_B;
+    last_u_free_       = u_free;
+    last_dt_           = dt;
+    last_acceleration_ = a;
+    have_last_         = true;
+    ++stats_.steps;
+  }
+
+  void FETransientBeam::solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const
+  {
+    if (!factorised_)
+      throw std::logic_error("FE transient: solve_iteration_matrix called before free_velocity");
+    const unsigned int n = n_dofs();
+    X.resize(n, B.cols());
+    dealii::Vector<double> b(n), x(n);
+    for (Eigen::Index j = 0; j < B.cols(); ++j)
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          b[i] = constrained_[i] ? 0. : B(i, j);
+        solve(b, x);
+        for (unsigned int i = 0; i < n; ++i)
+          X(i, j) = x[i];
+      }
+    const_cast<FETransientStatistics &>(stats_).iteration_matrix_solves += B.cols();
+  }
+
+  Eigen::VectorXd FETransientBeam::internal_force(const Eigen::VectorXd &q) const
+  {
+    dealii::Vector<double> qd, f;
+    to_dealii(q, qd);
+    beam_->assemble_internal_force(qd, &f, nullptr, beam_->constraints());
+    Eigen::VectorXd out;
+    to_eigen(f, out);
+    return out;
+  }
+
+  double FETransientBeam::strain_energy(const Eigen::VectorXd &q) const
+  {
+    // V(q) = ∫₀¹ f(s q)·q ds; f(s q)·q is a cubic in s (von Kármán), so
+    // two-point Gauss–Legendre on [0, 1] is exact.
+    const double g = 0.5 / std::sqrt(3.);
+    double V       = 0;
+    for (const double s : {0.5 - g, 0.5 + g})
+      V += 0.5 * internal_force(s * q).dot(q);
+    return V;
+  }
+
+  double FETransientBeam::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
+  {
+    dealii::Vector<double> ud, Mu(n_dofs());
+    to_dealii(u, ud);
+    M_.vmult(Mu, ud);
+    return 0.5 * (ud * Mu) + strain_energy(q);
+  }
+
+  void FETransientBeam::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
+  {
+    if (!have_last_)
+      {
+        damping_work = excitation_work = 0.;
+        return;
+      }
+    const Eigen::VectorXd u_mean = 0.5 * (last_u_B_ + u_E);
+    dealii::Vector<double> um, Cum;
+    to_dealii(u_mean, um);
+    damping_->vmult(Cum, um);
+    damping_work = -last_dt_ * (um * Cum);
+    dealii::Vector<double> rd = r_;
+    excitation_work           = last_dt_ * last_acceleration_ * (rd * um);
+  }
+} // namespace beamslider
