@@ -114,7 +114,31 @@ namespace beamslider
     beam_->assemble_internal_force(q_bar, nullptr, &K_, beam_->constraints());
     S0_.copy_from(M_);
     S0_.add(0.25 * dt * dt, K_);
-    solver_.factorize(S0_);
+    if (S0_entry_.empty())
+      {
+        // The pattern of S₀ in Eigen's compressed columns, once: the map from
+        // deal.II's entry order to Eigen's value array, and the fill-reducing
+        // ordering and symbolic factorisation.
+        std::vector<Eigen::Triplet<double>> triplets;
+        for (auto e = S0_.begin(); e != S0_.end(); ++e)
+          triplets.emplace_back(e->row(), e->column(), 0.);
+        S0_eigen_.resize(n_dofs(), n_dofs());
+        S0_eigen_.setFromTriplets(triplets.begin(), triplets.end());
+        S0_eigen_.makeCompressed();
+        for (auto e = S0_.begin(); e != S0_.end(); ++e)
+          S0_entry_.push_back(&S0_eigen_.coeffRef(e->row(), e->column()) - S0_eigen_.valuePtr());
+        ldlt_.analyzePattern(S0_eigen_);
+      }
+    {
+      double *values = S0_eigen_.valuePtr();
+      std::size_t k  = 0;
+      for (auto e = S0_.begin(); e != S0_.end(); ++e, ++k)
+        values[S0_entry_[k]] = e->value();
+    }
+    ldlt_.factorize(S0_eigen_);
+    if (ldlt_.info() != Eigen::Success)
+      throw std::runtime_error("FE transient: the LDL^T factorisation of S = M + dt^2/4 K_t failed (dt = " +
+                               std::to_string(dt) + " s)");
 
     // Woodbury terms of the rank-N damping, S = S₀ + U Dg Uᵀ.
     const unsigned int rank = damping_->rank();
@@ -125,10 +149,8 @@ namespace beamslider
         Dg_.resize(rank);
         for (unsigned int k = 0; k < rank; ++k)
           {
-            tmp_a_ = damping_->mass_weighted_modes()[k];
-            solver_.solve(tmp_a_);
-            for (unsigned int i = 0; i < n; ++i)
-              Z_(i, k) = tmp_a_[i];
+            const dealii::Vector<double> &Mphi = damping_->mass_weighted_modes()[k];
+            Z_.col(k) = ldlt_.solve(Eigen::Map<const Eigen::VectorXd>(Mphi.begin(), Mphi.size()));
             Dg_[k] = 0.5 * dt * damping_->modal_coefficients()[k];
           }
         const Eigen::MatrixXd cap =
@@ -143,14 +165,15 @@ namespace beamslider
 
   void FETransientBeam::solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const
   {
-    x = b;
-    solver_.solve(x);
+    if (x.size() != b.size())
+      x.reinit(b.size());
+    Eigen::Map<Eigen::VectorXd> y(x.begin(), x.size());
+    y = ldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b.begin(), b.size()));
     const unsigned int rank = damping_->rank();
     if (rank == 0)
       return;
-    const Eigen::Map<Eigen::VectorXd> y(x.begin(), x.size());
     const Eigen::VectorXd v = capacitance_.solve(Dg_.asDiagonal() * (U_.transpose() * y));
-    Eigen::Map<Eigen::VectorXd>(x.begin(), x.size()) -= Z_ * v;
+    y -= Z_ * v;
   }
 
   void FETransientBeam::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
@@ -167,7 +190,7 @@ namespace beamslider
 
     // Predictor: the start velocity plus the last step's smooth velocity change.
     u_ = uB_;
-    if (have_last_ && last_dt_ == dt)
+    if (settings_.extrapolate && have_last_ && last_dt_ == dt)
       for (unsigned int i = 0; i < n; ++i)
         u_[i] += last_u_free_[i] - last_u_B_[i];
     for (unsigned int i = 0; i < n; ++i)

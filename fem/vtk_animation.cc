@@ -1,0 +1,368 @@
+// ParaView animation of a beam–slider run, see vtk_animation.h.
+#include "fem/vtk_animation.h"
+
+#include "fem/fe_beam.h"
+#include "fem/fe_transient.h"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkQuad.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string frame_file(const std::string &part, const unsigned int index, const char *extension)
+    {
+      std::ostringstream s;
+      s << part << "_" << std::setw(5) << std::setfill('0') << index << extension;
+      return s.str();
+    }
+
+    void add_field(vtkDataObject &data, const char *name, const double value)
+    {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(name);
+      a->InsertNextValue(value);
+      data.GetFieldData()->AddArray(a);
+    }
+
+    vtkNew<vtkDoubleArray> make_array(const char *name, const int components)
+    {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(name);
+      a->SetNumberOfComponents(components);
+      return a;
+    }
+
+    template <class Writer, class Data>
+    void write_xml(Data &data, const std::string &filename)
+    {
+      vtkNew<Writer> writer;
+      writer->SetFileName(filename.c_str());
+      writer->SetInputData(&data);
+      writer->SetDataModeToAppended();
+      if (writer->Write() != 1)
+        throw std::runtime_error("cannot write VTK file '" + filename + "'");
+    }
+  } // namespace
+
+  BeamFrameGeometry sample_fe_beam(const FEBeam &beam, const Eigen::VectorXd &q, const unsigned int samples_per_element)
+  {
+    BeamFrameGeometry g;
+    const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
+    const double L = beam.length(), EA = beam.beam_data().axial_stiffness();
+    for (unsigned int i = 0; i < n_x; ++i)
+      {
+        const double x       = L * i / (n_x - 1);
+        const FEPointShape p = beam.point_shape(x);
+        double u = 0, du = 0, w = 0, dw = 0, ddw = 0;
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            const double qa = q[p.w_dofs[a]];
+            w += p.w_values[a] * qa;
+            dw += p.slope_values[a] * qa;
+            ddw += p.curvature_values[a] * qa;
+          }
+        for (unsigned int k = 0; k < p.u_dofs.size(); ++k)
+          {
+            u += p.u_values[k] * q[p.u_dofs[k]];
+            du += p.strain_values[k] * q[p.u_dofs[k]];
+          }
+        g.x.push_back(x);
+        g.u.push_back(u);
+        g.w.push_back(w);
+        g.dw.push_back(dw);
+        g.curvature.push_back(ddw);
+        g.axial_force.push_back(EA * (du + (beam.geometric_nonlinearity() ? 0.5 * dw * dw : 0.)));
+      }
+    g.thickness = beam.beam_data().thickness;
+    return g;
+  }
+
+  BeamFrameGeometry sample_beam_system(const BeamSystem &beam, const Eigen::VectorXd &q, const unsigned int n_samples,
+                                       const double membrane_stiffness)
+  {
+    if (n_samples < 3)
+      throw std::invalid_argument("sample_beam_system: at least 3 samples needed");
+    BeamFrameGeometry g;
+    const double L = beam.length();
+    BeamPointKinematics p;
+    for (unsigned int i = 0; i < n_samples; ++i)
+      {
+        const double x = L * i / (n_samples - 1);
+        beam.evaluate(x, q, p);
+        g.x.push_back(x);
+        g.u.push_back(0.);
+        g.w.push_back(p.w);
+        g.dw.push_back(p.dw);
+      }
+    // w'' by differences of w' (one-sided at the ends); ½∫w'² by the trapezoidal rule.
+    double stretch = 0;
+    for (unsigned int i = 0; i < n_samples; ++i)
+      {
+        const unsigned int l = i == 0 ? 0 : i - 1, r = i + 1 == n_samples ? i : i + 1;
+        g.curvature.push_back((g.dw[r] - g.dw[l]) / (g.x[r] - g.x[l]));
+        if (i > 0)
+          stretch += 0.25 * (g.dw[i] * g.dw[i] + g.dw[i - 1] * g.dw[i - 1]) * (g.x[i] - g.x[i - 1]);
+      }
+    g.axial_force.assign(n_samples, membrane_stiffness * stretch);
+    g.thickness = beam.thickness();
+    return g;
+  }
+
+  BeamFrameGeometry sample_beam(const BeamSystem &beam, const Eigen::VectorXd &q, const double membrane_stiffness)
+  {
+    if (const auto *fe = dynamic_cast<const FETransientBeam *>(&beam))
+      return sample_fe_beam(fe->beam(), q);
+    return sample_beam_system(beam, q, 129, membrane_stiffness);
+  }
+
+  AnimationFrame make_animation_frame(const MoreauStepper &stepper, BeamFrameGeometry beam_geometry)
+  {
+    AnimationFrame f;
+    const SystemState &state = stepper.state();
+    f.t                      = state.t;
+    f.beam                   = std::move(beam_geometry);
+    f.beam.thickness         = stepper.beam().thickness();
+    f.beam.base_displacement = stepper.base().displacement(state.t);
+
+    const SliderParameters &p = stepper.slider();
+    f.slider.s                = state.s;
+    f.slider.window_width     = p.window_width;
+    f.slider.window_height    = p.window_height;
+    f.slider.com_offset       = p.com_offset;
+    BeamPointKinematics point;
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      {
+        f.slider.corner[k] = state.s.head<2>() + stepper.geometry().corner_offset(k, state.s[2]);
+        const Eigen::Vector2d P = stepper.corner_impulses()[k] / stepper.time_step();
+        f.slider.force[k].setZero();
+        if (P.isZero())
+          continue;
+        // n = ζ(−sin α, cos α), t = ζ(−cos α, −sin α) at the beam point under the corner.
+        const double x = std::clamp(f.slider.corner[k][0], 0., stepper.beam().length());
+        stepper.beam().evaluate(x, state.q, point);
+        const double alpha = std::atan(point.dw), zeta = corner_zeta(k);
+        const Eigen::Vector2d n(-zeta * std::sin(alpha), zeta * std::cos(alpha));
+        const Eigen::Vector2d t(-zeta * std::cos(alpha), -zeta * std::sin(alpha));
+        f.slider.force[k] = P[0] * n + P[1] * t;
+      }
+    return f;
+  }
+
+  VtkAnimationWriter::VtkAnimationWriter(const std::string &directory, const double magnification,
+                                         const std::string &name)
+    : directory_(directory)
+    , name_(name)
+    , magnification_(magnification)
+  {
+    if (!(magnification > 0.))
+      throw std::invalid_argument("animation: magnification " + std::to_string(magnification) + " must be positive");
+    std::error_code ec;
+    std::filesystem::create_directories(directory_, ec);
+    if (ec)
+      throw std::runtime_error("animation: cannot create '" + directory_ + "': " + ec.message());
+    csv_.open(directory_ + "/frames.csv");
+    if (!csv_)
+      throw std::runtime_error("animation: cannot write '" + directory_ + "/frames.csv'");
+    csv_ << "# drawn geometry of each frame (magnification " << magnification_
+         << "); parts: beam_top, beam_bottom, slider_outer, slider_window (closed polylines), contact (force on "
+            "the slider at a corner)\n";
+    csv_ << "frame,t_s,part,x_m,z_m,fx_N,fz_N\n";
+    csv_ << std::setprecision(9);
+  }
+
+  VtkAnimationWriter::~VtkAnimationWriter()
+  {
+    try
+      {
+        finish();
+      }
+    catch (...)
+      {}
+  }
+
+  std::string VtkAnimationWriter::pvd_file() const { return directory_ + "/" + name_ + ".pvd"; }
+
+  void VtkAnimationWriter::write(const AnimationFrame &frame)
+  {
+    const unsigned int index = times_.size();
+    const double m           = magnification_;
+    const BeamFrameGeometry &b = frame.beam;
+    const double h           = b.thickness;
+    const unsigned int n_x   = b.x.size();
+    if (n_x < 2 || b.w.size() != n_x || b.dw.size() != n_x || b.u.size() != n_x || b.curvature.size() != n_x ||
+        b.axial_force.size() != n_x)
+      throw std::invalid_argument("animation: beam samples of inconsistent length");
+
+    // Beam: bottom and top surface points of the drawn axis.
+    {
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+      auto displacement = make_array("displacement", 3);
+      auto deflection   = make_array("deflection", 1);
+      auto axial_force  = make_array("axial_force", 1);
+      auto curvature    = make_array("curvature", 1);
+      std::vector<Eigen::Vector2d> top, bottom;
+      for (unsigned int i = 0; i < n_x; ++i)
+        {
+          const double z_axis = m * (b.base_displacement + b.w[i]), slope = m * b.dw[i];
+          const double c = 1. / std::sqrt(1. + slope * slope);
+          for (const double zeta : {-1., 1.})
+            {
+              const Eigen::Vector2d p(b.x[i] + m * b.u[i] - zeta * 0.5 * h * slope * c, z_axis + zeta * 0.5 * h * c);
+              points->InsertNextPoint(p[0], 0., p[1]);
+              (zeta < 0 ? bottom : top).push_back(p);
+              const double d[3] = {b.u[i] - zeta * 0.5 * h * b.dw[i], 0., b.base_displacement + b.w[i]};
+              displacement->InsertNextTuple(d);
+              deflection->InsertNextValue(b.w[i]);
+              axial_force->InsertNextValue(b.axial_force[i]);
+              curvature->InsertNextValue(b.curvature[i]);
+            }
+        }
+      vtkNew<vtkUnstructuredGrid> grid;
+      grid->SetPoints(points);
+      for (unsigned int i = 0; i + 1 < n_x; ++i)
+        {
+          const vtkIdType ids[4] = {vtkIdType(2 * i), vtkIdType(2 * i + 2), vtkIdType(2 * i + 3), vtkIdType(2 * i + 1)};
+          grid->InsertNextCell(VTK_QUAD, 4, ids);
+        }
+      for (auto *a : {displacement.Get(), deflection.Get(), axial_force.Get(), curvature.Get()})
+        grid->GetPointData()->AddArray(a);
+      add_field(*grid, "TimeValue", frame.t);
+      add_field(*grid, "magnification", m);
+      add_field(*grid, "base_displacement", b.base_displacement);
+      write_xml<vtkXMLUnstructuredGridWriter>(*grid, directory_ + "/" + frame_file("beam", index, ".vtu"));
+
+      for (const auto &[part, line] : {std::pair{"beam_top", &top}, std::pair{"beam_bottom", &bottom}})
+        for (const auto &p : *line)
+          csv_ << index << ',' << frame.t << ',' << part << ',' << p[0] << ',' << p[1] << ",0,0\n";
+    }
+
+    // Slider: drawn window centre S and rotation; outer box and window as closed polylines.
+    const SliderFrameGeometry &s = frame.slider;
+    const double B = s.window_width, R = s.window_height, d = s.com_offset, wall = 0.2 * B;
+    const double beta_drawn = std::atan(m * std::tan(s.s[2]));
+    const Eigen::Rotation2Dd rot_true(s.s[2]), rot_drawn(beta_drawn);
+    const Eigen::Vector2d S_true = s.s.head<2>() + rot_true * Eigen::Vector2d(0., d);
+    const Eigen::Vector2d S_drawn(S_true[0], m * S_true[1]);
+    auto drawn = [&](const Eigen::Vector2d &local) -> Eigen::Vector2d { return S_drawn + rot_drawn * local; };
+    {
+      const double top = 0.5 * R + wall, bottom = -2. * d - 0.5 * R - wall; // centroid at the centre of mass (0, −d)
+      const std::array<Eigen::Vector2d, 4> outer = {Eigen::Vector2d(-0.5 * B - wall, bottom),
+                                                    Eigen::Vector2d(0.5 * B + wall, bottom),
+                                                    Eigen::Vector2d(0.5 * B + wall, top),
+                                                    Eigen::Vector2d(-0.5 * B - wall, top)};
+      const std::array<Eigen::Vector2d, 4> window = {Eigen::Vector2d(-0.5 * B, -0.5 * R), Eigen::Vector2d(0.5 * B, -0.5 * R),
+                                                     Eigen::Vector2d(0.5 * B, 0.5 * R), Eigen::Vector2d(-0.5 * B, 0.5 * R)};
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+      vtkNew<vtkCellArray> lines;
+      for (const auto &[part, box] : {std::pair{"slider_outer", &outer}, std::pair{"slider_window", &window}})
+        {
+          const vtkIdType first = points->GetNumberOfPoints();
+          for (const auto &local : *box)
+            {
+              const Eigen::Vector2d p = drawn(local);
+              points->InsertNextPoint(p[0], 0., p[1]);
+            }
+          const vtkIdType ids[5] = {first, first + 1, first + 2, first + 3, first};
+          lines->InsertNextCell(5, ids);
+          for (unsigned int k = 0; k <= 4; ++k)
+            {
+              const Eigen::Vector2d p = drawn((*box)[k % 4]);
+              csv_ << index << ',' << frame.t << ',' << part << ',' << p[0] << ',' << p[1] << ",0,0\n";
+            }
+        }
+      vtkNew<vtkPolyData> poly;
+      poly->SetPoints(points);
+      poly->SetLines(lines);
+      add_field(*poly, "TimeValue", frame.t);
+      add_field(*poly, "magnification", m);
+      add_field(*poly, "x_C", s.s[0]);
+      add_field(*poly, "z_C", s.s[1]);
+      add_field(*poly, "beta", s.s[2]);
+      write_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("slider", index, ".vtp"));
+    }
+
+    // Contacts: the four window corners (drawn) with the force on the slider.
+    {
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+      vtkNew<vtkCellArray> vertices;
+      auto force  = make_array("contact_force", 3);
+      auto normal = make_array("force_magnitude", 1);
+      for (unsigned int k = 0; k < n_slider_corners; ++k)
+        {
+          const Eigen::Vector2d p = drawn(Eigen::Vector2d(corner_side(k) * 0.5 * B, corner_zeta(k) * 0.5 * R));
+          const vtkIdType id      = points->InsertNextPoint(p[0], 0., p[1]);
+          vertices->InsertNextCell(1, &id);
+          const double F[3] = {s.force[k][0], 0., s.force[k][1]};
+          force->InsertNextTuple(F);
+          normal->InsertNextValue(s.force[k].norm());
+          csv_ << index << ',' << frame.t << ",contact," << p[0] << ',' << p[1] << ',' << s.force[k][0] << ','
+               << s.force[k][1] << '\n';
+        }
+      vtkNew<vtkPolyData> poly;
+      poly->SetPoints(points);
+      poly->SetVerts(vertices);
+      poly->GetPointData()->AddArray(force);
+      poly->GetPointData()->AddArray(normal);
+      poly->GetPointData()->SetActiveVectors("contact_force");
+      add_field(*poly, "TimeValue", frame.t);
+      add_field(*poly, "magnification", m);
+      write_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("contacts", index, ".vtp"));
+    }
+
+    times_.push_back(frame.t);
+    if (times_.size() % 25 == 0)
+      {
+        write_pvd();
+        csv_.flush();
+      }
+  }
+
+  void VtkAnimationWriter::write_pvd() const
+  {
+    std::ofstream out(pvd_file());
+    if (!out)
+      throw std::runtime_error("animation: cannot write '" + pvd_file() + "'");
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<!-- beam-slider animation; magnification " << magnification_
+        << " (transverse displacements and slopes drawn m times; sizes true) -->\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n"
+        << std::setprecision(12);
+    for (unsigned int i = 0; i < times_.size(); ++i)
+      {
+        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"0\" file=\"" << frame_file("beam", i, ".vtu")
+            << "\"/>\n";
+        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"1\" file=\"" << frame_file("slider", i, ".vtp")
+            << "\"/>\n";
+        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"2\" file=\""
+            << frame_file("contacts", i, ".vtp") << "\"/>\n";
+      }
+    out << "  </Collection>\n</VTKFile>\n";
+  }
+
+  void VtkAnimationWriter::finish()
+  {
+    write_pvd();
+    csv_.flush();
+  }
+} // namespace beamslider

@@ -1,0 +1,112 @@
+// ParaView animation of a beam–slider run: a `.pvd` time series (physical
+// time t [s]) with three parts per frame,
+//   beam_NNNNN.vtu      the beam as a strip of quads with its thickness h in
+//                       the x–z plane, deformed; point data: displacement
+//                       (u − z w', 0, w0 + w) [m] (true, not magnified),
+//                       deflection w relative to the base [m], axial force
+//                       N = EA ε [N], curvature w'' [1/m];
+//   slider_NNNNN.vtp    the slider as a rigid box outline (a drawing
+//                       convention: wall B/5 around the window, centroid at
+//                       the centre of mass) and its window B × R, as lines;
+//   contacts_NNNNN.vtp  the four window corners with the contact force on
+//                       the slider there, (P_N n + P_T t)/Δt [N], as vectors
+//                       (zero when a corner is open).
+// Every file carries field data TimeValue [s] and magnification [-].
+//
+// Magnification m: drawn transverse positions are m (w0 + w) for the beam's
+// axis and m z for the slider's window centre S, slopes m w' and the slider
+// rotation atan(m tan β); sizes (h, B, R) are drawn true. For m = 1 the
+// drawing is the physical geometry; for m > 1 the picture stays consistent
+// up to (m − 1) times the clearance (R − h)/2.
+//
+// Alongside, frames.csv holds the drawn geometry of every frame (columns
+// frame, t_s, part, x_m, z_m, fx_N, fz_N) for scripts/plot_frames.py, which
+// renders a strip of stills to PNG.
+#pragma once
+
+#include "contact/moreau_stepper.h"
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  class FEBeam;
+  class FETransientBeam;
+
+  // The beam at one instant, sampled along x.
+  struct BeamFrameGeometry
+  {
+    std::vector<double> x;           // sample positions [m]
+    std::vector<double> u;           // axial displacement [m]
+    std::vector<double> w;           // deflection relative to the base [m]
+    std::vector<double> dw;          // slope w' [-]
+    std::vector<double> curvature;   // w'' [1/m]
+    std::vector<double> axial_force; // N [N]
+    double base_displacement = 0;    // w0(t) [m]
+    double thickness         = 0;    // h [m]
+  };
+
+  // The slider at one instant.
+  struct SliderFrameGeometry
+  {
+    Eigen::Vector3d s = Eigen::Vector3d::Zero(); // (x_C [m], z_C [m], β [rad])
+    double window_width = 0, window_height = 0, com_offset = 0; // B, R, d [m]
+    std::array<Eigen::Vector2d, n_slider_corners> corner; // absolute corner positions [m]
+    std::array<Eigen::Vector2d, n_slider_corners> force;  // contact force on the slider [N]
+  };
+
+  struct AnimationFrame
+  {
+    double t = 0; // [s]
+    BeamFrameGeometry beam;
+    SliderFrameGeometry slider;
+  };
+
+  // Exact FE fields: u, w, w', w'' from the shape functions, N = EA (u' + ½w'²)
+  // (u' alone without geometric nonlinearity).
+  BeamFrameGeometry sample_fe_beam(const FEBeam &beam, const Eigen::VectorXd &q, unsigned int samples_per_element = 4);
+  // Any BeamSystem (e.g. the ROM): w, w' from evaluate at n_samples points,
+  // w'' by central differences of w', u = 0 and the uniform axial force of
+  // the reduced model, N = k_ax · ½∫w'² dx (axial inertia neglected,
+  // DESIGN.md §1.2; k_ax = membrane_stiffness, 0 without geometric nonlinearity).
+  BeamFrameGeometry sample_beam_system(const BeamSystem &beam, const Eigen::VectorXd &q, unsigned int n_samples,
+                                       double membrane_stiffness);
+  // Dispatches: the FE fields for an FETransientBeam, else the generic ones.
+  BeamFrameGeometry sample_beam(const BeamSystem &beam, const Eigen::VectorXd &q, double membrane_stiffness);
+
+  // The frame of the stepper's current state: the beam sampled by `beam_geometry`
+  // (thickness and w0 filled in here), the slider and the contact forces of
+  // the last step (corner impulses / Δt).
+  AnimationFrame make_animation_frame(const MoreauStepper &stepper, BeamFrameGeometry beam_geometry);
+
+  class VtkAnimationWriter
+  {
+  public:
+    // Writes into `directory` (created if needed): `<name>.pvd`, the frame
+    // files and frames.csv.
+    VtkAnimationWriter(const std::string &directory, double magnification, const std::string &name = "animation");
+    ~VtkAnimationWriter();
+
+    void write(const AnimationFrame &frame);
+    // Writes the .pvd (also rewritten every 25 frames, so an interrupted
+    // run leaves a valid series) and flushes frames.csv.
+    void finish();
+
+    unsigned int n_frames() const { return times_.size(); }
+    std::string pvd_file() const;
+    const std::string &directory() const { return directory_; }
+
+  private:
+    void write_pvd() const;
+
+    std::string directory_, name_;
+    double magnification_;
+    std::vector<double> times_;
+    std::ofstream csv_;
+  };
+} // namespace beamslider

@@ -1,0 +1,215 @@
+// The animation files (fem/vtk_animation, `beamslider animate`) parse as
+// ParaView would read them: the .pvd's time steps and parts, and every frame
+// read back with VTK's XML readers, checking point counts, time values, the
+// magnification and the drawn geometry against the state it came from.
+#include "contact/adaptation_run.h"
+#include "fem/fe_beam_system.h"
+#include "fem/fe_transient.h"
+#include "fem/vtk_animation.h"
+#include "meshes/scene.h"
+#include "verification/commands.h"
+
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+using namespace beamslider;
+namespace fs = std::filesystem;
+
+namespace
+{
+  const std::string scene_file = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
+
+  struct PvdEntry
+  {
+    double t;
+    int part;
+    std::string file;
+  };
+
+  std::vector<PvdEntry> read_pvd(const std::string &path)
+  {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string s = text.str();
+    EXPECT_NE(s.find("<VTKFile type=\"Collection\""), std::string::npos);
+    std::vector<PvdEntry> entries;
+    const std::regex dataset(R"re(<DataSet timestep="([^"]+)" part="(\d+)" file="([^"]+)"/>)re");
+    for (auto it = std::sregex_iterator(s.begin(), s.end(), dataset); it != std::sregex_iterator(); ++it)
+      entries.push_back({std::stod((*it)[1]), std::stoi((*it)[2]), (*it)[3]});
+    return entries;
+  }
+
+  double field(vtkDataObject *data, const char *name)
+  {
+    vtkDataArray *a = data->GetFieldData()->GetArray(name);
+    EXPECT_NE(a, nullptr) << name;
+    return a ? a->GetTuple1(0) : std::nan("");
+  }
+
+  fs::path fresh_directory(const std::string &name)
+  {
+    const fs::path dir = fs::temp_directory_path() / ("beamslider_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    return dir;
+  }
+} // namespace
+
+TEST(FEAnimation, PvdSeriesReadsBackWithTimesPointCountsAndGeometry)
+{
+  Scene s = read_scene(scene_file);
+  auto beam = make_fe_beam_system(s);
+  const auto &fe = dynamic_cast<const FETransientBeam &>(*beam);
+  RunOptions options        = RunOptions::from_scene(s);
+  options.end_time          = 0.004;
+  options.progress_interval = 1e9;
+  AdaptationRun run(s, *beam, options);
+
+  const fs::path dir = fresh_directory("animation");
+  const double magnification = 3.;
+  std::vector<double> times;
+  std::vector<double> w_mid; // w0 + w at x = L/2, as simulated
+  {
+    VtkAnimationWriter writer(dir.string(), magnification);
+    for (unsigned int k = 0; k <= 4; ++k)
+      {
+        run.run_until(k * 1e-3);
+        const AnimationFrame frame = make_animation_frame(run.stepper(), sample_fe_beam(fe.beam(), run.state().q));
+        writer.write(frame);
+        times.push_back(run.state().t);
+        BeamPointKinematics point;
+        fe.evaluate(0.5 * s.beam.length, run.state().q, point);
+        w_mid.push_back(run.stepper().base().displacement(run.state().t) + point.w);
+      }
+  } // the destructor writes the .pvd
+
+  const std::vector<PvdEntry> entries = read_pvd((dir / "animation.pvd").string());
+  ASSERT_EQ(entries.size(), 3 * times.size());
+  const unsigned int n_x = 4 * s.discretisation.n_elements + 1; // samples along the beam
+  for (const PvdEntry &e : entries)
+    {
+      const unsigned int frame = &e - entries.data();
+      const double t           = times[frame / 3];
+      EXPECT_NEAR(e.t, t, 1e-12);
+      EXPECT_EQ(e.part, int(frame % 3));
+      const std::string path = (dir / e.file).string();
+      ASSERT_TRUE(fs::exists(path)) << path;
+      if (e.part == 0)
+        {
+          vtkNew<vtkXMLUnstructuredGridReader> reader;
+          reader->SetFileName(path.c_str());
+          reader->Update();
+          vtkUnstructuredGrid *grid = reader->GetOutput();
+          ASSERT_EQ(grid->GetNumberOfPoints(), 2 * n_x);
+          EXPECT_EQ(grid->GetNumberOfCells(), n_x - 1);
+          EXPECT_NEAR(field(grid, "TimeValue"), t, 1e-12);
+          EXPECT_EQ(field(grid, "magnification"), magnification);
+          for (const char *name : {"displacement", "deflection", "axial_force", "curvature"})
+            EXPECT_NE(grid->GetPointData()->GetArray(name), nullptr) << name;
+          // Mid-span: the drawn axis (mean of bottom and top point) at m (w0 + w).
+          const unsigned int i = n_x / 2;
+          double bottom[3], top[3];
+          grid->GetPoint(2 * i, bottom);
+          grid->GetPoint(2 * i + 1, top);
+          EXPECT_NEAR(0.5 * (bottom[2] + top[2]), magnification * w_mid[frame / 3], 1e-12);
+          EXPECT_NEAR(0.5 * (bottom[0] + top[0]), 0.5 * s.beam.length, 1e-6);
+          EXPECT_NEAR(top[2] - bottom[2], s.beam.thickness, 1e-3 * s.beam.thickness);
+        }
+      else
+        {
+          vtkNew<vtkXMLPolyDataReader> reader;
+          reader->SetFileName(path.c_str());
+          reader->Update();
+          vtkPolyData *poly = reader->GetOutput();
+          EXPECT_NEAR(field(poly, "TimeValue"), t, 1e-12);
+          EXPECT_EQ(field(poly, "magnification"), magnification);
+          if (e.part == 1)
+            {
+              EXPECT_EQ(poly->GetNumberOfPoints(), 8); // outer box and window
+              EXPECT_EQ(poly->GetNumberOfLines(), 2);
+            }
+          else
+            {
+              ASSERT_EQ(poly->GetNumberOfPoints(), 4); // the window corners
+              vtkDataArray *force = poly->GetPointData()->GetArray("contact_force");
+              ASSERT_NE(force, nullptr);
+              EXPECT_EQ(force->GetNumberOfComponents(), 3);
+              // Compressive normal forces: up on the slider at the upper
+              // corners (0, 1), down at the lower ones (2, 3); friction
+              // (μ = 0.2) cannot reverse the nearly vertical normal.
+              for (vtkIdType k = 0; k < 4; ++k)
+                EXPECT_GE(force->GetTuple3(k)[2] * (k < 2 ? 1. : -1.), 0.) << "corner " << k;
+            }
+        }
+    }
+  EXPECT_TRUE(fs::exists(dir / "frames.csv"));
+  fs::remove_all(dir);
+}
+
+TEST(FEAnimation, GenericSamplerAgreesWithTheFEFields)
+{
+  // The sampler used for the ROM (w, w' from BeamSystem::evaluate, w'' by
+  // differences, uniform N = k_ax ½∫w'²) on a static FE mode-1 shape.
+  Scene s          = read_scene(scene_file);
+  auto beam        = make_fe_beam_system(s);
+  const auto &fe   = dynamic_cast<const FETransientBeam &>(*beam);
+  Eigen::VectorXd q;
+  FETransientBeam::to_eigen(fe.modes().shapes[0], q);
+  q *= 1e-3 / fe.beam().deflection(fe.modes().shapes[0], 0.5 * s.beam.length); // w(L/2) = 1 mm
+  const BeamFrameGeometry a = sample_fe_beam(fe.beam(), q);
+  const BeamFrameGeometry b = sample_beam_system(*beam, q, a.x.size(), s.supports.membrane_stiffness(s.beam));
+  double w_max = 0, dw_err = 0, w_err = 0, k_err = 0, k_max = 0;
+  for (unsigned int i = 0; i < a.x.size(); ++i)
+    {
+      w_max  = std::max(w_max, std::abs(a.w[i]));
+      w_err  = std::max(w_err, std::abs(a.w[i] - b.w[i]));
+      dw_err = std::max(dw_err, std::abs(a.dw[i] - b.dw[i]));
+      k_max  = std::max(k_max, std::abs(a.curvature[i]));
+      if (i > 0 && i + 1 < a.x.size())
+        k_err = std::max(k_err, std::abs(a.curvature[i] - b.curvature[i]));
+    }
+  EXPECT_LT(w_err, 1e-14);
+  EXPECT_LT(dw_err, 1e-12);
+  EXPECT_LT(k_err, 0.05 * k_max); // central differences on 129 points
+  // The mode shape has u = 0: the FE axial force is EA ½w'² pointwise; its
+  // mean over the beam, EA/L ½∫w'², equals the membrane force of the reduced
+  // model up to the springs' compliance in k_ax.
+  double mean = 0;
+  for (unsigned int i = 0; i + 1 < a.x.size(); ++i)
+    mean += 0.5 * (a.axial_force[i] + a.axial_force[i + 1]) * (a.x[i + 1] - a.x[i]);
+  mean /= s.beam.length;
+  const double k_ratio = s.supports.membrane_stiffness(s.beam) * s.beam.length / s.beam.axial_stiffness();
+  EXPECT_NEAR(b.axial_force[0] / (mean * k_ratio), 1., 1e-3);
+}
+
+TEST(AnimateCommand, RomRunWritesSeriesAndStills)
+{
+  const fs::path dir = fresh_directory("animate_cmd");
+  CommonOptions common;
+  common.scene_file = scene_file;
+  common.output_dir = dir.string();
+  AnimateOptions options;
+  options.model      = "rom";
+  options.end_time   = 0.004;
+  options.frame_rate = 1000.;
+  EXPECT_EQ(run_animate(common, options), 0);
+  const std::vector<PvdEntry> entries = read_pvd((dir / "animation.pvd").string());
+  ASSERT_EQ(entries.size(), 3u * 5u);
+  EXPECT_NEAR(entries.back().t, 0.004, 1e-9);
+  EXPECT_TRUE(fs::exists(dir / "trace.csv"));
+  EXPECT_TRUE(fs::exists(dir / "frames.png")); // needs python3-matplotlib
+  fs::remove_all(dir);
+}
