@@ -127,9 +127,13 @@ namespace beamslider
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
     void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
 
-    // Strain energy V(q) [J] and internal force f(q) [N, N m].
+    // Strain energy V(q) [J] and internal force f(q) [N, N m] (FEBeam's assembly).
     double strain_energy(const Eigen::VectorXd &q) const;
     Eigen::VectorXd internal_force(const Eigen::VectorXd &q) const;
+    // The same f(q) from shape values cached at the quadrature points (what
+    // the Newton loop calls: FEBeam's assembly rebuilds its FEValues on every
+    // call, which was a third of the step). Zero on constrained DoFs.
+    void cached_internal_force(const dealii::Vector<double> &q, dealii::Vector<double> &f) const;
 
     const FEBeam &beam() const { return *beam_; }
     const FEModes &modes() const { return modes_; }
@@ -175,6 +179,19 @@ namespace beamslider
     double last_dt_ = 0, last_acceleration_ = 0;
     Eigen::VectorXd last_u_B_, last_u_free_;
     bool have_last_ = false;
+
+    // Shape data at every quadrature point, from FEBeam::point_shape, for
+    // cached_internal_force: ε = u' + ½w'², κ = w'' and their DoFs.
+    struct QuadraturePointData
+    {
+      std::array<unsigned int, 4> w_dofs;
+      std::array<double, 4> dN, ddN; // Hermite N_a', N_a''
+      std::vector<unsigned int> u_dofs;
+      std::vector<double> du;        // axial shape derivatives
+      double JxW;
+    };
+    std::vector<QuadraturePointData> quadrature_;
+    std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or k_t)
 
     FETransientStatistics stats_;
     // Scratch.

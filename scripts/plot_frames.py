@@ -10,6 +10,7 @@ stretched (aspect not equal) so that the 1 mm beam stays visible next to its
 usage: plot_frames.py frames.csv frames.png [n_frames]
 """
 import csv
+import re
 import sys
 from collections import defaultdict
 
@@ -68,8 +69,10 @@ def main():
         ax.set_ylabel("z [mm]")
         ax.set_title(f"t = {times[k] * 1e3:.2f} ms", fontsize=9, loc="left")
     axes[-1, 0].set_xlabel("x [mm]")
-    fig.suptitle(f"beam and slider ({note}); red: contact force on the slider, "
-                 f"longest arrow {f_max:.3g} N", fontsize=9)
+    m = re.search(r"magnification ([0-9.eE+-]+)", note)
+    fig.suptitle(f"beam and slider, transverse displacement x{m.group(1) if m else '?'} "
+                 f"(z axis stretched); red: contact force on the slider, longest arrow {f_max:.3g} N",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(dst, dpi=130)
 
