@@ -354,7 +354,7 @@ namespace beamslider
         for (unsigned int i = 0; i < n; ++i)
           X(i, j) = x[i];
       }
-    const_cast<FETransientStatistics &>(stats_).iteration_matrix_solves += B.cols();
+    stats_.iteration_matrix_solves += B.cols();
   }
 
   Eigen::VectorXd FETransientBeam::internal_force(const Eigen::VectorXd &q) const
@@ -398,7 +398,6 @@ namespace beamslider
     to_dealii(u_mean, um);
     damping_->vmult(Cum, um);
     damping_work = -last_dt_ * (um * Cum);
-    dealii::Vector<double> rd = r_;
-    excitation_work           = last_dt_ * last_acceleration_ * (rd * um);
+    excitation_work = last_dt_ * last_acceleration_ * (r_ * um);
   }
 } // namespace beamslider
