@@ -306,22 +306,28 @@ namespace beamslider
     return s;
   }
 
+  namespace
+  {
+    // Σ_a values[a] q[dofs[a]] over the four Hermite DoFs of a point.
+    double hermite_sum(const std::array<double, 4> &values, const FEPointShape &s, const Vector<double> &q)
+    {
+      double sum = 0;
+      for (unsigned int a = 0; a < 4; ++a)
+        sum += values[a] * q[s.w_dofs[a]];
+      return sum;
+    }
+  } // namespace
+
   double FEBeam::deflection(const Vector<double> &q, const double x) const
   {
     const FEPointShape s = point_shape(x);
-    double w             = 0;
-    for (unsigned int a = 0; a < 4; ++a)
-      w += s.w_values[a] * q[s.w_dofs[a]];
-    return w;
+    return hermite_sum(s.w_values, s, q);
   }
 
   double FEBeam::slope(const Vector<double> &q, const double x) const
   {
     const FEPointShape s = point_shape(x);
-    double dw            = 0;
-    for (unsigned int a = 0; a < 4; ++a)
-      dw += s.slope_values[a] * q[s.w_dofs[a]];
-    return dw;
+    return hermite_sum(s.slope_values, s, q);
   }
 
   void FEBeam::add_point_inertia(const double x, const double m, const double J, SparseMatrix<double> &M) const

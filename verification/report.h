@@ -5,6 +5,7 @@
 
 #include "meshes/scene.h"
 
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -15,6 +16,20 @@ namespace beamslider
     std::string dir;          // output folder (report.md, CSV, PNG)
     std::ostringstream text;  // Markdown
   };
+
+  // Numbers in report text: scientific (1.23e-04) or fixed (0.123) notation.
+  inline std::string sci(const double x, const int digits = 3)
+  {
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(digits) << x;
+    return s.str();
+  }
+  inline std::string fixed(const double x, const int digits = 3)
+  {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << x;
+    return s.str();
+  }
 
   // Section 1: linear frequencies. FE against the clamped–clamped and the
   // spring-supported characteristic equations on refined meshes (error and

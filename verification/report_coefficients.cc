@@ -18,18 +18,6 @@ namespace beamslider
 {
   namespace
   {
-    std::string sci(const double x, const int digits = 3)
-    {
-      std::ostringstream s;
-      s << std::scientific << std::setprecision(digits) << x;
-      return s.str();
-    }
-    std::string fixed(const double x, const int digits = 3)
-    {
-      std::ostringstream s;
-      s << std::fixed << std::setprecision(digits) << x;
-      return s.str();
-    }
     std::string label(const CubicTerm &t)
     {
       return "c^(" + std::to_string(t.n + 1) + ")_" + std::to_string(t.j + 1) + std::to_string(t.k + 1) + std::to_string(t.l + 1);

@@ -16,16 +16,6 @@
 
 namespace beamslider
 {
-  namespace
-  {
-    std::string sci(const double x, const int digits = 2)
-    {
-      std::ostringstream s;
-      s << std::scientific << std::setprecision(digits) << x;
-      return s.str();
-    }
-  } // namespace
-
   void add_fe_rom_section(Report &report, const Scene &scene, const bool full)
   {
     auto &md = report.text;
@@ -108,17 +98,17 @@ namespace beamslider
     };
     write_periods(reference, "reference: " + reference.setting.label());
 
-    md << "Reference: " << reference.setting.label() << ", " << sci(reference.wall_seconds) << " s wall time"
+    md << "Reference: " << reference.setting.label() << ", " << sci(reference.wall_seconds, 2) << " s wall time"
        << (reference.ok ? "" : " — FAILED: " + reference.message) << ".\n\n"
        << "| model | wall time [s] | drift error | envelope error | max |Δx_C|/L | Pareto | status |\n|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < runs.size(); ++i)
       {
         const auto &r       = runs[i];
         const bool on_front = std::find(front.begin(), front.end(), i) != front.end();
-        md << "| " << r.setting.label() << " | " << sci(r.wall_seconds) << " | "
-           << (r.drift_error >= 0 ? sci(r.drift_error) : "–") << " | "
-           << (r.envelope_error >= 0 ? sci(r.envelope_error) : "–") << " | "
-           << (r.position_error >= 0 ? sci(r.position_error) : "–") << " | " << (on_front ? "yes" : "") << " | "
+        md << "| " << r.setting.label() << " | " << sci(r.wall_seconds, 2) << " | "
+           << (r.drift_error >= 0 ? sci(r.drift_error, 2) : "–") << " | "
+           << (r.envelope_error >= 0 ? sci(r.envelope_error, 2) : "–") << " | "
+           << (r.position_error >= 0 ? sci(r.position_error, 2) : "–") << " | " << (on_front ? "yes" : "") << " | "
            << (r.ok ? "ok" : "failed: " + r.message) << " |\n";
         csv.row({r.setting.label(), r.setting.family, CsvWriter::cell(r.setting.n_elements), CsvWriter::cell(r.setting.n_modes),
                  r.setting.coefficients, CsvWriter::cell(r.setting.time_step), CsvWriter::cell(r.wall_seconds, 4),
@@ -134,8 +124,8 @@ namespace beamslider
       if (r.setting.family == reference.setting.family && r.setting.time_step == dt &&
           r.setting.n_elements == reference.setting.n_elements && r.setting.n_modes == reference.setting.n_modes &&
           r.drift_error >= 0)
-        md << "\nResolution: the reference model itself at Δt instead of Δt/2 differs by a drift error of " << sci(r.drift_error)
-           << " and an envelope error of " << sci(r.envelope_error)
+        md << "\nResolution: the reference model itself at Δt instead of Δt/2 differs by a drift error of " << sci(r.drift_error, 2)
+           << " and an envelope error of " << sci(r.envelope_error, 2)
            << ". Differences of that size are the spread of the rattling dynamics over this window, not model error; "
               "only models clearly above it are distinguishable here (a longer window, `--full`, resolves more).\n";
     md << "\n![FE against ROM traces](fe_rom_traces.png)\n\n![Speed against accuracy](speed_accuracy.png)\n\n";

@@ -46,17 +46,6 @@ namespace beamslider
       return t;
     }
 
-    std::string fmt(const double x, const int digits = 3, const bool scientific = true)
-    {
-      std::ostringstream s;
-      if (scientific)
-        s << std::scientific;
-      else
-        s << std::fixed;
-      s << std::setprecision(digits) << x;
-      return s.str();
-    }
-
     void write_convergence(Report &report, CsvWriter &csv, const std::string &label, const ConvergenceTable &t)
     {
       auto &md = report.text;
@@ -69,12 +58,12 @@ namespace beamslider
       md << "\n";
       for (unsigned int k = 0; k < n_modes; ++k)
         {
-          md << "| " << k + 1 << " | " << fmt(t.reference_hz[k], 4, false) << " |";
+          md << "| " << k + 1 << " | " << fixed(t.reference_hz[k], 4) << " |";
           for (std::size_t m = 0; m < t.meshes.size(); ++m)
             {
-              md << " " << fmt(t.error(m, k), 1);
+              md << " " << sci(t.error(m, k), 1);
               if (m > 0)
-                md << " (" << fmt(t.order(m, k), 2, false) << ")";
+                md << " (" << fixed(t.order(m, k), 2) << ")";
               md << " |";
               csv.row({label, CsvWriter::cell(t.meshes[m]), CsvWriter::cell(k + 1), CsvWriter::cell(t.fe_hz[m][k], 12),
                        CsvWriter::cell(t.reference_hz[k], 12), CsvWriter::cell(t.error(m, k), 4),
@@ -115,7 +104,7 @@ namespace beamslider
     write_convergence(report, csv, "clamped", cc);
     md << "### 1.2 Spring-supported beam against its characteristic equation\n\n"
        << "Rotational springs k_r = " << elastic.supports.rotational_stiffness
-       << " N m/rad at both ends (k_r L/EI = " << fmt(elastic.supports.rotational_stiffness * elastic.beam.length / elastic.beam.bending_stiffness(), 3, false)
+       << " N m/rad at both ends (k_r L/EI = " << fixed(elastic.supports.rotational_stiffness * elastic.beam.length / elastic.beam.bending_stiffness(), 3)
        << "). Reference: the symmetric and antisymmetric conditions 2EIβ² cos a + k_r β (cos a tanh a + sin a) = 0 and "
           "2EIβ² sin a tanh a + k_r β (sin a − tanh a cos a) = 0 (a = βL/2), solved by bisection independently of the FE code. "
           "The axial spring k_t does not enter the linear bending problem.\n\n";
@@ -149,14 +138,14 @@ namespace beamslider
 
     md << "### 1.3 Default mesh\n\n"
        << "The midpoint time stepping at Δt = " << scene.time_stepping.time_step << " s changes the frequency of mode " << N
-       << " (the highest the reduced model keeps) by (ω_N Δt)²/24 = " << fmt(dt_error, 1)
-       << ". A mesh needs no better accuracy than a tenth of that (and 1e-3 at most): threshold " << fmt(threshold, 1)
+       << " (the highest the reduced model keeps) by (ω_N Δt)²/24 = " << sci(dt_error, 1)
+       << ". A mesh needs no better accuracy than a tenth of that (and 1e-3 at most): threshold " << sci(threshold, 1)
        << ". The coarsest mesh of the sequence that meets it on modes 1–" << N << " has "
        << (sufficient ? std::to_string(sufficient) : std::string("more than ") + std::to_string(meshes.back())) << " elements. The scene uses "
        << scene.discretisation.n_elements << " elements (" << default_beam.n_dofs() << " DoFs with axial degree "
-       << scene.discretisation.axial_degree << "); its largest error on these modes is " << fmt(worst_default, 2)
+       << scene.discretisation.axial_degree << "); its largest error on these modes is " << sci(worst_default, 2)
        << (worst_default < threshold ? " — sufficient" : " — NOT sufficient: refine the scene's mesh") << ". Solving for the "
-       << n_modes << " lowest modes on the default mesh took " << fmt(ms, 1, false) << " ms (assembly and SLEPc; the first SLEPc call of a process adds PETSc's start-up).\n\n";
+       << n_modes << " lowest modes on the default mesh took " << fixed(ms, 1) << " ms (assembly and SLEPc; the first SLEPc call of a process adds PETSc's start-up).\n\n";
 
     // Bonded slider against Eq. 5.
     std::cout << "[verify] linear frequencies: bonded slider against Eq. 5 ..." << std::endl;
@@ -184,10 +173,10 @@ namespace beamslider
           worst_eq5 = rel, worst_at = s;
         bonded_csv.row({CsvWriter::cell(s, 4), CsvWriter::cell(f), CsvWriter::cell(f_fine), CsvWriter::cell(eq5), CsvWriter::cell(rel, 4)});
         if (i % 2 == 0)
-          md << "| " << fmt(s, 3, false) << " | " << fmt(f, 2, false) << " | " << fmt(f_fine, 2, false) << " | " << fmt(eq5, 2, false)
-             << " | " << fmt(rel, 2) << " |\n";
+          md << "| " << fixed(s, 3) << " | " << fixed(f, 2) << " | " << fixed(f_fine, 2) << " | " << fixed(eq5, 2)
+             << " | " << sci(rel, 2) << " |\n";
       }
-    md << "\nEq. 5 lies above the FE frequency everywhere, by at most " << fmt(100 * worst_eq5, 1, false) << " % (at x_C/L = " << worst_at
+    md << "\nEq. 5 lies above the FE frequency everywhere, by at most " << fixed(100 * worst_eq5, 1) << " % (at x_C/L = " << worst_at
        << "): a one-mode Rayleigh quotient is accurate where the slider barely changes the mode shape (at the clamp and near the centre) "
           "and least accurate where a heavy slider sits on a steep part of the mode. The test suite checks that Rayleigh–Ritz with 1, 3, 7 bare "
           "modes decreases monotonically toward the FE value.\n\n";
