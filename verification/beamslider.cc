@@ -77,7 +77,14 @@ int main(int argc, char **argv)
   add_common(sweep_cmd, true);
   sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
   sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(CLI::Range(1e-4, 0.1));
-  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position [s]")->check(CLI::PositiveNumber);
+  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
+    ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_option("--average-time", sweep.average_time, "simulated time averaged per position [s]")
+    ->check(CLI::PositiveNumber);
+  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)");
+  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L");
+  sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
+    ->check(CLI::NonNegativeNumber);
 
   AnimateOptions animate;
   auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");

@@ -1,11 +1,50 @@
-// `beamslider sweep`: not implemented yet (placeholder so the CLI links).
+// `beamslider sweep SCENE`: prescribed-slider-position sweeps (seed §4.2–4.3,
+// DESIGN.md §1.5), both directions, with the Eq. 5 resonance curve and the
+// free-slider run overlaid; files and columns in verification/pcs_sweep.h.
 #include "meshes/scene.h"
 #include "verification/commands.h"
+#include "verification/pcs_sweep.h"
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
 
 namespace beamslider
 {
-  int run_sweep(const CommonOptions &, const SweepOptions &)
+  int run_sweep(const CommonOptions &common, const SweepOptions &options)
   {
-    throw std::runtime_error("beamslider sweep is not implemented yet");
+    const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
+    PcsStudySettings settings;
+    settings.model = options.model;
+    settings.sweep = PcsSweepSettings::for_scene(scene);
+    if (options.low_over_L)
+      settings.sweep.low_over_L = *options.low_over_L;
+    if (options.high_over_L)
+      settings.sweep.high_over_L = *options.high_over_L;
+    settings.sweep.step_over_L  = options.step_over_L;
+    settings.sweep.settle_time  = options.settle_time;
+    settings.sweep.average_time = options.average_time;
+    settings.free_time          = options.free_time.value_or(scene.time_stepping.end_time);
+    settings.sweep.validate(scene);
+
+    const std::string dir = prepare_output_dir(common, scene.name, "sweep");
+    const double n_positions =
+      std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L + 1e-9) + 1;
+    const double simulated =
+      2 * n_positions * (settings.sweep.settle_time + settings.sweep.average_time) + settings.free_time;
+    std::cout << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
+              << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
+              << n_positions << " positions per direction), " << simulated << " s simulated in all (ROM: ~"
+              << std::ceil(simulated / 5.) << " s wall; FE about 2 s wall per simulated second), into " << dir
+              << std::endl;
+
+    const PcsStudy study = run_pcs_sweep(scene, settings, dir);
+    const std::string text = describe(study, scene);
+    std::ofstream(dir + "/summary.md") << "# PCS sweep: scene `" << scene.name << "`, model " << settings.model << "\n\n"
+                                       << text;
+    std::cout << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
+    const bool complete = study.up.last_run.status == RunStatus::completed &&
+                          study.down.last_run.status == RunStatus::completed;
+    return complete ? 0 : 1;
   }
 } // namespace beamslider

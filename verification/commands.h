@@ -59,9 +59,13 @@ namespace beamslider
 
   struct SweepOptions
   {
-    std::string model = "rom";
-    double step_over_L = 0.003;       // Δx_C/L
-    std::optional<double> settle_time; // [s] per position
+    std::string model = "rom";           // rom | fe
+    double step_over_L = 0.003;          // Δx_C/L
+    std::optional<double> low_over_L;    // range; default: the half of the beam
+    std::optional<double> high_over_L;   //   holding the scene's initial position
+    double settle_time  = 0.5;           // [s] per position before averaging
+    double average_time = 0.2;           // [s] averaged per position
+    std::optional<double> free_time;     // [s] free-slider run overlaid; default the scene's end time
   };
   int run_sweep(const CommonOptions &common, const SweepOptions &options);
 

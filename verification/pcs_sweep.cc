@@ -1,0 +1,213 @@
+// The prescribed-slider-position study, see pcs_sweep.h.
+#include "verification/pcs_sweep.h"
+
+#include "contact/adaptation_run.h"
+#include "fem/fe_beam.h"
+#include "fem/fe_beam_system.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "reduced/resonance_curve.h"
+#include "reduced/rom_beam_system.h"
+#include "verification/commands.h"
+#include "verification/csv_writer.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+namespace beamslider
+{
+  namespace
+  {
+    ModalBasis modal_basis_of(const Scene &scene)
+    {
+      const FEBeam fe(scene);
+      const unsigned int N = scene.discretisation.n_modes;
+      return make_modal_basis(fe, compute_bending_modes(fe, N), N);
+    }
+
+    std::unique_ptr<BeamSystem> make_beam(const Scene &scene, const std::string &model, const ModalBasis &basis)
+    {
+      if (model == "fe")
+        return make_fe_beam_system(scene);
+      if (model == "rom")
+        return std::make_unique<RomBeamSystem>(RomBeamSystem::from_scene(scene, basis));
+      throw InputError("--model '" + model + "' is not one of rom, fe");
+    }
+
+    std::string list(const std::vector<ForceZeroCrossing> &crossings)
+    {
+      std::string s;
+      unsigned int n_noise = 0;
+      for (const ForceZeroCrossing &c : crossings)
+        if (c.resolved)
+          s += (s.empty() ? "" : ", ") + fixed(c.x_over_L, 3) + (c.stable ? " (stable)" : " (unstable)");
+        else
+          ++n_noise;
+      if (s.empty())
+        s = "none resolved";
+      if (n_noise > 0)
+        s += " (and " + std::to_string(n_noise) + " within the noise: |F̄_x| below its standard error next to them)";
+      return s;
+    }
+
+    std::string jump_text(const std::optional<AmplitudeJump> &jump)
+    {
+      if (!jump)
+        return "no jump (no neighbouring positions differ by more than a factor 1.5 in amplitude)";
+      return "jump between x_C/L = " + fixed(jump->x_before_over_L, 3) + " and " + fixed(jump->x_after_over_L, 3) +
+             ": amplitude " + fixed(jump->amplitude_before_over_h, 3) + " h → " + fixed(jump->amplitude_after_over_h, 3) +
+             " h";
+    }
+  } // namespace
+
+  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir)
+  {
+    settings.sweep.validate(scene);
+    if (!(settings.free_time >= 0.))
+      throw InputError("--free-time " + std::to_string(settings.free_time) + " s is outside [0, inf)");
+    const auto start        = std::chrono::steady_clock::now();
+    const ModalBasis basis  = modal_basis_of(scene);
+    const double L          = scene.beam.length;
+    PcsStudy study;
+
+    // The Eq. 5 resonance curve on a fine grid over the swept range (needs
+    // the geometric nonlinearity: without it the curve is a vertical line).
+    if (scene.discretisation.geometric_nonlinearity)
+      {
+        const ReducedOrderModel rom(basis, scene.damping_ratio, true);
+        const ResonanceCurveData data =
+          ResonanceCurveData::from_model(rom, scene.slider_mass(), scene.slider_inertia(), scene.beam.thickness);
+        CsvWriter csv(dir + "/resonance.csv", {"x_over_L", "amplitude_over_h"});
+        const unsigned int n = 200;
+        for (unsigned int i = 0; i <= n; ++i)
+          {
+            const double x = settings.sweep.low_over_L + (settings.sweep.high_over_L - settings.sweep.low_over_L) * i / n;
+            const double a = resonance_amplitude_over_h(rom, data, x * L, scene.excitation.frequency_hz);
+            csv.row({CsvWriter::cell(x), std::isfinite(a) ? CsvWriter::cell(a) : ""});
+          }
+      }
+
+    CsvWriter pcs(dir + "/pcs.csv", {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "amplitude_std_over_h",
+                                     "mean_fx_std_N", "n_periods", "t_end_s"});
+    const long n_positions =
+      static_cast<long>(std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L +
+                                   1e-9)) + 1;
+    for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down})
+      {
+        std::unique_ptr<BeamSystem> beam = make_beam(scene, settings.model, basis);
+        long done                        = 0;
+        auto on_point                    = [&](const PcsPoint &p) {
+          pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
+                   CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
+                   std::to_string(p.n_periods), CsvWriter::cell(p.t_end)});
+          ++done;
+          if (settings.verbose && (done % 10 == 0 || done == n_positions))
+            std::cout << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
+                      << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
+                      << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
+        };
+        PcsBranch branch = run_pcs_branch(scene, *beam, settings.sweep, direction, on_point);
+        if (branch.last_run.status != RunStatus::completed)
+          std::cout << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
+                    << "): " << branch.last_run.message << std::endl;
+        (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
+      }
+    study.crossings_up   = force_zero_crossings(study.up.points);
+    study.crossings_down = force_zero_crossings(study.down.points);
+    study.jump_up        = largest_amplitude_jump(study.up.points);
+    study.jump_down      = largest_amplitude_jump(study.down.points);
+
+    // The free slider from the scene's own start, for the overlay.
+    if (settings.free_time > 0.)
+      {
+        std::unique_ptr<BeamSystem> beam = make_beam(scene, settings.model, basis);
+        RunOptions options               = RunOptions::from_scene(scene);
+        options.end_time                 = settings.free_time;
+        options.output_rate              = 1.;
+        options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
+        AdaptationRun run(scene, *beam, options);
+        std::ofstream file(dir + "/free_periods.csv");
+        PeriodCsvWriter periods(file);
+        run.on_period = [&periods](const PeriodRecord &r) { periods.write(r); };
+        if (settings.verbose)
+          run.on_progress = [](const RunProgress &p) {
+            std::cout << "  free slider: t = " << fixed(p.t, 1) << " / " << fixed(p.end_time, 1)
+                      << " s, x_C/L = " << fixed(p.slider_x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
+                      << " h" << std::endl;
+          };
+        study.free_run            = run.run();
+        study.free_final_x_over_L = run.state().s[0] / L;
+        if (study.free_run.status != RunStatus::completed)
+          std::cout << "  free slider stopped early (" << to_string(study.free_run.status)
+                    << "): " << study.free_run.message << std::endl;
+      }
+
+    study.plotted = run_plot_script("plot_pcs.py", {dir, scene.name});
+    study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return study;
+  }
+
+  std::string describe(const PcsStudy &study, const Scene &scene)
+  {
+    std::ostringstream s;
+    s << "- Branch up (x_C/L increasing, " << study.up.points.size() << " positions): " << jump_text(study.jump_up)
+      << "; zero crossings of F̄_x: " << list(study.crossings_up) << ".\n";
+    s << "- Branch down (x_C/L decreasing, " << study.down.points.size()
+      << " positions): " << jump_text(study.jump_down) << "; zero crossings of F̄_x: " << list(study.crossings_down)
+      << ".\n";
+    for (const PcsBranch *b : {&study.up, &study.down})
+      if (b->last_run.status != RunStatus::completed)
+        s << "- Branch " << to_string(b->direction) << " stopped early: " << b->last_run.message << "\n";
+    if (study.free_run.n_steps > 0)
+      {
+        s << "- Free slider from x_C/L = " << fixed(scene.initial.slider_position_over_L, 3) << " over "
+          << fixed(study.free_run.t_end, 1) << " s: ended at x_C/L = " << fixed(study.free_final_x_over_L, 3);
+        if (study.free_run.status != RunStatus::completed)
+          s << " (stopped: " << study.free_run.message << ")";
+        s << ".\n";
+      }
+    s << "- Wall time " << fixed(study.wall_seconds, 1) << " s (branches " << fixed(study.up.wall_seconds, 1) << " s + "
+      << fixed(study.down.wall_seconds, 1) << " s, free run " << fixed(study.free_run.wall_seconds, 1) << " s).\n";
+    return s.str();
+  }
+
+  void add_pcs_sweep_subsection(Report &report, const Scene &scene, const bool full)
+  {
+    PcsStudySettings settings;
+    settings.sweep = PcsSweepSettings::for_scene(scene);
+    if (full)
+      {
+        settings.free_time = scene.time_stepping.end_time;
+      }
+    else
+      {
+        settings.sweep.step_over_L  = 0.01;
+        settings.sweep.settle_time  = 0.3;
+        settings.sweep.average_time = 0.1;
+        settings.free_time          = std::min(10., scene.time_stepping.end_time);
+      }
+    settings.verbose = true;
+    std::cout << "Prescribed slider position sweeps (ROM, N = " << scene.discretisation.n_modes << ", x_C/L "
+              << settings.sweep.low_over_L << " … " << settings.sweep.high_over_L << " in steps of "
+              << settings.sweep.step_over_L << ")" << std::endl;
+    const PcsStudy study = run_pcs_sweep(scene, settings, report.dir);
+
+    report.text << "### Prescribed slider position (seed §4.2–4.3)\n\n"
+                << "The slider's horizontal position is held (height and tilt free, contacts active) and stepped by Δx_C/L = "
+                << settings.sweep.step_over_L << " between x_C/L = " << settings.sweep.low_over_L << " and "
+                << settings.sweep.high_over_L << ", up and down, each step from the previous state; at each position "
+                << settings.sweep.settle_time << " s settle, then the amplitude and the horizontal contact force F̄_x are "
+                << "averaged over the periods of the next " << settings.sweep.average_time
+                << " s (" << (full ? "the seed's step" : "quick mode: coarser than the seed's 0.003 and shorter settling")
+                << "). F̄_x > 0 pushes a free slider toward x = L; its zero crossings are equilibria of the free slider, "
+                << "stable where F̄_x decreases with x. The dashed curve is seed Eq. 5's resonance curve; the black line "
+                << "the free slider of the same scene (one point per period).\n\n"
+                << describe(study, scene) << "\n";
+    if (study.plotted)
+      report.text << "![PCS sweep](pcs.png)\n\n";
+    report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`.\n\n";
+  }
+} // namespace beamslider

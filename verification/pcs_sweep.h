@@ -1,0 +1,61 @@
+// The prescribed-slider-position study of seed §4.2–4.3 on one scene: both
+// branches of the sweep (contact/prescribed_position_sweep.h), the free-slider
+// run of the same scene for comparison, the Eq. 5 resonance curve
+// (reduced/resonance_curve.h), and the features the seed reads off them: the
+// jump (turning point) of each branch and the zero crossings of F̄_x.
+//
+// Files written into the output folder (SI units, named columns):
+//   pcs.csv        x_over_L,direction,amplitude_over_h,mean_fx_N,
+//                  amplitude_std_over_h,mean_fx_std_N,n_periods,t_end_s
+//                  (direction: up = x_C increasing, down = decreasing;
+//                  amplitude = mean over the averaged periods of
+//                  (max − min)/2 of w(L/2) per period, over h; mean_fx_N =
+//                  period-averaged horizontal contact force on the slider,
+//                  + toward x = L; *_std = spread over those periods)
+//   resonance.csv  x_over_L,amplitude_over_h (Eq. 5; empty cell = no resonance)
+//   free_periods.csv  the free-slider run, one row per excitation period
+//                  (PeriodCsvWriter columns)
+//   pcs.png        amplitude and F̄_x against x_C/L (seed Figs. 10b and 14)
+// Rows are flushed as they are computed: a stopped sweep keeps its points.
+#pragma once
+
+#include "contact/prescribed_position_sweep.h"
+#include "meshes/scene.h"
+#include "verification/report.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  struct PcsStudySettings
+  {
+    std::string model = "rom";  // rom | fe
+    PcsSweepSettings sweep;     // range, step, settle and averaging times
+    double free_time = 0;       // [s] of the free-slider run (0: none)
+    bool verbose = true;        // progress on stdout
+  };
+
+  struct PcsStudy
+  {
+    PcsBranch up, down;
+    std::vector<ForceZeroCrossing> crossings_up, crossings_down;
+    std::optional<AmplitudeJump> jump_up, jump_down;
+    RunResult free_run;           // status of the free-slider run
+    double free_final_x_over_L = 0; // where the free slider ended [-]
+    double wall_seconds = 0;
+    bool plotted = false;         // pcs.png written
+  };
+
+  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir);
+
+  // A few lines of Markdown: the jumps, the zero crossings (stable/unstable),
+  // where the free slider went, and the costs.
+  std::string describe(const PcsStudy &study, const Scene &scene);
+
+  // Report subsection (part of section 4): a coarse sweep in quick mode
+  // (Δx_C/L = 0.01, 0.3 s settling, 10 s free run: ~half a minute), the
+  // seed's step 0.003 and 0.5 s settling with the full free run in full mode.
+  void add_pcs_sweep_subsection(Report &report, const Scene &scene, bool full);
+} // namespace beamslider
