@@ -92,9 +92,7 @@ namespace beamslider
     std::cout << "[verify] cubic coefficients: FE-implied b_111 ..." << std::endl;
     {
       const FEImpliedCoefficient fe_implied = fe_implied_b111(beam, modes);
-      md << "### 2.2b FE-implied b_111
-
-"
+      md << "### 2.2b FE-implied b_111\n\n"
          << "Harmonic balance on the full FE model (axial DoFs and their inertia kept, harmonics 0…" << fe_implied.n_harmonics
          << ") along the mode-1 backbone at ŵ/h = 0.05…0.3 (" << fe_implied.n_points
          << " points), fitted as (ω/ω₁)² − 1 = c a² + d a⁴, gives c = " << fixed(fe_implied.c, 5)
