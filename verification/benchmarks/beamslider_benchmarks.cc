@@ -1,0 +1,141 @@
+// Google Benchmark timings of the costly parts, on the default scene
+// (mueller2023), one core. Not part of the test suite; run
+//
+//   build/verification/beamslider_benchmarks [--benchmark_filter=Rom]
+//
+// Each benchmark reports the rate that matters to a user next to the raw
+// time: time steps per second for the contact runs (and simulated seconds
+// per wall second), backbone points for harmonic balance.
+#include "contact/adaptation_run.h"
+#include "fem/fe_beam.h"
+#include "fem/fe_beam_system.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "meshes/scene.h"
+#include "reduced/harmonic_balance.h"
+#include "reduced/rom_beam_system.h"
+#include "verification/coefficient_methods.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+using namespace beamslider;
+
+namespace
+{
+  const Scene &default_scene()
+  {
+    static const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm");
+    return scene;
+  }
+
+  // The signature-move run (124 Hz, 14 m/s², x_C/L = 0.3) for `seconds` of
+  // simulated time on `beam`, counting steps.
+  void run_contact(benchmark::State &state, BeamSystem &beam, const double seconds)
+  {
+    RunOptions options        = RunOptions::from_scene(default_scene());
+    options.end_time          = seconds;
+    options.output_rate       = 1000.;
+    options.progress_interval = 1e300;
+    unsigned long steps       = 0;
+    for (auto _ : state)
+      {
+        AdaptationRun run(default_scene(), beam, options);
+        run.on_trace_row          = [](const TraceRow &row) { benchmark::DoNotOptimize(row.w_center); };
+        const RunResult result    = run.run();
+        if (result.status != RunStatus::completed)
+          state.SkipWithError(result.message.c_str());
+        steps += result.n_steps;
+      }
+    state.counters["steps/s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
+    state.counters["simulated s/s"] =
+      benchmark::Counter(steps * default_scene().time_stepping.time_step, benchmark::Counter::kIsRate);
+  }
+} // namespace
+
+// ROM with contact, N modes from the FE basis, analytic coefficients, the
+// first 10 s (slider at rest at first, the jump near 5 s: both regimes).
+static void RomContact(benchmark::State &state)
+{
+  Scene scene                      = default_scene();
+  scene.discretisation.n_modes     = state.range(0);
+  const FEBeam fe(scene);
+  RomBeamSystem rom = RomBeamSystem::from_scene(
+    scene, make_modal_basis(fe, compute_bending_modes(fe, scene.discretisation.n_modes), scene.discretisation.n_modes));
+  run_contact(state, rom, 10.0);
+}
+BENCHMARK(RomContact)->Arg(5)->Arg(7)->Unit(benchmark::kSecond)->Iterations(1);
+
+// FE beam with contact (implicit midpoint, Newton), default mesh, 0.1 s.
+static void FeContact(benchmark::State &state)
+{
+  std::unique_ptr<BeamSystem> fe = make_fe_beam_system(default_scene(), state.range(0));
+  run_contact(state, *fe, 0.1);
+}
+BENCHMARK(FeContact)->Arg(16)->Arg(32)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The four coefficient methods for N modes.
+static void Coefficients(benchmark::State &state, const std::string &method)
+{
+  const unsigned int N = state.range(0);
+  const FEBeam fe(default_scene());
+  const FEModes modes     = compute_bending_modes(fe, N);
+  const ModalBasis basis  = make_modal_basis(fe, modes, N);
+  for (auto _ : state)
+    {
+      const CoefficientResult r = compute_coefficients(fe, modes, basis, method, method == "ice" ? 0.03 : 1.0);
+      benchmark::DoNotOptimize(r.fit.cubic.data());
+      state.counters["static solves"] = r.n_static_solves;
+    }
+}
+BENCHMARK_CAPTURE(Coefficients, step, std::string("step"))->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Coefficients, step_condensed, std::string("step-condensed"))->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(Coefficients, ice, std::string("ice"))->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+
+// ROM backbone, H = 10, N modes, to ŵ/h = 2 (below the 3:1 interaction).
+static void RomBackbone(benchmark::State &state)
+{
+  const unsigned int N = state.range(0);
+  const Scene &scene   = default_scene();
+  const FEBeam fe(scene);
+  const ReducedOrderModel rom(make_modal_basis(fe, compute_bending_modes(fe, N), N), 0.);
+  const ConservativeSystem system = make_conservative_system(rom);
+  BackboneSettings settings;
+  Eigen::VectorXd phi, dphi;
+  rom.basis().evaluate(0.5 * scene.beam.length, phi, dphi);
+  settings.output          = phi;
+  settings.start_amplitude = 0.01 * scene.beam.thickness;
+  settings.end_amplitude   = 2.0 * scene.beam.thickness;
+  std::size_t points       = 0;
+  for (auto _ : state)
+    {
+      const Backbone b = compute_backbone(system, settings);
+      points += b.points.size();
+    }
+  state.counters["points/s"] = benchmark::Counter(points, benchmark::Counter::kIsRate);
+}
+BENCHMARK(RomBackbone)->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+
+// The FE backbone at small amplitude (H = 3, ŵ/h ≤ 0.3): the FE-implied b_111.
+static void FeImpliedCoefficient(benchmark::State &state)
+{
+  const FEBeam fe(default_scene());
+  const FEModes modes = compute_bending_modes(fe, 1);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(fe_implied_b111(fe, modes).b_111);
+}
+BENCHMARK(FeImpliedCoefficient)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv))
+    return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
