@@ -44,6 +44,14 @@ namespace beamslider
     std::optional<AmplitudeJump> jump_up, jump_down;
     RunResult free_run;           // status of the free-slider run
     double free_final_x_over_L = 0; // where the free slider ended [-]
+    // The free slider's jump: the period at which the mean amplitude of the
+    // next 10 periods exceeds that of the previous 10 by the largest factor,
+    // if that factor is above 2 (time [s], x_C/L and the two means / h).
+    struct FreeJump
+    {
+      double t = 0, x_over_L = 0, amplitude_before_over_h = 0, amplitude_after_over_h = 0;
+    };
+    std::optional<FreeJump> free_jump;
     double wall_seconds = 0;
     bool plotted = false;         // pcs.png written
   };
@@ -54,8 +62,10 @@ namespace beamslider
   // where the free slider went, and the costs.
   std::string describe(const PcsStudy &study, const Scene &scene);
 
-  // Report subsection (part of section 4): a coarse sweep in quick mode
-  // (Δx_C/L = 0.01, 0.3 s settling, 10 s free run: ~half a minute), the
-  // seed's step 0.003 and 0.5 s settling with the full free run in full mode.
+  // Report subsection (part of section 4): 0.5 s settling and 0.2 s
+  // averaging per position; quick mode Δx_C/L = 0.005 and a 20 s free run
+  // (~15 s wall on the ROM), full mode the seed's 0.003 and the scene's whole
+  // free run. (Settling 2 s instead of 0.5 s moved no jump by a step on
+  // system1.)
   void add_pcs_sweep_subsection(Report &report, const Scene &scene, bool full);
 } // namespace beamslider
