@@ -1,0 +1,217 @@
+// FE against a many-mode ROM on a contact run (DESIGN.md §4, "adaptation
+// traces: ROM against FE on the same scene, same contact code"): the
+// mueller2023 signature-move settings (124 Hz, 14 m/s², x_C/L = 0.3, the
+// scene file as it is), first 0.1 s, Δt = 1e-5 s on both models:
+//   FE   32 Hermite elements, implicit midpoint (fem/fe_transient),
+//   ROM  N = 10 FE modes, cubic tensor from ICE on the FE model (full tensor,
+//        set_cubic_terms), explicit midpoint (2/ω_10 = 2.5e-5 s > Δt).
+//
+// The tolerance is an error budget built from two measured differences, not
+// a tuned number. The FE–ROM difference has these sources:
+//  1. modal truncation (modes above 10). Estimated from above by the
+//     difference ROM N = 10 − ROM N = 7 (both ICE): the modes 8–10 carry more
+//     than everything above 10. Checked here on the static response to the
+//     slider's weight at its two corners, the load the contact applies:
+//     slope error at the corner x_C + B/2 of the N-mode sum against the FE
+//     static solution, measured 8.6e-3 (N = 7), 9.5e-4 (N = 10) — the tail
+//     above mode 10 is ~1/9 of what modes 8–10 do (w(x_C): 7.7e-4 vs 1.2e-4).
+//  2. time discretisation: the two schemes differ (implicit vs explicit
+//     midpoint) and both resolve the impact instants only to O(Δt). Estimated
+//     by FE(Δt) − FE(Δt/2).
+//  3. axial inertia (the ROM neglects it): 6.5e-5 in the backbone period at
+//     ŵ/h = 1 (test_fem_transient), and damping on modes 6–10 (ROM: D on all
+//     kept modes, FE: on the scene's 5): 2Dω t over 20 ms is below 1e-4 of
+//     the response they damp. Together a floor of 1e-3.
+// So: |FE − ROM10| ≤ |ROM10 − ROM7| + |FE(Δt) − FE(Δt/2)| + 1e-3, each the max
+// over the window relative to the FE signal (w(L/2): max |w|; slider z: max
+// |z − z(0)|), on windows of 5, 10, 15 and 20 ms.
+// Measured (Δt = 1e-5 s; columns FE−ROM10 | ROM10−ROM7 | FE Δt−Δt/2):
+//   w(L/2)  5 ms 3.0e-3 | 3.1e-3 | 1.7e-3;  10 ms 8.5e-3 | 1.4e-2 | 4.7e-3;
+//          15 ms 3.7e-2 | 3.5e-2 | 4.3e-2;  20 ms 5.6e-2 | 4.9e-2 | 6.5e-2.
+//   With Δt = 2.5e-6 s the same pattern (20 ms: 9.9e-2 | 6.8e-2 | 7.1e-2):
+//   the impacts, not Δt alone, set how fast the runs part.
+// Why 20 ms: beyond it the rattling amplifies any difference. Measured: the
+// same ROM10 with analytic instead of ICE coefficients (they agree to ~1e-7)
+// differs by 1.3e-3 at 20 ms and 8e-2 at 30 ms; after ~30 ms all three
+// differences above are 20–40 % and say nothing about the model.
+// Over the whole 0.1 s (12 excitation periods) we compare what survives the
+// rattling: the mean per-period amplitude ā (the envelope of report section 5
+// over 0.1 s), with the same budget. Measured: ā_FE = 0.0768 h, ā_ROM10 =
+// 0.0774 h (0.8 %), ROM10−ROM7 6.2 %, FE Δt−Δt/2 8.1 %. The slider is at
+// x_C/L = 0.2985 (FE) and 0.2993 (ROM10) at 0.1 s. Wall time: FE 0.27 s, FE at
+// Δt/2 0.47 s, ROM10 with the ICE fit (2320 static solves) 1.6 s, ROM7 0.5 s.
+#include "contact/adaptation_run.h"
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+#include "fem/fe_statics.h"
+#include "meshes/scene.h"
+#include "verification/fe_rom_study.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+using namespace beamslider;
+
+namespace
+{
+  const std::string scene_file = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
+
+  struct Trace
+  {
+    std::vector<TraceRow> rows; // every 1e-5 s, aligned in time across runs
+    std::vector<PeriodRecord> periods;
+    double wall = 0;
+  };
+
+  Trace run(const Scene &scene, const ModelSetting &setting, const double window)
+  {
+    Trace tr;
+    const auto start = std::chrono::steady_clock::now();
+    auto beam        = make_beam_model(scene, setting);
+    Scene s          = scene;
+    s.time_stepping.time_step = setting.time_step;
+    RunOptions options        = RunOptions::from_scene(s);
+    options.end_time          = window;
+    options.output_rate       = 0; // every step; kept on the common 1e-5 s grid
+    options.progress_interval = 1e9;
+    AdaptationRun r(s, *beam, options);
+    r.on_trace_row = [&tr](const TraceRow &row) {
+      if (std::abs(row.t / 1e-5 - std::round(row.t / 1e-5)) < 1e-4)
+        tr.rows.push_back(row);
+    };
+    r.on_period    = [&tr](const PeriodRecord &p) { tr.periods.push_back(p); };
+    const RunResult res = r.run();
+    EXPECT_EQ(res.status, RunStatus::completed) << setting.label() << ": " << res.message;
+    tr.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return tr;
+  }
+
+  // Max differences over t ≤ t_end relative to the FE signal a (w(L/2): max
+  // |w|; slider z: max |z − z(0)|), and of x_C/L (absolute).
+  struct Difference
+  {
+    double w = 0, z = 0, x = 0;
+  };
+
+  Difference difference(const Trace &a, const Trace &b, const double t_end)
+  {
+    double dw = 0, w = 0, dz = 0, z = 0, dx = 0;
+    const std::size_t n = std::min(a.rows.size(), b.rows.size());
+    for (std::size_t k = 0; k < n && a.rows[k].t <= t_end + 1e-9; ++k)
+      {
+        EXPECT_NEAR(a.rows[k].t, b.rows[k].t, 1e-9);
+        dw = std::max(dw, std::abs(a.rows[k].w_center - b.rows[k].w_center));
+        w  = std::max(w, std::abs(a.rows[k].w_center));
+        dz = std::max(dz, std::abs(a.rows[k].slider_z - b.rows[k].slider_z));
+        z  = std::max(z, std::abs(a.rows[k].slider_z - a.rows[0].slider_z));
+        dx = std::max(dx, std::abs(a.rows[k].slider_x_over_L - b.rows[k].slider_x_over_L));
+      }
+    return {dw / w, dz / z, dx};
+  }
+
+  double mean_amplitude(const Trace &t)
+  {
+    double sum = 0;
+    for (const auto &p : t.periods)
+      sum += p.amplitude_over_h;
+    return sum / t.periods.size();
+  }
+} // namespace
+
+TEST(FEAgainstROM, StaticTruncationOfTheSliderLoadFallsFromSevenToTenModes)
+{
+  // The slider's weight on its two upper corners (x_C ± B/2, x_C = 0.3 L):
+  // FE static solution against the N-mode sum Σ φ_n φ_nᵀF/ω_n².
+  const Scene scene = read_scene(scene_file);
+  const FEBeam beam(scene);
+  const FEModes modes = compute_bending_modes(beam, 10);
+  FEStatics statics(beam, modes, 1);
+  const unsigned int n = beam.n_dofs();
+  const double L = scene.beam.length, B = scene.slider.window_width, x_C = 0.3 * L;
+  const double weight = scene.slider_mass() * scene.contact.gravity;
+  dealii::Vector<double> F(n), xs(n);
+  for (const double xp : {x_C - 0.5 * B, x_C + 0.5 * B})
+    {
+      const FEPointShape p = beam.point_shape(xp);
+      for (unsigned int a = 0; a < 4; ++a)
+        F[p.w_dofs[a]] -= 0.5 * weight * p.w_values[a];
+    }
+  beam.constraints().set_zero(F);
+  statics.solve(F, xs);
+  std::array<double, 2> slope_error{}, w_error{};
+  std::size_t i = 0;
+  for (const unsigned int N : {7u, 10u})
+    {
+      dealii::Vector<double> wN(n);
+      for (unsigned int k = 0; k < N; ++k)
+        wN.add((modes.shapes[k] * F) / (modes.omega[k] * modes.omega[k]), modes.shapes[k]);
+      slope_error[i] = std::abs(beam.slope(wN, x_C + 0.5 * B) / beam.slope(xs, x_C + 0.5 * B) - 1);
+      w_error[i]     = std::abs(beam.deflection(wN, x_C) / beam.deflection(xs, x_C) - 1);
+      std::cout << "static truncation, N = " << N << ": slope at x_C + B/2 " << slope_error[i] << ", w(x_C) " << w_error[i]
+                << "\n";
+      ++i;
+    }
+  // Modes 8–10 do several times more than all modes above 10 (measured 9x):
+  // ROM10 − ROM7 over-estimates ROM10's truncation error.
+  EXPECT_LT(slope_error[1], slope_error[0] / 3);
+  EXPECT_LT(w_error[1], w_error[0] / 3);
+  EXPECT_LT(slope_error[1], 2e-3);
+}
+
+TEST(FEAgainstROM, TenModeIceRomFollowsTheFEBeamWithinTheTruncationAndTimeStepBudget)
+{
+  const Scene scene = read_scene(scene_file);
+  ASSERT_EQ(scene.excitation.frequency_hz, 124.);
+  ASSERT_EQ(scene.excitation.acceleration_amplitude, 14.);
+  ASSERT_EQ(scene.initial.slider_position_over_L, 0.3);
+  const double dt = 1e-5, window = 0.1;
+  ModelSetting fe, fe_half, rom10, rom7;
+  fe.family = "fe", fe.time_step = dt;
+  fe_half = fe, fe_half.time_step = dt / 2;
+  rom10.n_modes = 10, rom10.coefficients = "ice", rom10.time_step = dt;
+  rom7 = rom10, rom7.n_modes = 7;
+  const Trace t_fe = run(scene, fe, window), t_half = run(scene, fe_half, window), t_10 = run(scene, rom10, window),
+              t_7 = run(scene, rom7, window);
+  std::cout << "wall times [s]: FE " << t_fe.wall << ", FE dt/2 " << t_half.wall << ", ROM10 ICE (with the fit) " << t_10.wall
+            << ", ROM7 ICE " << t_7.wall << "\n";
+
+  const double floor = 1e-3; // axial inertia and damping of modes 6–10, see the header
+  for (const double t_end : {0.005, 0.01, 0.015, 0.02})
+    {
+      const Difference model = difference(t_fe, t_10, t_end), truncation = difference(t_10, t_7, t_end),
+                       time_step = difference(t_fe, t_half, t_end);
+      std::cout << "t <= " << t_end << " s: w(L/2) FE-ROM10 " << model.w << " | ROM10-ROM7 " << truncation.w
+                << " | FE dt-dt/2 " << time_step.w << ";  slider z " << model.z << " | " << truncation.z << " | "
+                << time_step.z << ";  x_C/L " << model.x << " | " << truncation.x << " | " << time_step.x << "\n";
+      EXPECT_LE(model.w, truncation.w + time_step.w + floor) << "window " << t_end;
+      EXPECT_LE(model.z, truncation.z + time_step.z + floor) << "window " << t_end;
+    }
+  // The first 5 ms (before the first hard impacts): agreement to 1 %.
+  EXPECT_LT(difference(t_fe, t_10, 0.005).w, 1e-2);
+
+  // Whole window: envelope and slider position.
+  ASSERT_EQ(t_fe.periods.size(), t_10.periods.size());
+  ASSERT_GE(t_fe.periods.size(), 12u);
+  const double a_fe = mean_amplitude(t_fe), a_10 = mean_amplitude(t_10), a_7 = mean_amplitude(t_7),
+               a_half = mean_amplitude(t_half);
+  const double e_model = std::abs(a_10 / a_fe - 1), e_trunc = std::abs(a_7 / a_10 - 1), e_dt = std::abs(a_half / a_fe - 1);
+  const Difference model = difference(t_fe, t_10, window), truncation = difference(t_10, t_7, window),
+                   time_step = difference(t_fe, t_half, window);
+  std::cout << "0.1 s: mean amplitude/h FE " << a_fe << ", ROM10 " << a_10 << ", ROM7 " << a_7 << ", FE dt/2 " << a_half
+            << ": relative FE-ROM10 " << e_model << " | ROM10-ROM7 " << e_trunc << " | FE dt-dt/2 " << e_dt
+            << ";  max |dx_C|/L " << model.x << " | " << truncation.x << " | " << time_step.x << "; x_C/L at 0.1 s FE "
+            << t_fe.rows.back().slider_x_over_L << ", ROM10 " << t_10.rows.back().slider_x_over_L << "\n";
+  EXPECT_LE(e_model, e_trunc + e_dt + floor);
+  // Not asserted: the slider position. Over 0.1 s its difference sits at the
+  // edge of the budget (measured 9.7e-4 L against 2.4e-4 + 7.5e-4), and over
+  // 20 ms just above it (7.8e-5 against 2.5e-5 + 4.4e-5): how far the slider
+  // slips during one impact sequence follows the stick–slip switches, which the
+  // budget's two estimates do not bound. What the adaptation needs, the drift
+  // over seconds, is compared in report section 5 against the FE reference.
+  // The slider has not travelled far yet: both stay within 0.01 L of the start.
+  EXPECT_LT(std::abs(t_fe.rows.back().slider_x_over_L - 0.3), 1e-2);
+  EXPECT_LT(std::abs(t_10.rows.back().slider_x_over_L - 0.3), 1e-2);
+}
