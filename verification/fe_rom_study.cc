@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace beamslider
@@ -23,6 +24,8 @@ namespace beamslider
     else
       s << "ROM N=" << n_modes << " " << coefficients;
     s << " dt=" << time_step; // no comma: labels go into CSV cells
+    if (slider_offset_over_L != 0)
+      s << " x0+" << slider_offset_over_L;
     return s.str();
   }
 
@@ -53,7 +56,8 @@ namespace beamslider
                                            BaseExcitation::from_scene(scene.excitation));
   }
 
-  ModelRun run_setting(const Scene &scene_in, const ModelSetting &setting, const double window)
+  ModelRun run_setting(const Scene &scene_in, const ModelSetting &setting, const double window,
+                       const std::function<void(const PeriodRecord &)> &on_period)
   {
     ModelRun run;
     run.setting      = setting;
@@ -62,6 +66,7 @@ namespace beamslider
       {
         Scene scene                   = scene_in;
         scene.time_stepping.time_step = setting.time_step;
+        scene.initial.slider_position_over_L += setting.slider_offset_over_L;
         if (setting.family == "fe" && setting.n_elements)
           scene.discretisation.n_elements = setting.n_elements;
         auto beam          = make_beam_model(scene, setting);
@@ -69,7 +74,11 @@ namespace beamslider
         options.end_time   = window;
         options.progress_interval = 1e9;
         AdaptationRun adaptation(scene, *beam, options);
-        adaptation.on_period = [&run](const PeriodRecord &p) { run.periods.push_back(p); };
+        adaptation.on_period = [&run, &on_period](const PeriodRecord &p) {
+          run.periods.push_back(p);
+          if (on_period)
+            on_period(p);
+        };
         run.result = adaptation.run();
         run.ok     = run.result.status == RunStatus::completed;
         run.message = run.result.message;
@@ -120,6 +129,69 @@ namespace beamslider
     run.envelope_error = std::sqrt(diff2 / std::max(ref2, 1e-300));
     run.position_error = dx;
     run.drift_error    = dx / std::max(drift, 1e-9);
+  }
+
+  RunDifference difference(const ModelRun &run, const ModelRun &other)
+  {
+    ModelRun copy = run;
+    compare_with_reference(copy, other);
+    return {copy.drift_error, copy.envelope_error, copy.position_error};
+  }
+
+  TraceOutcome trace_outcome(const std::vector<PeriodRecord> &periods)
+  {
+    TraceOutcome o;
+    const std::size_t n = periods.size();
+    if (n < 20)
+      {
+        o.verdict = "too short to judge";
+        return o;
+      }
+    o.valid             = true;
+    o.end_time          = periods.back().t_end;
+    const double period = periods[0].t_end - periods[0].t_start;
+    const auto e        = envelope(periods, n, std::max<std::size_t>(1, std::lround(0.1 / period)));
+    std::vector<double> first(e.begin(), e.begin() + n / 4);
+    std::nth_element(first.begin(), first.begin() + first.size() / 2, first.end());
+    o.low_level    = first[first.size() / 2];
+    o.max_envelope = *std::max_element(e.begin(), e.end());
+    o.jumped       = o.max_envelope > 2 * o.low_level;
+    if (o.jumped)
+      for (std::size_t k = 0; k < n; ++k)
+        if (e[k] >= 0.5 * (o.low_level + o.max_envelope))
+          {
+            o.jump_time = periods[k].t_end;
+            break;
+          }
+    std::size_t k_turn = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (std::abs(periods[k].slider_x_over_L - 0.5) > std::abs(periods[k_turn].slider_x_over_L - 0.5))
+        k_turn = k;
+    o.turn_position = periods[k_turn].slider_x_over_L;
+    o.turn_time     = 0.5 * (periods[k_turn].t_start + periods[k_turn].t_end);
+    const std::size_t tail = std::max<std::size_t>(1, std::min<std::size_t>(std::lround(1.0 / period), n / 10));
+    for (std::size_t k = n - tail; k < n; ++k)
+      {
+        o.final_position += periods[k].slider_x_over_L / tail;
+        o.final_amplitude += periods[k].amplitude_over_h / tail;
+      }
+    o.turned = std::abs(o.final_position - 0.5) <= std::abs(o.turn_position - 0.5) - 0.02;
+    std::ostringstream v;
+    v << std::setprecision(3);
+    if (o.jumped)
+      v << "jump to " << o.max_envelope << " h at t = " << o.jump_time << " s";
+    else
+      v << "no jump (envelope ≤ " << o.max_envelope << " h)";
+    if (o.turned)
+      v << ", turned at x_C/L = " << o.turn_position << " (t = " << o.turn_time << " s) "
+        << (o.jumped && o.turn_time >= o.jump_time - 1 ? "after the jump" : "") << " back toward the centre";
+    else
+      v << ", no turn-around (farthest from the centre: " << o.turn_position << ")";
+    v << ", ends at " << o.final_position << " with " << o.final_amplitude << " h";
+    if (o.jumped && o.turned && o.turn_time >= o.jump_time - 1)
+      v << ": signature move";
+    o.verdict = v.str();
+    return o;
   }
 
   std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs)

@@ -21,6 +21,7 @@
 #include "contact/adaptation_run.h"
 #include "meshes/scene.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ namespace beamslider
     unsigned int n_modes = 5;    // rom
     std::string coefficients = "analytic"; // rom: analytic | step-condensed | ice
     double time_step = 2e-5;     // [s]
+    // Added to the scene's start position x_C/L: a "round-off twin" of a run
+    // (e.g. 1e-9) measures how far the rattling alone spreads two runs.
+    double slider_offset_over_L = 0;
 
     std::string label() const;
   };
@@ -57,8 +61,41 @@ namespace beamslider
   };
 
   // Runs `setting` on `scene` from t = 0 to `window` seconds. Never throws
-  // for a failing model: the failure is recorded in the result.
-  ModelRun run_setting(const Scene &scene, const ModelSetting &setting, double window);
+  // for a failing model: the failure is recorded in the result. `on_period`
+  // (optional) sees every period as it closes, e.g. to stream it to a CSV.
+  ModelRun run_setting(const Scene &scene, const ModelSetting &setting, double window,
+                       const std::function<void(const PeriodRecord &)> &on_period = {});
+
+  // The errors of `run` against `other` (compare_with_reference on a copy).
+  struct RunDifference
+  {
+    double drift = -1, envelope = -1, position = -1;
+  };
+  RunDifference difference(const ModelRun &run, const ModelRun &other);
+
+  // The outcome of a long adaptation run, from its period records (what the
+  // signature move of DESIGN.md §1 consists of):
+  //   envelope       a trailing 0.1 s mean of the per-period amplitude ŵ(L/2)/h;
+  //   low level      the median of the envelope over the first quarter of the run;
+  //   jump           the envelope's maximum exceeds twice the low level; jump
+  //                  time: end of the first 0.1 s window whose mean is halfway
+  //                  between the low level and that maximum;
+  //   turn-around    the period mean x̄ farthest from the centre L/2, and when;
+  //                  "turned" if the final position is ≥ 0.02 L closer to the centre;
+  //   final          x̄ and amplitude averaged over the last 1 s (or last tenth).
+  struct TraceOutcome
+  {
+    bool valid = false; // enough periods (≥ 20) to say anything
+    double end_time = 0;
+    double low_level = 0, max_envelope = 0; // [h]
+    bool jumped = false;
+    double jump_time = -1; // [s], -1 without a jump
+    double turn_position = 0, turn_time = 0; // x_C/L, [s]
+    bool turned = false;
+    double final_position = 0, final_amplitude = 0; // x_C/L, [h]
+    std::string verdict; // one line: what the run did
+  };
+  TraceOutcome trace_outcome(const std::vector<PeriodRecord> &periods);
 
   // Fills amplitude_error and position_error of `run` against `reference`.
   void compare_with_reference(ModelRun &run, const ModelRun &reference);
