@@ -33,6 +33,14 @@ namespace beamslider
     return c;
   }
 
+  std::vector<bool> FEConservativeSystem::even_harmonic_dofs() const
+  {
+    std::vector<bool> even(free_dofs.size());
+    for (unsigned int r = 0; r < free_dofs.size(); ++r)
+      even[r] = beam->axial_dofs()[free_dofs[r]];
+    return even;
+  }
+
   FEConservativeSystem make_fe_conservative_system(const FEBeam &beam)
   {
     FEConservativeSystem fe;
@@ -73,5 +81,12 @@ namespace beamslider
       return Eigen::MatrixXd(dense_on(K_t, dofs, *row_of) - K_lin);
     };
     return fe;
+  }
+
+  Backbone compute_fe_backbone(const FEConservativeSystem &fe, const BeamBackboneSettings &settings)
+  {
+    BackboneSettings s       = make_beam_backbone_settings(fe.deflection_at(0.5 * fe.beam->length()), settings);
+    s.hb.even_harmonic_dofs  = fe.even_harmonic_dofs();
+    return compute_backbone(fe.system, s);
   }
 } // namespace beamslider

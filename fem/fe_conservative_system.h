@@ -19,8 +19,17 @@ namespace beamslider
     ConservativeSystem system;
     std::vector<unsigned int> free_dofs; // global DoF of each row of the dense system
     Eigen::VectorXd deflection_at(double x) const; // c with w(x) = cᵀ q_free
+    // The half-period symmetry of the bending backbones (HarmonicBalance-
+    // Settings::even_harmonic_dofs): true for the axial DoFs u, which carry
+    // the even harmonics (the stretching ½w'² of an odd-harmonic w), false
+    // for w and θ.
+    std::vector<bool> even_harmonic_dofs() const;
     const FEBeam *beam = nullptr;
   };
 
   FEConservativeSystem make_fe_conservative_system(const FEBeam &beam);
+
+  // The FE model's mode-1 backbone with output w(L/2), harmonics 0…H under
+  // the half-period symmetry (w, θ odd harmonics up to H, u even ones).
+  Backbone compute_fe_backbone(const FEConservativeSystem &fe, const BeamBackboneSettings &settings);
 } // namespace beamslider

@@ -125,16 +125,20 @@ namespace beamslider
         , result_(result)
         , residual_(system, result.harmonics, result.n_time_samples)
         , n_(system.n_dofs())
-        , m_(residual_.n_unknowns())
         , s_x_(settings.end_amplitude)
       {
+        // The unknowns actually solved for: all (dof, harmonic) pairs, or
+        // those the half-period symmetry allows (even_harmonic_dofs).
+        const auto &even = settings.hb.even_harmonic_dofs;
+        for (unsigned int b = 0; b < result.harmonics.size(); ++b)
+          for (unsigned int i = 0; i < n_; ++i)
+            if (even.empty() || even[i] == (result.harmonics[b] % 2 == 0))
+              active_.push_back(b * n_ + i);
+        m_ = active_.size();
+
         unsigned int first = 0;
         while (result.harmonics[first] != 1)
           ++first;
-        // The amplitude functional a = cᵀQ_1, as a row on the scaled unknowns.
-        amplitude_row_ = Eigen::VectorXd::Zero(m_ + 1);
-        amplitude_row_.segment(first * n_, n_) = settings.output * s_x_;
-
         // Start: the linear mode, normalised to cᵀφ = 1, at frequency ω_mode.
         Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(system.stiffness, system.mass);
         if (eig.info() != Eigen::Success)
@@ -150,8 +154,16 @@ namespace beamslider
           throw std::invalid_argument("compute_backbone: the output functional c does not see mode " +
                                       std::to_string(settings.mode) + " (cᵀφ ≈ 0); choose another output");
         phi /= c_phi;
-        mode_shape_ = Eigen::VectorXd::Zero(m_ + 1);
-        mode_shape_.segment(first * n_, n_) = phi / s_x_;
+        if (settings.normalise_by_mode)
+          s_x_ = settings.end_amplitude * phi.norm();
+
+        // The amplitude functional a = cᵀQ_1, as a row on the scaled unknowns.
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(residual_.n_unknowns());
+        row.segment(first * n_, n_) = settings.output * s_x_;
+        amplitude_row_ = restrict_to_active(row);
+        Eigen::VectorXd shape = Eigen::VectorXd::Zero(residual_.n_unknowns());
+        shape.segment(first * n_, n_) = phi / s_x_;
+        mode_shape_ = restrict_to_active(shape);
       }
 
       void run()
@@ -176,23 +188,52 @@ namespace beamslider
     private:
       double amplitude_of(const Eigen::VectorXd &z) const { return amplitude_row_.dot(z); }
 
+      // Full harmonic vector X (n·|𝓗|, inactive entries 0) from the scaled
+      // unknowns z (m + 1, the last one ω/s_ω), and back (z with ω = 0).
+      Eigen::VectorXd expand(const Eigen::VectorXd &z) const
+      {
+        Eigen::VectorXd X = Eigen::VectorXd::Zero(residual_.n_unknowns());
+        X(active_)        = z.head(m_) * s_x_;
+        return X;
+      }
+      Eigen::VectorXd restrict_to_active(const Eigen::VectorXd &X_scaled) const
+      {
+        Eigen::VectorXd z = Eigen::VectorXd::Zero(m_ + 1);
+        z.head(m_)        = X_scaled(active_);
+        return z;
+      }
+
+      // The Newton matrix [∂R/∂z; rowᵀ] on the active unknowns, and R.
+      void linearise(const Eigen::VectorXd &z, const Eigen::VectorXd &row, Eigen::VectorXd &R, Eigen::MatrixXd &A)
+      {
+        Eigen::VectorXd Jw;
+        Eigen::MatrixXd JX;
+        residual_.evaluate(expand(z), z[m_] * s_w_, R, &JX, &Jw);
+        A.resize(m_ + 1, m_ + 1);
+        A.topLeftCorner(m_, m_) = JX(active_, active_) * s_x_;
+        A.topRightCorner(m_, 1) = Jw(active_) * s_w_;
+        A.row(m_)               = row.transpose();
+      }
+
+      double relative_residual(const Eigen::VectorXd &z)
+      {
+        Eigen::VectorXd R;
+        const double ref = residual_.evaluate(expand(z), z[m_] * s_w_, R, nullptr, nullptr);
+        return R.norm() / std::max(ref, std::numeric_limits<double>::min());
+      }
+
       // Newton on R(z) = 0 plus one closing equation rowᵀ z = rhs.
       bool correct(Eigen::VectorXd &z, const Eigen::VectorXd &row, const double rhs, BackbonePoint &p)
       {
-        Eigen::VectorXd R, Jw;
-        Eigen::MatrixXd JX;
-        Eigen::MatrixXd A(m_ + 1, m_ + 1);
+        Eigen::VectorXd R;
+        Eigen::MatrixXd A;
         Eigen::VectorXd b(m_ + 1);
         p.relative_residual = std::numeric_limits<double>::infinity();
         for (unsigned int it = 1; it <= settings_.max_newton_iterations; ++it)
           {
             ++result_.n_newton_iterations;
-            const Eigen::VectorXd X = z.head(m_) * s_x_;
-            residual_.evaluate(X, z[m_] * s_w_, R, &JX, &Jw);
-            A.topLeftCorner(m_, m_) = JX * s_x_;
-            A.topRightCorner(m_, 1) = Jw * s_w_;
-            A.row(m_)               = row.transpose();
-            b.head(m_)              = -R;
+            linearise(z, row, R, A);
+            b.head(m_)              = -R(active_);
             b[m_]                   = rhs - row.dot(z);
             const Eigen::VectorXd dz = A.partialPivLu().solve(b);
             if (!dz.allFinite())
@@ -203,14 +244,14 @@ namespace beamslider
               return false; // diverging, or through ω = 0
             if (step <= settings_.tolerance)
               {
-                const double ref    = residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, nullptr, nullptr);
-                p.relative_residual = R.norm() / std::max(ref, std::numeric_limits<double>::min());
+                // The full residual, inactive rows included: they vanish
+                // only if the symmetry assumed is really there.
+                p.relative_residual = relative_residual(z);
                 p.newton_iterations = it;
                 return p.relative_residual < 1e-8;
               }
           }
-        const double ref    = residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, nullptr, nullptr);
-        p.relative_residual = R.norm() / std::max(ref, std::numeric_limits<double>::min());
+        p.relative_residual = relative_residual(z);
         p.newton_iterations = settings_.max_newton_iterations;
         return false;
       }
@@ -223,13 +264,9 @@ namespace beamslider
       // Unit tangent of the solution curve: [∂R/∂z; rowᵀ] t = [0; 1].
       Eigen::VectorXd tangent(const Eigen::VectorXd &z, const Eigen::VectorXd &row)
       {
-        Eigen::VectorXd R, Jw;
-        Eigen::MatrixXd JX;
-        residual_.evaluate(z.head(m_) * s_x_, z[m_] * s_w_, R, &JX, &Jw);
-        Eigen::MatrixXd A(m_ + 1, m_ + 1);
-        A.topLeftCorner(m_, m_) = JX * s_x_;
-        A.topRightCorner(m_, 1) = Jw * s_w_;
-        A.row(m_)               = row.transpose();
+        Eigen::VectorXd R;
+        Eigen::MatrixXd A;
+        linearise(z, row, R, A);
         Eigen::VectorXd rhs     = Eigen::VectorXd::Zero(m_ + 1);
         rhs[m_]                 = 1.;
         const Eigen::VectorXd t = A.partialPivLu().solve(rhs);
@@ -238,7 +275,8 @@ namespace beamslider
 
       void store(const Eigen::VectorXd &z, BackbonePoint &p)
       {
-        p.harmonics = z.head(m_) * s_x_;
+        p.harmonics = expand(z);
+        p.segment   = segment_;
         p.omega     = z[m_] * s_w_;
         p.amplitude = amplitude_of(z);
         result_.points.push_back(p);
@@ -262,6 +300,7 @@ namespace beamslider
         Eigen::VectorXd t = tangent(z, amplitude_row_);
         double ds         = settings_.initial_step;
         double a_max      = amplitude_of(z);
+        std::size_t last_regular = result_.points.size() - 1; // last point on the rising backbone
         while (true)
           {
             if (result_.points.size() >= settings_.max_points)
@@ -294,6 +333,7 @@ namespace beamslider
                 continue;
               }
             const double a_new = amplitude_of(z_new);
+            land_on_listed_amplitudes(z, z_new);
             if (a_new >= settings_.end_amplitude)
               {
                 finish_at_end_amplitude(z, z_new, p);
@@ -308,17 +348,51 @@ namespace beamslider
                 return;
               }
             store(z_new, p);
-            a_max = std::max(a_max, a_new);
             // An internal resonance (k ω ≈ ω_j of another mode) opens a tongue:
-            // the branch turns, the other mode's harmonic takes over and the
-            // first harmonic of the output shrinks. A loop that comes back is
-            // followed; a branch that leaves for good is reported.
-            if (a_new < settings_.tongue_exit_fraction * a_max)
+            // the branch turns, the other mode's harmonic takes over, ω runs
+            // away from the backbone and the first harmonic of the output
+            // shrinks. Detected by either sign; a loop that comes back within
+            // both is followed.
+            const bool rising = a_new >= a_max;
+            a_max             = std::max(a_max, a_new);
+            double deviation  = 0;
+            OmegaFit fit;
+            if (settings_.tongue_frequency_deviation > 0 && fit_backbone_frequency(a_max, fit))
+              deviation = std::abs(z_new[m_] * s_w_ / fit.omega(a_new) - 1.);
+            const bool off_backbone = settings_.tongue_frequency_deviation > 0 &&
+                                      deviation > settings_.tongue_frequency_deviation;
+            if (rising && !off_backbone)
+              last_regular = result_.points.size() - 1;
+            if (off_backbone || a_new < settings_.tongue_exit_fraction * a_max)
               {
+                const BackbonePoint &last = result_.points[last_regular];
                 std::ostringstream s;
-                s << "left the backbone along an internal-resonance tongue: the first-harmonic amplitude fell to "
-                  << a_new << " m after a maximum of " << a_max << " m; stopped at ω " << z_new[m_] * s_w_
-                  << " rad/s (set tongue_exit_fraction = 0 to follow it)";
+                s << "left the backbone along an internal-resonance tongue after amplitude " << last.amplitude
+                  << " m (ω " << last.omega << " rad/s): ";
+                if (off_backbone)
+                  s << "ω = " << z_new[m_] * s_w_ << " rad/s at amplitude " << a_new << " m is " << deviation
+                    << " off the backbone extrapolated from below (tongue_frequency_deviation = "
+                    << settings_.tongue_frequency_deviation << ")";
+                else
+                  s << "the first-harmonic amplitude fell to " << a_new << " m after a maximum of " << a_max
+                    << " m, at ω " << z_new[m_] * s_w_ << " rad/s (set tongue_exit_fraction = 0 to follow it)";
+                mark_tongue(last_regular);
+                if (settings_.restart_past_tongues && result_.gaps.size() < settings_.max_restarts)
+                  {
+                    Eigen::VectorXd z_restart;
+                    const double a_last = last.amplitude;
+                    if (restart_past_tongue(last_regular, z_restart))
+                      {
+                        z            = z_restart;
+                        t            = tangent(z, amplitude_row_); // towards larger amplitude
+                        ds           = settings_.initial_step;
+                        a_max        = amplitude_of(z);
+                        last_regular = result_.points.size() - 1;
+                        continue;
+                      }
+                    s << "; no restart beyond it converged to the extrapolated backbone (tried up to 1.5 × " << a_last
+                      << " m)";
+                  }
                 result_.message = s.str();
                 return;
               }
@@ -329,6 +403,120 @@ namespace beamslider
             else if (p.newton_iterations >= 7)
               ds *= 0.6;
           }
+      }
+
+      // Flag the points of the current segment after point `last`.
+      void mark_tongue(const std::size_t last)
+      {
+        for (std::size_t i = last + 1; i < result_.points.size(); ++i)
+          if (result_.points[i].segment == segment_)
+            result_.points[i].tongue = true;
+      }
+
+      // ω² = α + β a² (+ γ a⁴) through the backbone points (any segment, not
+      // on a tongue) with amplitudes in [0.4, 0.85] a_ref: away from a
+      // tongue near a_ref, so an extrapolation of the backbone across it.
+      struct OmegaFit
+      {
+        Eigen::VectorXd coef;
+        double a_ref = 1, s_w = 1;
+        std::size_t reference = 0; // the fitted point of largest amplitude
+        double omega(const double a) const
+        {
+          double w2 = 0;
+          for (Eigen::Index k = 0; k < coef.size(); ++k)
+            w2 += coef[k] * std::pow(a / a_ref, 2 * k);
+          return w2 > 0 ? std::sqrt(w2) * s_w : 0.;
+        }
+      };
+      bool fit_backbone_frequency(const double a_ref, OmegaFit &fit) const
+      {
+        const auto &pts = result_.points;
+        std::vector<std::size_t> ref;
+        for (std::size_t i = 0; i < pts.size(); ++i)
+          if (!pts[i].tongue && pts[i].amplitude >= 0.4 * a_ref && pts[i].amplitude <= 0.85 * a_ref)
+            ref.push_back(i);
+        if (ref.size() < 2)
+          return false;
+        // Scaled variables keep the least-squares problem well conditioned.
+        const unsigned int n_terms = ref.size() >= 3 ? 3 : 2;
+        Eigen::MatrixXd A(ref.size(), n_terms);
+        Eigen::VectorXd y(ref.size());
+        double a_best = 0;
+        for (std::size_t r = 0; r < ref.size(); ++r)
+          {
+            const double a = pts[ref[r]].amplitude / a_ref;
+            for (unsigned int k = 0; k < n_terms; ++k)
+              A(r, k) = std::pow(a, 2 * k);
+            y[r] = std::pow(pts[ref[r]].omega / s_w_, 2);
+            if (pts[ref[r]].amplitude > a_best)
+              {
+                a_best        = pts[ref[r]].amplitude;
+                fit.reference = ref[r];
+              }
+          }
+        fit.coef  = A.colPivHouseholderQr().solve(y);
+        fit.a_ref = a_ref;
+        fit.s_w   = s_w_;
+        return true;
+      }
+
+      // The branch left along a tongue after the point `last` (the last
+      // regular one): look for the backbone beyond it (see
+      // BackboneSettings::restart_past_tongues). On success, stores the first
+      // point of a new segment and returns it in z.
+      bool restart_past_tongue(const std::size_t last, Eigen::VectorXd &z)
+      {
+        const BackbonePoint last_point = result_.points[last];
+        const double a_last = last_point.amplitude;
+        OmegaFit fit;
+        if (!fit_backbone_frequency(a_last, fit))
+          return false;
+        const BackbonePoint reference = result_.points[fit.reference];
+
+        for (const double delta : {0.02, 0.05, 0.1, 0.2, 0.3, 0.5})
+          {
+            const double a_target = std::min((1. + delta) * a_last, settings_.end_amplitude);
+            if (a_target <= a_last)
+              break;
+            const double omega_pred = fit.omega(a_target);
+            if (!(omega_pred > 0))
+              continue;
+            // Two initial guesses: the reference motion with harmonic h
+            // scaled like a^h (a² for the mean), and its first harmonic alone
+            // (the component resonating in the tongue changes sign across it).
+            const double r = a_target / reference.amplitude;
+            for (const bool first_only : {false, true})
+              {
+                Eigen::VectorXd X = reference.harmonics;
+                for (unsigned int b = 0; b < result_.harmonics.size(); ++b)
+                  {
+                    const unsigned int h = result_.harmonics[b];
+                    const double scale   = (first_only && h != 1) ? 0. : std::pow(r, h == 0 ? 2 : std::min(h, 3u));
+                    X.segment(b * n_, n_) *= scale;
+                  }
+                Eigen::VectorXd z_try = restrict_to_active(X / s_x_);
+                z_try[m_]             = omega_pred / s_w_;
+                BackbonePoint p;
+                if (!correct_at_amplitude(z_try, a_target, p))
+                  continue;
+                const double omega = z_try[m_] * s_w_;
+                if (std::abs(omega / omega_pred - 1.) > 0.03)
+                  continue;
+                BackboneGap gap;
+                gap.last_amplitude    = a_last;
+                gap.last_omega        = last_point.omega;
+                gap.restart_amplitude = a_target;
+                gap.restart_omega     = omega;
+                gap.predicted_omega   = omega_pred;
+                result_.gaps.push_back(gap);
+                ++segment_;
+                store(z_try, p);
+                z = z_try;
+                return true;
+              }
+          }
+        return false;
       }
 
       // Natural continuation in the amplitude a (fails at folds in a).
@@ -385,6 +573,21 @@ namespace beamslider
           }
       }
 
+      // Store extra points exactly at the listed amplitudes that the step
+      // z → z_new crossed upwards (BackboneSettings::landing_amplitudes).
+      void land_on_listed_amplitudes(const Eigen::VectorXd &z, const Eigen::VectorXd &z_new)
+      {
+        const double a = amplitude_of(z), a_new = amplitude_of(z_new);
+        for (const double target : settings_.landing_amplitudes)
+          if (a < target && target <= a_new && target < settings_.end_amplitude)
+            {
+              Eigen::VectorXd z_land = z + (target - a) / (a_new - a) * (z_new - z);
+              BackbonePoint p;
+              if (correct_at_amplitude(z_land, target, p))
+                store(z_land, p);
+            }
+      }
+
       // The last arclength step crossed end_amplitude: land exactly on it.
       void finish_at_end_amplitude(const Eigen::VectorXd &z, const Eigen::VectorXd &z_new, BackbonePoint p_new)
       {
@@ -408,7 +611,9 @@ namespace beamslider
       const BackboneSettings &settings_;
       Backbone &result_;
       HarmonicBalanceResidual residual_;
-      unsigned int n_, m_;
+      unsigned int n_, m_ = 0;
+      std::vector<Eigen::Index> active_; // indices into X of the unknowns solved for
+      unsigned int segment_ = 0;
       double s_x_, s_w_ = 1;
       double start_norm_ = 0; // ‖Q/s_x‖ at the first point
       Eigen::VectorXd amplitude_row_, mode_shape_;
@@ -447,6 +652,14 @@ namespace beamslider
       result.harmonics.push_back(h);
     const unsigned int exact_samples = 4 * settings.hb.n_harmonics + 1;
     result.n_time_samples = settings.hb.n_time_samples == 0 ? exact_samples : settings.hb.n_time_samples;
+    if (!settings.hb.even_harmonic_dofs.empty())
+      {
+        if (settings.hb.even_harmonic_dofs.size() != n)
+          fail("even_harmonic_dofs has " + std::to_string(settings.hb.even_harmonic_dofs.size()) +
+               " entries; must be empty or have n_dofs = " + std::to_string(n));
+        if (settings.hb.odd_harmonics_only)
+          fail("even_harmonic_dofs and odd_harmonics_only cannot be combined (set all entries false instead)");
+      }
     if (result.n_time_samples < 2 * settings.hb.n_harmonics + 1)
       fail("n_time_samples = " + std::to_string(result.n_time_samples) + "; must be ≥ 2H+1 = " +
            std::to_string(2 * settings.hb.n_harmonics + 1) + " (≥ 4H+1 for exact cubic terms)");
@@ -455,6 +668,35 @@ namespace beamslider
     continuation.run();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
+  }
+
+  BackboneSettings make_beam_backbone_settings(const Eigen::VectorXd &output, const BeamBackboneSettings &beam)
+  {
+    if (!(beam.thickness > 0))
+      throw std::invalid_argument("BeamBackboneSettings: thickness = " + std::to_string(beam.thickness) + " m; must be > 0");
+    BackboneSettings s;
+    s.hb.n_harmonics          = beam.n_harmonics;
+    s.output                  = output;
+    s.mode                    = 0;
+    s.start_amplitude         = beam.start_over_h * beam.thickness;
+    s.end_amplitude           = beam.end_over_h * beam.thickness;
+    s.max_step                = beam.max_step;
+    s.initial_step            = std::min(s.initial_step, s.max_step);
+    s.restart_past_tongues    = beam.restart_past_tongues;
+    s.tongue_frequency_deviation = 0.03;
+    s.normalise_by_mode          = true;
+    for (const double r : beam.landing_over_h)
+      s.landing_amplitudes.push_back(r * beam.thickness);
+    return s;
+  }
+
+  Backbone compute_rom_backbone(const ReducedOrderModel &rom, const double x_out, const BeamBackboneSettings &beam)
+  {
+    Eigen::VectorXd phi, dphi;
+    rom.basis().evaluate(x_out, phi, dphi);
+    BackboneSettings s       = make_beam_backbone_settings(phi, beam);
+    s.hb.odd_harmonics_only  = true;
+    return compute_backbone(make_conservative_system(rom), s);
   }
 
   Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,

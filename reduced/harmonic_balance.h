@@ -69,6 +69,15 @@ namespace beamslider
     unsigned int n_harmonics = 10;  // H ≥ 1
     bool odd_harmonics_only  = false; // only for odd f (see the file header)
     unsigned int n_time_samples = 0; // N_t; 0 → 4H + 1 (exact for cubic f)
+    // Half-period symmetry per DoF, q_i(τ + π) = ±q_i(τ): if not empty (one
+    // entry per DoF), DoF i carries only the even harmonics 0, 2, 4, … when
+    // true and only the odd ones 1, 3, 5, … when false. Consistent when f
+    // maps this pattern onto itself, as the von Kármán FE beam does with
+    // w, θ odd and u even (u ↦ u, w ↦ −w leaves ε = u' + ½w'² unchanged):
+    // the mode-1 backbone lies in this invariant subspace, and the Newton
+    // matrix has about half the rows (an LU ~8× cheaper) with no loss of
+    // accuracy. Cannot be combined with odd_harmonics_only.
+    std::vector<bool> even_harmonic_dofs;
   };
 
   struct BackboneSettings
@@ -86,6 +95,13 @@ namespace beamslider
     // Step sizes as fractions of end_amplitude (arclength: of the scaled
     // arclength, where Q is scaled by end_amplitude and ω by ω_mode).
     double initial_step = 0.02, min_step = 1e-6, max_step = 0.05;
+    // Scale of Q in the continuation: false: end_amplitude (then the step
+    // measured in the amplitude depends on the coordinates: large modal
+    // steps for the ROM, tiny ones for the FE, whose slopes θ dominate the
+    // norm); true: end_amplitude ‖φ‖ with the linear mode normalised to
+    // cᵀφ = 1, so that a step is the same fraction of the amplitude range in
+    // any coordinates.
+    bool normalise_by_mode = false;
     // Arclength: stop (reported, not completed) when the first-harmonic
     // amplitude falls below this fraction of the largest one reached so far,
     // i.e. the branch has left along an internal-resonance tongue rather than
@@ -94,8 +110,31 @@ namespace beamslider
     // ŵ/h ≈ 2.7, ω ≈ 2.2 ω₁: the 3:1 interaction with mode 3 (3ω ≈ ω₃ of the
     // stretched beam); followed, the branch ends on the mode-3 motion seen at
     // a third of its frequency (a₁ → 0 at ω ≈ 3.19 ω₁). Jumping over the tongue
-    // to the continuation of the mode-1 backbone is not implemented.
+    // to the continuation of the mode-1 backbone: restart_past_tongues.
     double tongue_exit_fraction = 0.5;
+    // Arclength: also stop (or restart) when ω departs by more than this
+    // fraction from the backbone extrapolated from below (ω² = α + β a² +
+    // γ a⁴ through the points at 0.4…0.85 of the largest amplitude): a tongue
+    // can leave at almost constant first-harmonic amplitude (the FE model at
+    // the 3:1 interaction creeps along it at tiny steps). 0: off.
+    double tongue_frequency_deviation = 0;
+    // Arclength only: when the branch leaves along a tongue, restart on the
+    // far side. ω² = α + β a² + γ a⁴ is fitted to the backbone points in
+    // [0.4, 0.85] a_last (a_last: the last amplitude before the branch turned
+    // into the tongue), and an
+    // amplitude-controlled Newton solve is tried at a = (1 + δ) a_last with
+    // δ = 0.02, 0.05, 0.1, 0.2, 0.3, 0.5 from the predicted ω and the
+    // first-harmonic shape of the reference point. A solution is accepted as
+    // the continuation of the backbone if its ω is within 3 % of the
+    // prediction; then the arclength continuation goes on from there as a new
+    // segment. The skipped amplitude range is recorded in Backbone::gaps.
+    bool restart_past_tongues = false;
+    unsigned int max_restarts = 3;
+    // Arclength: amplitudes [m] (ascending) at which extra points are solved
+    // for exactly (amplitude-controlled Newton from the interpolated step)
+    // whenever a step crosses them upwards, so that backbones can be compared
+    // at given amplitudes without interpolation error.
+    std::vector<double> landing_amplitudes;
     unsigned int max_points            = 2000;
     unsigned int max_newton_iterations = 12;
     double tolerance = 1e-10; // on the scaled Newton correction
@@ -109,6 +148,19 @@ namespace beamslider
     Eigen::VectorXd harmonics; // Q_h stacked in the order of Backbone::harmonics
     unsigned int newton_iterations = 0;
     double relative_residual = 0; // ‖R‖ / (‖K Q‖ + ‖F‖) at the converged point
+    unsigned int segment = 0; // 0, then +1 after each restart past a tongue
+    // Past the segment's largest amplitude on the way out along an internal-
+    // resonance tongue (set when the tongue exit is detected): a solution,
+    // but no longer the mode-1 backbone.
+    bool tongue = false;
+  };
+
+  // An amplitude range the continuation jumped over (restart_past_tongues).
+  struct BackboneGap
+  {
+    double last_amplitude = 0, last_omega = 0;   // the largest amplitude before the exit [m], its ω [rad/s]
+    double restart_amplitude = 0, restart_omega = 0; // first point of the next segment
+    double predicted_omega = 0;                  // the extrapolated ω at the restart amplitude
   };
 
   struct Backbone
@@ -118,6 +170,7 @@ namespace beamslider
     std::vector<BackbonePoint> points;
     bool completed = false;  // end_amplitude reached
     std::string message;     // why it stopped (always set)
+    std::vector<BackboneGap> gaps; // ranges jumped over (restart_past_tongues)
     unsigned int n_newton_iterations = 0; // total, all points and retries
     double seconds = 0;      // wall time
   };
@@ -128,6 +181,24 @@ namespace beamslider
   // (amplitude, ω, residual). Throws std::invalid_argument for bad settings and
   // std::runtime_error if even the first point fails.
   Backbone compute_backbone(const ConservativeSystem &system, const BackboneSettings &settings);
+
+  // The mode-1 backbone of a beam model as the reports and the `backbone`
+  // command use it: output y = w(L/2) [m], amplitude range in thicknesses,
+  // pseudo-arclength with restarts past internal-resonance tongues.
+  struct BeamBackboneSettings
+  {
+    unsigned int n_harmonics = 10; // H
+    double thickness = 0;          // h [m]
+    double start_over_h = 0.01, end_over_h = 4; // first and last ŵ/h
+    bool restart_past_tongues = true;
+    double max_step = 0.05;        // largest arclength step (fraction of the end amplitude)
+    std::vector<double> landing_over_h; // ŵ/h at which points are solved for exactly
+  };
+  BackboneSettings make_beam_backbone_settings(const Eigen::VectorXd &output, const BeamBackboneSettings &beam);
+
+  // The ROM's mode-1 backbone with output c = φ(x_out) (odd harmonics only:
+  // the cubic ROM is odd, so this equals the full set 0…H exactly).
+  Backbone compute_rom_backbone(const ReducedOrderModel &rom, double x_out, const BeamBackboneSettings &beam);
 
   // Evaluate y(τ) = cᵀq(τ) of a backbone point at n_samples equispaced τ in [0, 2π).
   Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,

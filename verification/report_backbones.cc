@@ -1,10 +1,256 @@
-// Verification section placeholder: not implemented yet.
+// Verification section "Backbone curves" (DESIGN.md §4, seed Fig. 3): the
+// mode-1 backbone of the ROM (N = 1, 3, 5, 7 modes, H = 10 harmonics) against
+// the full FE model's backbone and seed Eq. 4; the frequency difference at
+// given amplitudes; the harmonic truncation; where the single-mode law breaks
+// down and where internal resonances interrupt the backbone.
+//
+// All models are built on one FE mesh (the ROMs from its modes), so that the
+// ROM−FE difference is the modelling difference (modal truncation, condensed
+// axial inertia) and not a mesh difference. Quick mode uses a coarser mesh for
+// the FE backbone (the section says by how much that moves f₁); --full the
+// scene's mesh.
+#include "fem/fe_beam.h"
+#include "fem/fe_conservative_system.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "reduced/harmonic_balance.h"
+#include "reduced/rom_operator.h"
+#include "verification/commands.h"
+#include "verification/csv_writer.h"
 #include "verification/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <optional>
 
 namespace beamslider
 {
-  void add_backbone_section(Report &report, const Scene &, bool)
+  namespace
   {
-    report.text << "## (section backbone: not implemented yet)\n\n";
+    // ω [rad/s] of the backbone point solved for exactly at ŵ/h = r (the
+    // continuation lands on the listed amplitudes), if the backbone reaches
+    // it; points on a tongue excursion do not count.
+    std::optional<double> omega_at(const Backbone &b, const double r, const double h)
+    {
+      for (const auto &p : b.points)
+        if (!p.tongue && std::abs(p.amplitude - r * h) < 1e-9 * h)
+          return p.omega;
+      return std::nullopt;
+    }
+
+    double largest_amplitude(const Backbone &b)
+    {
+      double a = 0;
+      for (const auto &p : b.points)
+        if (!p.tongue)
+          a = std::max(a, p.amplitude);
+      return a;
+    }
+
+    void write_curve(CsvWriter &csv, const std::string &name, const Backbone &b, const double h)
+    {
+      const double pi = std::acos(-1.);
+      for (const auto &p : b.points)
+        csv.row({name, CsvWriter::cell(p.amplitude / h), CsvWriter::cell(p.omega / (2 * pi)), CsvWriter::cell(p.segment),
+                 p.tongue ? "tongue" : "backbone"});
+    }
+
+    // "between ŵ/h = 2.70 (600.2 Hz) and 2.76 (609.0 Hz)", one per gap.
+    std::string describe_gaps(const Backbone &b, const double h)
+    {
+      const double pi = std::acos(-1.);
+      if (b.gaps.empty())
+        return "none";
+      std::string s;
+      for (const auto &g : b.gaps)
+        s += (s.empty() ? "" : "; ") + fixed(g.last_amplitude / h, 3) + " (" + fixed(g.last_omega / (2 * pi), 1) +
+             " Hz) → " + fixed(g.restart_amplitude / h, 3) + " (" + fixed(g.restart_omega / (2 * pi), 1) + " Hz)";
+      return s;
+    }
+  } // namespace
+
+  void add_backbone_section(Report &report, const Scene &scene, const bool full)
+  {
+    auto &md = report.text;
+    std::cout << "[verify] backbones ..." << std::endl;
+    const double h = scene.beam.thickness, L = scene.beam.length, pi = std::acos(-1.);
+    const unsigned int n_scene = scene.discretisation.n_elements;
+    const unsigned int n_elements = full ? n_scene : std::min(16u, n_scene);
+
+    const FEBeam beam(scene, n_elements);
+    const FEModes modes = compute_bending_modes(beam, 7);
+    const double omega_1 = modes.omega[0];
+    const FEBeam scene_beam(scene);
+    const double omega_1_scene = compute_bending_modes(scene_beam, 1).omega[0];
+
+    const std::vector<double> table_amplitudes{0.5, 1, 1.5, 2, 2.5, 3, 4};
+    BeamBackboneSettings settings;
+    settings.thickness  = h;
+    settings.end_over_h = 4;
+    for (unsigned int i = 1; i <= 16; ++i) // ŵ/h = 0.25 … 4 (table and H study)
+      settings.landing_over_h.push_back(0.25 * i);
+
+    md << "## 3. Backbone curves\n\n"
+       << "The mode-1 backbone (the undamped nonlinear normal mode; seed Fig. 3) by harmonic balance with pseudo-arclength "
+          "continuation from ŵ/h = 0.01 to 4. Amplitude ŵ: the first-harmonic amplitude of w(L/2), the mid-span deflection "
+          "relative to the moving base. ROM: N modes of the FE mesh, analytic coefficients, odd harmonics 1…H (the cubic "
+          "ROM is odd, so this is the full set 0…H). FE: the full FE model with the axial DoFs and their inertia, "
+          "harmonics 0…H with w, θ odd and u even (the half-period symmetry of the bending backbone: ½w'² of an odd-harmonic "
+          "w has even harmonics; this halves the Newton matrix exactly). All on one mesh of "
+       << n_elements << " elements, so that ROM − FE is the modelling difference only"
+       << (n_elements != n_scene ? " (the scene's mesh has " + std::to_string(n_scene) + " elements: f₁ = " +
+                                     fixed(omega_1_scene / (2 * pi), 4) + " Hz there against " +
+                                     fixed(omega_1 / (2 * pi), 4) + " Hz here, a relative difference of " +
+                                     sci(omega_1 / omega_1_scene - 1, 1) + "; `--full` uses the scene's mesh)"
+                                 : "")
+       << ". When the continuation turns into an internal-resonance tongue (its ω leaves the backbone extrapolated from "
+          "below by more than 3 %, or the first harmonic falls to half its maximum) it is restarted beyond the tongue from "
+          "the extrapolated backbone; the amplitude range jumped over is listed as a gap.\n\n";
+
+    // 3.1 ROM N = 1, 3, 5, 7 and FE, H = 10.
+    std::map<unsigned int, Backbone> rom;
+    CsvWriter curves(report.dir + "/backbone_curves.csv", {"curve", "amplitude_over_h", "frequency_hz", "segment", "branch"});
+    for (const unsigned int N : {1u, 3u, 5u, 7u})
+      {
+        const ReducedOrderModel model(make_modal_basis(beam, modes, N), 0.);
+        rom[N] = compute_rom_backbone(model, 0.5 * L, settings);
+        write_curve(curves, "rom_N" + std::to_string(N), rom[N], h);
+      }
+    std::cout << "[verify] backbones: FE (" << n_elements << " elements, H = 10) ..." << std::endl;
+    const FEConservativeSystem fe_system = make_fe_conservative_system(beam);
+    const Backbone fe                    = compute_fe_backbone(fe_system, settings);
+    write_curve(curves, "fe", fe, h);
+    const ReducedOrderModel rom1(make_modal_basis(beam, modes, 1), 0.);
+    const double c = single_mode_backbone_coefficient(omega_1, rom1.analytic_cubic_terms()[0].value,
+                                                      beam.deflection(modes.shapes[0], 0.5 * L), h);
+    auto eq4 = [&](const double r) { return omega_1 * std::sqrt(1 + c * r * r); };
+    for (unsigned int i = 0; i <= 200; ++i)
+      curves.row({"eq4", CsvWriter::cell(0.02 * i), CsvWriter::cell(eq4(0.02 * i) / (2 * pi)), "0", "backbone"});
+
+    md << "### 3.1 ROM against FE (H = 10)\n\n"
+       << "![Backbones](backbones.png)\n\n"
+       << "| model | points | largest ŵ/h on the backbone | gaps (tongues jumped): ŵ/h before → after | wall time [s] | "
+          "stopped |\n|---|---|---|---|---|---|\n";
+    for (const auto &[N, b] : rom)
+      md << "| ROM N = " << N << " | " << b.points.size() << " | " << fixed(largest_amplitude(b) / h, 2) << " | "
+         << describe_gaps(b, h) << " | " << sci(b.seconds, 2) << " | " << b.message << " |\n";
+    md << "| FE (" << fe_system.system.n_dofs() << " DoFs) | " << fe.points.size() << " | "
+       << fixed(largest_amplitude(fe) / h, 2) << " | " << describe_gaps(fe, h) << " | " << fixed(fe.seconds, 2) << " | "
+       << fe.message << " |\n\n";
+
+    // Frequency differences ROM − FE at the table amplitudes.
+    CsvWriter diff(report.dir + "/backbone_differences.csv",
+                   {"amplitude_over_h", "n_modes", "rom_hz", "fe_hz", "difference_hz", "relative_difference"});
+    md << "Frequency difference ROM − FE in Hz (relative in brackets), at the same first-harmonic amplitude; FE "
+          "frequency in the second column; “beyond branch” where a curve does not reach that amplitude or it falls in "
+          "a gap.\n\n| ŵ/h | FE [Hz] |";
+    for (const auto &[N, b] : rom)
+      md << " N = " << N << " |";
+    md << " Eq. 4 − FE |\n|---|---|---|---|---|---|---|\n";
+    std::optional<double> eq4_breaks; // first table amplitude where Eq. 4 is off the FE by more than 1 %
+    for (const double r : table_amplitudes)
+      {
+        const auto w_fe = omega_at(fe, r, h);
+        md << "| " << r << " | " << (w_fe ? fixed(*w_fe / (2 * pi), 3) : "beyond branch") << " |";
+        for (const auto &[N, b] : rom)
+          {
+            const auto w = omega_at(b, r, h);
+            if (w && w_fe)
+              {
+                const double d = (*w - *w_fe) / (2 * pi);
+                md << " " << sci(d, 2) << " (" << sci(*w / *w_fe - 1, 1) << ") |";
+                diff.row({CsvWriter::cell(r), CsvWriter::cell(N), CsvWriter::cell(*w / (2 * pi)),
+                          CsvWriter::cell(*w_fe / (2 * pi)), CsvWriter::cell(d), CsvWriter::cell(*w / *w_fe - 1)});
+              }
+            else
+              {
+                md << " beyond branch |";
+                diff.row({CsvWriter::cell(r), CsvWriter::cell(N), w ? CsvWriter::cell(*w / (2 * pi)) : "",
+                          w_fe ? CsvWriter::cell(*w_fe / (2 * pi)) : "", "", ""});
+              }
+          }
+        if (w_fe)
+          {
+            const double e = eq4(r) / *w_fe - 1;
+            md << " " << sci((eq4(r) - *w_fe) / (2 * pi), 2) << " (" << sci(e, 1) << ") |\n";
+            if (!eq4_breaks && std::abs(e) > 0.01)
+              eq4_breaks = r;
+          }
+        else
+          md << " |\n";
+      }
+
+    // Where Eq. 4 leaves the FE backbone, on the fine grid.
+    double eq4_1pct = -1, eq4_01pct = -1;
+    for (const double r : settings.landing_over_h)
+      if (const auto w_fe = omega_at(fe, r, h))
+        {
+          const double e = std::abs(eq4(r) / *w_fe - 1);
+          if (eq4_01pct < 0 && e > 1e-3)
+            eq4_01pct = r;
+          if (eq4_1pct < 0 && e > 1e-2)
+            eq4_1pct = r;
+        }
+    md << "\nEq. 4 here: (ω/ω₁)² = 1 + " << fixed(c, 4) << " (ŵ/h)², f₁ = " << fixed(omega_1 / (2 * pi), 3)
+       << " Hz. The single-mode, single-harmonic law leaves the FE backbone by more than 0.1 % from ŵ/h = "
+       << (eq4_01pct > 0 ? fixed(eq4_01pct, 2) : std::string("(never up to 4)")) << " and by more than 1 % from ŵ/h = "
+       << (eq4_1pct > 0 ? fixed(eq4_1pct, 2) : std::string("(never up to 4)"))
+       << " (checked at steps of 0.25). Below that the difference is the higher harmonics (Lindstedt: the exact "
+          "Duffing backbone lies above Eq. 4 by 3/256 ε² a⁴ ω₁) and the other symmetric modes driven by the cubic "
+          "coupling (N = 1 against N = 3 in the table); the internal resonances listed as gaps are where no "
+          "single-mode law can hold.\n\n";
+
+    // 3.2 Harmonic truncation on ROM N = 5.
+    std::cout << "[verify] backbones: harmonic truncation ..." << std::endl;
+    const ReducedOrderModel rom5(make_modal_basis(beam, modes, 5), 0.);
+    std::map<unsigned int, Backbone> by_h;
+    for (const unsigned int H : {1u, 3u, 5u, 10u})
+      {
+        BeamBackboneSettings sh = settings;
+        sh.n_harmonics          = H;
+        by_h[H]                 = compute_rom_backbone(rom5, 0.5 * L, sh);
+      }
+    CsvWriter hcsv(report.dir + "/backbone_harmonics.csv",
+                   {"n_harmonics", "amplitude_over_h", "frequency_hz", "difference_hz", "relative_difference"});
+    md << "### 3.2 Harmonic truncation (ROM N = 5)\n\n"
+       << "Frequency against the H = 10 backbone at the same amplitude, relative (blank: beyond branch).\n\n"
+       << "| ŵ/h | H = 1 | H = 3 | H = 5 |\n|---|---|---|---|\n";
+    for (const double r : settings.landing_over_h)
+      {
+        const auto w10 = omega_at(by_h[10], r, h);
+        const bool in_table = std::find(table_amplitudes.begin(), table_amplitudes.end(), r) != table_amplitudes.end();
+        if (in_table)
+          md << "| " << r << " |";
+        for (const unsigned int H : {1u, 3u, 5u, 10u})
+          {
+            const auto w = omega_at(by_h[H], r, h);
+            const bool both = w && w10;
+            hcsv.row({CsvWriter::cell(H), CsvWriter::cell(r), w ? CsvWriter::cell(*w / (2 * pi)) : "",
+                      both ? CsvWriter::cell((*w - *w10) / (2 * pi)) : "", both ? CsvWriter::cell(*w / *w10 - 1) : ""});
+            if (in_table && H != 10)
+              md << " " << (both ? sci(*w / *w10 - 1, 1) : "") << " |";
+          }
+        if (in_table)
+          md << "\n";
+      }
+    md << "\n| H | points | gaps | wall time [s] |\n|---|---|---|---|\n";
+    for (const auto &[H, b] : by_h)
+      md << "| " << H << " | " << b.points.size() << " | " << describe_gaps(b, h) << " | " << sci(b.seconds, 2) << " |\n";
+    md << "\nOne harmonic misses the higher-harmonic stiffening of the Duffing-type backbone, which grows like (ŵ/h)⁴ at "
+          "small amplitude; each added odd harmonic also admits the next internal resonance (kω ≈ ω_j needs k ≤ H), "
+          "so H = 1 shows no tongues at all and the gaps appear as H grows.\n\n"
+       << "![Harmonic truncation](backbone_harmonics.png)\n\n";
+
+    // 3.3 Cost.
+    md << "### 3.3 Cost\n\n"
+       << "ROM N = 5: " << sci(rom[5].seconds, 2) << " s, N = 7: " << sci(rom[7].seconds, 2) << " s (" << rom[7].points.size()
+       << " points); FE on " << n_elements << " elements (" << fe_system.system.n_dofs() << " DoFs, "
+       << fe.harmonics.size() << " harmonics, Newton matrix about half of " << fe_system.system.n_dofs() * fe.harmonics.size()
+       << " after the half-period symmetry): " << fixed(fe.seconds, 2) << " s for " << fe.points.size() << " points and "
+       << fe.n_newton_iterations << " Newton iterations.\n\n";
+
+    run_plot_script("plot_backbones.py", {"report", report.dir});
   }
 } // namespace beamslider
