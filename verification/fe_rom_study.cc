@@ -151,18 +151,20 @@ namespace beamslider
     o.end_time          = periods.back().t_end;
     const double period = periods[0].t_end - periods[0].t_start;
     const auto e        = envelope(periods, n, std::max<std::size_t>(1, std::lround(0.1 / period)));
-    std::vector<double> first(e.begin(), e.begin() + n / 4);
-    std::nth_element(first.begin(), first.begin() + first.size() / 2, first.end());
-    o.low_level    = first[first.size() / 2];
     o.max_envelope = *std::max_element(e.begin(), e.end());
-    o.jumped       = o.max_envelope > 2 * o.low_level;
+    // The first time the envelope reaches half its maximum; the low level is
+    // the median over the three quarters of the run before that. A crossing
+    // within the first 2 s is the build-up from rest (time constant
+    // 1/(D ω_1) ≈ 1 s), not a jump.
+    std::size_t k_half = 0;
+    while (k_half < n && e[k_half] < 0.5 * o.max_envelope)
+      ++k_half;
+    std::vector<double> before(e.begin() + k_half / 4, e.begin() + std::max<std::size_t>(k_half, k_half / 4 + 1));
+    std::nth_element(before.begin(), before.begin() + before.size() / 2, before.end());
+    o.low_level = before[before.size() / 2];
+    o.jumped    = periods[std::min(k_half, n - 1)].t_end >= 2.0 && o.max_envelope > 2 * o.low_level;
     if (o.jumped)
-      for (std::size_t k = 0; k < n; ++k)
-        if (e[k] >= 0.5 * (o.low_level + o.max_envelope))
-          {
-            o.jump_time = periods[k].t_end;
-            break;
-          }
+      o.jump_time = periods[k_half].t_end;
     std::size_t k_turn = 0;
     for (std::size_t k = 0; k < n; ++k)
       if (std::abs(periods[k].slider_x_over_L - 0.5) > std::abs(periods[k_turn].slider_x_over_L - 0.5))
@@ -176,6 +178,8 @@ namespace beamslider
         o.final_amplitude += periods[k].amplitude_over_h / tail;
       }
     o.turned = std::abs(o.final_position - 0.5) <= std::abs(o.turn_position - 0.5) - 0.02;
+    const bool toward_support =
+      std::abs(o.turn_position - 0.5) > std::abs(periods[0].slider_x_over_L - 0.5) + 0.01; // moved out first
     std::ostringstream v;
     v << std::setprecision(3);
     if (o.jumped)
@@ -183,12 +187,11 @@ namespace beamslider
     else
       v << "no jump (envelope ≤ " << o.max_envelope << " h)";
     if (o.turned)
-      v << ", turned at x_C/L = " << o.turn_position << " (t = " << o.turn_time << " s) "
-        << (o.jumped && o.turn_time >= o.jump_time - 1 ? "after the jump" : "") << " back toward the centre";
+      v << ", turned at x_C/L = " << o.turn_position << " (t = " << o.turn_time << " s) back toward the centre";
     else
       v << ", no turn-around (farthest from the centre: " << o.turn_position << ")";
     v << ", ends at " << o.final_position << " with " << o.final_amplitude << " h";
-    if (o.jumped && o.turned && o.turn_time >= o.jump_time - 1)
+    if (o.jumped && o.turned && toward_support)
       v << ": signature move";
     o.verdict = v.str();
     return o;

@@ -76,12 +76,14 @@ namespace beamslider
   // The outcome of a long adaptation run, from its period records (what the
   // signature move of DESIGN.md §1 consists of):
   //   envelope       a trailing 0.1 s mean of the per-period amplitude ŵ(L/2)/h;
-  //   low level      the median of the envelope over the first quarter of the run;
-  //   jump           the envelope's maximum exceeds twice the low level; jump
-  //                  time: end of the first 0.1 s window whose mean is halfway
-  //                  between the low level and that maximum;
+  //   jump time      the first time the envelope reaches half its maximum;
+  //   low level      the envelope's median over the last three quarters of the
+  //                  run before that time;
+  //   jump           maximum > twice the low level, and the half-maximum
+  //                  reached after 2 s (earlier: the build-up from rest);
   //   turn-around    the period mean x̄ farthest from the centre L/2, and when;
   //                  "turned" if the final position is ≥ 0.02 L closer to the centre;
+  //   signature move jump + turn-around, the turn ≥ 0.01 L farther out than the start;
   //   final          x̄ and amplitude averaged over the last 1 s (or last tenth).
   struct TraceOutcome
   {
