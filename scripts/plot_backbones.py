@@ -51,19 +51,25 @@ def command(folder):
 
 
 def report(folder):
-    rows = read(f"{folder}/backbone_curves.csv")
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     styles = {"rom_N1": ("c-", "ROM N = 1"), "rom_N3": ("g-", "ROM N = 3"), "rom_N5": ("b-", "ROM N = 5"),
               "rom_N7": ("m-", "ROM N = 7"), "fe": ("r:", "FE (full model)"), "eq4": ("k--", "seed Eq. 4")}
-    for key, (style, label) in styles.items():
-        sel = [r for r in rows if r["curve"] == key]
-        if sel:
-            draw(ax, sel, style, label, lw=2 if key == "fe" else 1.2)
-    ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("ŵ(L/2) / h (first harmonic)")
-    ax.set_title("Mode-1 backbones (H = 10); gaps: tongues jumped over")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    for ax, name, title in ((axes[0], "backbone_curves.csv", "scene as given"),
+                            (axes[1], "backbone_ideal_curves.csv", "ideal clamp")):
+        try:
+            rows = read(f"{folder}/{name}")
+        except FileNotFoundError:
+            ax.set_visible(False)
+            continue
+        for key, (style, label) in styles.items():
+            sel = [r for r in rows if r["curve"] == key]
+            if sel:
+                draw(ax, sel, style, label, lw=2 if key == "fe" else 1.2)
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylabel("ŵ(L/2) / h (first harmonic)")
+        ax.set_title(f"Mode-1 backbones, H = 10, {title}\n(grey: tongue followed before the jump)", fontsize=9)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(f"{folder}/backbones.png", dpi=120)
 

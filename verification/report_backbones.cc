@@ -239,9 +239,85 @@ namespace beamslider
     for (const auto &[H, b] : by_h)
       md << "| " << H << " | " << b.points.size() << " | " << describe_gaps(b, h) << " | " << sci(b.seconds, 2) << " |\n";
     md << "\nOne harmonic misses the higher-harmonic stiffening of the Duffing-type backbone, which grows like (ŵ/h)⁴ at "
-          "small amplitude; each added odd harmonic also admits the next internal resonance (kω ≈ ω_j needs k ≤ H), "
-          "so H = 1 shows no tongues at all and the gaps appear as H grows.\n\n"
+          "small amplitude (H = 1 against H = 10: "
+       << sci(std::abs(*omega_at(by_h[1], 1, h) / *omega_at(by_h[10], 1, h) - 1), 1)
+       << " at ŵ/h = 1); H = 3 and 5 converge fast, exponentially in H as the Fourier coefficients of the motion decay. "
+          "Each added odd harmonic also admits further internal resonances (kω ≈ ω_j needs k ≤ H), so the tongues, "
+          "where there are any, appear only as H grows.\n\n"
        << "![Harmonic truncation](backbone_harmonics.png)\n\n";
+
+    // 3.4 The ideal clamp: the DESIGN's single-mode law and the 3:1 interaction.
+    std::cout << "[verify] backbones: ideal clamp ..." << std::endl;
+    {
+      Scene ideal               = scene;
+      ideal.supports.ideal_clamp = true;
+      const FEBeam ibeam(ideal, n_elements);
+      const FEModes imodes = compute_bending_modes(ibeam, 7);
+      const double iw1     = imodes.omega[0];
+      const ReducedOrderModel irom1(make_modal_basis(ibeam, imodes, 1), 0.);
+      const double ic = single_mode_backbone_coefficient(iw1, irom1.analytic_cubic_terms()[0].value,
+                                                         ibeam.deflection(imodes.shapes[0], 0.5 * L), h);
+      CsvWriter icurves(report.dir + "/backbone_ideal_curves.csv",
+                        {"curve", "amplitude_over_h", "frequency_hz", "segment", "branch"});
+      std::map<std::string, Backbone> ib;
+      for (const unsigned int N : {5u, 7u})
+        {
+          const ReducedOrderModel model(make_modal_basis(ibeam, imodes, N), 0.);
+          ib["ROM N = " + std::to_string(N)] = compute_rom_backbone(model, 0.5 * L, settings);
+          write_curve(icurves, "rom_N" + std::to_string(N), ib["ROM N = " + std::to_string(N)], h);
+        }
+      const FEConservativeSystem ife = make_fe_conservative_system(ibeam);
+      ib["FE"]                       = compute_fe_backbone(ife, settings);
+      write_curve(icurves, "fe", ib["FE"], h);
+      for (unsigned int i = 0; i <= 200; ++i)
+        icurves.row({"eq4", CsvWriter::cell(0.02 * i),
+                     CsvWriter::cell(iw1 * std::sqrt(1 + ic * 0.0004 * i * i) / (2 * pi)), "0", "backbone"});
+
+      md << "### 3.4 Ideal clamp: single-mode law and the 3:1 interaction\n\n"
+         << "The same beam with ideal clamps (k_r, k_t → ∞; scene `mueller2023-ideal`), where DESIGN §4 quotes "
+            "(ω/ω₁)² = 1 + 0.5395 (ŵ/h)²: here c = "
+         << fixed(ic, 4) << " on the FE modes of this mesh, f₁ = " << fixed(iw1 / (2 * pi), 3)
+         << " Hz. The stiffer membrane brings the internal resonances into the range ŵ/h ≤ 4. Right panel of the chart.\n\n"
+         << "| model | ŵ/h before → after the gap (f [Hz]) | ω/ω₁ at the gap | 3 f at the gap / f₃ (linear) | ω/ω₁ at ŵ/h = 2.5 | "
+            "at 4 | wall time [s] |\n|---|---|---|---|---|---|---|\n";
+      for (const auto &[name, b] : ib)
+        {
+          const auto w25 = omega_at(b, 2.5, h), w4 = omega_at(b, 4, h);
+          md << "| " << name << " | " << describe_gaps(b, h) << " | "
+             << (b.gaps.empty() ? std::string("") : fixed(b.gaps.front().last_omega / iw1, 3)) << " | "
+             << (b.gaps.empty() ? std::string("") : fixed(3 * b.gaps.front().last_omega / imodes.omega[2], 3)) << " | "
+             << (w25 ? fixed(*w25 / iw1, 4) : "beyond branch") << " | " << (w4 ? fixed(*w4 / iw1, 4) : "beyond branch")
+             << " | " << sci(b.seconds, 2) << " |\n";
+        }
+      const auto w25 = omega_at(ib["FE"], 2.5, h);
+      md << "\nEq. 4 at ŵ/h = 2.5: ω/ω₁ = " << fixed(std::sqrt(1 + 6.25 * ic), 4) << " (the DESIGN's ×2.09)"
+         << (w25 ? ", FE " + fixed(*w25 / iw1, 4) : std::string("")) << ". ";
+      if (!ib["FE"].gaps.empty())
+        {
+          const BackboneGap &g = ib["FE"].gaps.front();
+          md << "The interaction region: the FE backbone turns into a tongue after ŵ/h = " << fixed(g.last_amplitude / h, 3)
+             << " at " << fixed(g.last_omega / (2 * pi), 1) << " Hz (ω ≈ " << fixed(g.last_omega / iw1, 2)
+             << " ω₁), where three times the frequency meets the third mode (the second symmetric one) of the beam "
+                "stretched by the vibration (its linear f₃ is "
+             << fixed(imodes.omega[2] / (2 * pi), 0)
+             << " Hz, so the membrane has raised it by the factor in the table's fourth column); along the tongue the "
+                "first harmonic shrinks while the third harmonic of mode 3 grows. The backbone resumes at ŵ/h = "
+             << fixed(g.restart_amplitude / h, 3) << " (" << fixed(g.restart_omega / (2 * pi), 1)
+             << " Hz), found from the extrapolated backbone (" << sci(g.restart_omega / g.predicted_omega - 1, 1)
+             << " off the prediction) and followed from there"
+             << (ib["FE"].gaps.size() == 1 && ib["FE"].completed ? " to ŵ/h = 4 without another tongue"
+                                                                 : " (further gaps and the end: see the table)")
+             << ". The gap is an upper "
+                "bound of the interaction region: the continuation restarts at the first of ŵ/h × (1.02, 1.05, 1.1, …) "
+                "that converges to the backbone. The seed reports agreement of Eq. 4 and its NMA up to ŵ/h ≈ 2.6 and a "
+                "loop near 4 on its System 1; on this beam the single-mode law holds to within "
+             << (w25 ? sci(std::abs(std::sqrt(1 + 6.25 * ic) / (*w25 / iw1) - 1), 1) : std::string("?"))
+             << " at ŵ/h = 2.5, the 3:1 interaction at ≈ 2.7 interrupts the backbone, and no loop appears up to 4.";
+        }
+      else
+        md << "No internal-resonance tongue up to ŵ/h = 4 on the FE backbone.";
+      md << "\n\n";
+    }
 
     // 3.3 Cost.
     md << "### 3.3 Cost\n\n"
