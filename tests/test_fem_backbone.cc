@@ -95,20 +95,24 @@ TEST(FEBackbone, SmallAmplitudeGivesTheLinearFrequencyAndEq4)
 
 TEST(FEBackbone, AgreesWithTheFiveModeRomAtOneThickness)
 {
-  // Both models on the same 16-element mesh and H = 10, so the difference
-  // is the modelling difference: the modes above N that the ROM drops, and
-  // the axial inertia it condenses out. Measured ROM/FE − 1 at ŵ/h = 1:
+  // Both models on the same 16-element mesh and H = 10, so the mode shapes
+  // are the same. Measured ROM/FE − 1 at ŵ/h = 1:
   //   mueller2023 (elastic supports, c = 0.18): N = 3: +1.6e-4, N = 5: −4.7e-6
   //   mueller2023-ideal (ideal clamp, c = 0.54): N = 3: +1.4e-3, N = 5: +5.7e-5
-  // The modal truncation dominates: it falls by 24× from N = 3 to N = 5 on
-  // the ideal clamp, and it is positive (a ROM lacks the higher symmetric
-  // modes through which the beam relaxes under the cubic coupling, so it is
-  // stiffer). The axial inertia pushes the other way (the membrane force is
-  // driven at 2ω, far below the first axial mode near 18.7 kHz, and slightly
-  // amplified): on the elastic scene, where truncation is 9× smaller, the
-  // two nearly cancel. (The FE transient test found 6.5e-5 from the period of
-  // a free vibration, same order.) Tolerance 1e-4: the ideal-clamp value with
-  // a margin of 1.8; and N = 5 must beat N = 3 by a factor 5 at least.
+  // Three parts: (i) modal truncation, positive (the ROM lacks the higher
+  // symmetric modes through which the beam relaxes under the cubic coupling,
+  // so it is stiffer), falling 24× from N = 3 to N = 5 on the ideal clamp;
+  // (ii) the FE's membrane discretisation, negative here: with u quadratic
+  // and w cubic per element the strain u' + ½w'² cannot be made uniform as
+  // the ROM's exact membrane force is, so the coarse FE model is stiffer (the
+  // report's --full table: FE on 16 against 32 elements +4.4e-5 at ŵ/h = 1
+  // on the elastic scene); (iii) the axial inertia the ROM condenses out
+  // (membrane force driven at 2ω ≈ 560–700 Hz, far below the first axial mode
+  // near 18.7 kHz on the ideal clamp), smaller still. On the elastic scene
+  // (i) and (ii) nearly cancel. (The FE transient test found 6.5e-5 from the
+  // period of a free vibration, the same order.) Tolerance 1e-4: the
+  // ideal-clamp value with a margin of 1.8; and N = 5 must beat N = 3 by a
+  // factor 5 at least, the truncation part being the one that must converge.
   for (const std::string &file : {default_scene, ideal_scene})
     {
       const BeamSetup s(file, 16);
