@@ -185,6 +185,20 @@ namespace beamslider
           md << " |\n";
       }
 
+    // What the ROM−FE difference is made of, in numbers of this run.
+    {
+      const auto w5 = omega_at(rom[5], 4, h), w7 = omega_at(rom[7], 4, h), wf = omega_at(fe, 4, h);
+      const auto w5_1 = omega_at(rom[5], 1, h), wf_1 = omega_at(fe, 1, h);
+      if (w5 && w7 && wf && w5_1 && wf_1)
+        md << "\nAt ŵ/h = 4 the ROMs with N = 5 and 7 differ by " << sci(*w7 / *w5 - 1, 1) << " from each other and by "
+           << sci(*w5 / *wf - 1, 1) << " (N = 5) from the FE backbone (" << sci(*w5_1 / *wf_1 - 1, 1)
+           << " at ŵ/h = 1). What remains is partly the modes above N (the coupling of mode 1 to the higher symmetric "
+              "modes decays slowly), partly what the ROM leaves out of the FE model: the axial inertia, which softens "
+              "the FE backbone (tests/test_fem_backbone.cc, axial mass scaled by 1e-6 on 16 elements: 3e-5 of the "
+              "frequency at ŵ/h = 1, 4e-4 at 4), and the FE's membrane discretisation (`--full`: 16 against 32 "
+              "elements).\n";
+    }
+
     // Where Eq. 4 leaves the FE backbone, on the fine grid.
     double eq4_1pct = -1, eq4_01pct = -1;
     for (const double r : settings.landing_over_h)
