@@ -32,7 +32,17 @@
 // Springer 2019), which the seed used for its NMA (H = 10, N = 7).
 //
 // Cost: the Newton matrix is dense of size n|𝓗|+1; for n = 300, H = 10 (full
-// set) that is 3301² and one LU is seconds: use odd harmonics or fewer.
+// set) that is 3301² and one LU is seconds: use odd harmonics, the per-DoF
+// half-period symmetry (HarmonicBalanceSettings::even_harmonic_dofs), or fewer.
+//
+// Internal resonances: where kω of the backbone meets another mode's
+// frequency (k ≤ H), the branch turns into a "tongue" along which that mode's
+// k-th harmonic grows. The continuation detects this (the first harmonic
+// falls, or ω leaves the backbone extrapolated from below) and either stops
+// with a message or restarts beyond the tongue from the extrapolated backbone
+// (BackboneSettings::restart_past_tongues); Backbone::gaps records what was
+// jumped over. On the ideal-clamp mueller2023 beam (H = 10) the 3:1
+// interaction with mode 3 lies at ŵ/h ≈ 2.70–2.78, ω ≈ 2.2 ω₁.
 //
 // Also here: the single-mode, single-harmonic backbone (seed Eq. 4) and its
 // slider version (seed Eq. 5).
