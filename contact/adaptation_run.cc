@@ -22,6 +22,8 @@ namespace beamslider
           return "contact_solver_failure";
         case RunStatus::non_finite_state:
           return "non_finite_state";
+        case RunStatus::beam_solver_failure:
+          return "beam_solver_failure";
       }
     return "unknown";
   }
@@ -196,6 +198,16 @@ namespace beamslider
           {
             result.status  = RunStatus::non_finite_state;
             result.message = e.what();
+          }
+        catch (const std::runtime_error &e)
+          {
+            // The beam's own solver (e.g. the FE model's Newton iteration on
+            // the von Kármán forces) gave up: the state before the step stays.
+            std::ostringstream m;
+            m << "the beam model failed in the step from t = " << t_B << " s (x_C/L = " << stepper_.state().s[0] / L
+              << "): " << e.what();
+            result.status  = RunStatus::beam_solver_failure;
+            result.message = m.str();
           }
         if (!report)
           break;

@@ -70,7 +70,8 @@ namespace beamslider
     completed,
     slider_at_support,
     contact_solver_failure,
-    non_finite_state
+    non_finite_state,
+    beam_solver_failure // BeamSystem::free_velocity threw a std::runtime_error
   };
   std::string to_string(RunStatus status);
 

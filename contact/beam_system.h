@@ -46,6 +46,9 @@ namespace beamslider
     // End velocity of one step of size dt without contact impulses, given the
     // midpoint time t_M, midpoint coordinates q_M and start velocity u_B.
     // May factorise/update the iteration matrix S for solve_iteration_matrix.
+    // A model whose own solver fails (an implicit model's Newton iteration)
+    // throws a std::runtime_error saying where and why; AdaptationRun stops
+    // the run cleanly with it (RunStatus::beam_solver_failure).
     virtual void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
                                Eigen::VectorXd &u_free) = 0;
 

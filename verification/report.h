@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace beamslider
 {
@@ -15,6 +16,10 @@ namespace beamslider
   {
     std::string dir;          // output folder (report.md, CSV, PNG)
     std::ostringstream text;  // Markdown
+    // Where the scene came from, for sections that re-read it with more
+    // overrides (the contact cases).
+    std::string scene_file;
+    std::vector<std::string> overrides;
   };
 
   // Numbers in report text: scientific (1.23e-04) or fixed (0.123) notation.

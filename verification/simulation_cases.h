@@ -1,0 +1,90 @@
+// The published adaptation cases and the seed's ablations, runnable by name
+// (`beamslider simulate mueller2023 --case signature-move`). A case is a list
+// of scene overrides in the `--set` syntax, applied by read_scene before the
+// user's own --set, so validate_scene checks the combination and the user can
+// still change anything.
+//
+// The six mueller2023 cases are those of DESIGN.md §2 (Müller, Beck & Krack,
+// MSSP 2023; start x_C/L = 0.3 unless noted). The five ablations are applied
+// to signature-move; what the seed reports for them (on its System 1, seed
+// §3.3 and §4.1) is kept with each case as `published`, to be compared with
+// what our model does, never to tune it.
+#pragma once
+
+#include "contact/adaptation_run.h"
+#include "meshes/scene.h"
+#include "verification/commands.h"
+#include "verification/fe_rom_study.h"
+
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  // What the published behaviour says about features a verdict can measure:
+  // 1 = reported, 0 = reported absent, -1 = not stated.
+  struct ExpectedFeatures
+  {
+    int toward_clamp   = -1; // the slider first moves away from the centre
+    int jump           = -1; // the vibration jumps to a higher level
+    int turn           = -1; // the slider turns back toward the centre
+    int recurrent      = -1; // more than one upward jump
+    int crosses_centre = -1; // the slider passes x = L/2
+  };
+
+  struct SimulationCase
+  {
+    std::string name;
+    std::string description;            // what is changed, in words
+    std::vector<std::string> overrides; // "Section/Name=value"
+    double end_time = 60.;              // [s]
+    std::string published;              // the behaviour the literature reports
+    ExpectedFeatures expected;
+  };
+
+  // All named cases, mueller2023 cases first, then the ablations.
+  const std::vector<SimulationCase> &simulation_cases();
+
+  // The case of that name; InputError listing the valid names otherwise.
+  const SimulationCase &find_case(const std::string &name);
+
+  // The scene file with the case's overrides, then the user's; the end time
+  // is the case's (the user's --set "Time stepping/End time" wins).
+  Scene read_case_scene(const std::string &scene_file, const SimulationCase &c,
+                        const std::vector<std::string> &user_overrides);
+
+  // What a run did, from its period records: trace_outcome (fe_rom_study.h:
+  // turn-around, final state; its jump made stricter: sudden, a factor 2
+  // within 1 s) plus the initial direction of the slider
+  // (toward the nearer clamp or toward the centre, over the first 2 s or up to
+  // the jump) and the number of times the envelope crosses its mid level
+  // upward (recurrent jumps: a relaxation oscillation), as one line.
+  struct CaseVerdict
+  {
+    TraceOutcome outcome;
+    std::string initial_direction; // "toward the clamp", "toward the centre", "stays"
+    bool crosses_centre = false;   // x_C/L passed 0.5 during the run
+    double initial_drift_over_L = 0; // change of x_C/L over that window [-]
+    unsigned int n_upward_jumps = 0; // envelope crossings of its mid level, upward
+    std::string line;
+  };
+  CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result);
+
+  // The features of a verdict that contradict the expected ones, in words
+  // ("" when none do, or nothing is stated).
+  std::string disagreements(const CaseVerdict &verdict, const ExpectedFeatures &expected);
+
+  // One free-slider simulation as `beamslider simulate` runs it (files in
+  // verification/command_simulate.cc's header), returning what happened.
+  struct SimulationOutcome
+  {
+    Scene scene;
+    ModelSetting setting;
+    std::string why;   // --model auto's reasoning
+    std::string dir;   // output folder
+    RunResult result;
+    CaseVerdict verdict;
+    double wall_seconds = 0;
+  };
+  SimulationOutcome run_simulation(const CommonOptions &common, const SimulateOptions &options, bool verbose = true);
+} // namespace beamslider
