@@ -62,6 +62,7 @@ namespace beamslider
     ModelSetting &setting = outcome.setting;
     setting.family    = options.model == "fe" ? "fe" : "rom";
     setting.n_modes   = scene.discretisation.n_modes;
+    setting.n_elements = scene.discretisation.n_elements;
     setting.time_step = scene.time_stepping.time_step;
     std::string &why = outcome.why;
     if (options.model == "auto")
@@ -143,7 +144,8 @@ namespace beamslider
         const std::string differs = disagreements(outcome.verdict, the_case->expected);
         summary << "- Against the published behaviour: " << (differs.empty() ? "agrees on every stated feature" : "differs: " + differs) << ".\n";
       }
-    summary << "- Model: " << setting.label() << (why.empty() ? "" : " (chosen by --model auto: " + why + ")") << ".\n"
+    summary << "- Model: " << setting.label() << ".\n"
+            << (why.empty() ? "" : "- Chosen by --model auto:\n\n```\n" + why + "\n```\n\n")
             << "- Simulated " << result.t_end << " s of " << end_time << " s in " << wall << " s wall ("
             << (wall > 0 ? result.n_steps / wall : 0.) << " steps/s).\n"
             << "- Status: " << to_string(result.status) << (result.message.empty() ? "" : ": " + result.message) << ".\n"

@@ -184,7 +184,8 @@ namespace beamslider
       }
 
     // Recurrent jumps: upward crossings of the envelope's mid level between
-    // the low level and the maximum, with ±10 % hysteresis.
+    // the low level and the maximum, with ±10 % hysteresis; only in a run
+    // that has a sudden jump at all (a noisy low level is no recurrence).
     if (v.outcome.valid)
       {
         const double period = periods[0].t_end - periods[0].t_start;
@@ -198,7 +199,7 @@ namespace beamslider
             if (i >= w)
               sum -= periods[i - w].amplitude_over_h;
             const double e = sum / std::min(i + 1, w);
-            if (!high && e > 1.1 * mid && v.outcome.max_envelope > 2 * v.outcome.low_level)
+            if (!high && e > 1.1 * mid && v.outcome.jumped)
               {
                 high = true;
                 ++v.n_upward_jumps;
