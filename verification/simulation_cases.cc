@@ -150,10 +150,14 @@ namespace beamslider
     const double outward   = std::abs(x1 - 0.5) - std::abs(x0 - 0.5); // > 0: toward the nearer clamp
     v.initial_direction    = outward > 0.005 ? "toward the clamp" : outward < -0.005 ? "toward the centre" : "stays";
 
-    // The jump: trace_outcome's "half the maximum reached" also fires on a
-    // slow steady growth, so a jump is asked to be sudden as well: the first
-    // time after 2 s that the 0.1 s envelope reaches half its maximum AND
-    // more than twice its own minimum over the preceding second.
+    // The jump. trace_outcome's "half the maximum reached" also fires on a
+    // slow steady growth and on short bursts of the rattling slider, so a
+    // jump is asked to be sudden and to last: the 0.1 s envelope e rises
+    // above the mid level between the low level and the maximum, to more than
+    // twice its own minimum over the preceding second, and stays above 0.9 of
+    // the mid level for the next second. Recurrent jumps are the further
+    // upward crossings of that kind, after e has fallen below 0.9 of the mid
+    // level again (the ±10 % hysteresis keeps noise from counting twice).
     if (v.outcome.valid)
       {
         const double period = periods[0].t_end - periods[0].t_start;
@@ -168,43 +172,33 @@ namespace beamslider
               sum -= periods[i - w].amplitude_over_h;
             e[i] = sum / std::min(i + 1, w);
           }
+        const double mid = 0.5 * (v.outcome.low_level + v.outcome.max_envelope);
+        auto sudden      = [&](const std::size_t i) {
+          const double before = *std::min_element(e.begin() + (i > s ? i - s : 0), e.begin() + i + 1);
+          return e[i] > 2. * before;
+        };
+        auto lasts = [&](const std::size_t i) {
+          for (std::size_t j = i; j < std::min(e.size(), i + s); ++j)
+            if (e[j] < 0.9 * mid)
+              return false;
+          return true;
+        };
         v.outcome.jumped    = false;
         v.outcome.jump_time = -1;
-        for (std::size_t i = 0; i < e.size() && !v.outcome.jumped; ++i)
-          {
-            if (periods[i].t_end < 2. || e[i] < 0.5 * v.outcome.max_envelope)
-              continue;
-            const double before = *std::min_element(e.begin() + (i > s ? i - s : 0), e.begin() + i + 1);
-            if (e[i] > 2. * before)
-              {
-                v.outcome.jumped    = true;
-                v.outcome.jump_time = periods[i].t_end;
-              }
-          }
-      }
-
-    // Recurrent jumps: upward crossings of the envelope's mid level between
-    // the low level and the maximum, with ±10 % hysteresis; only in a run
-    // that has a sudden jump at all (a noisy low level is no recurrence).
-    if (v.outcome.valid)
-      {
-        const double period = periods[0].t_end - periods[0].t_start;
-        const std::size_t w = std::max<std::size_t>(1, std::lround(0.1 / period));
-        const double mid    = 0.5 * (v.outcome.low_level + v.outcome.max_envelope);
         bool high           = false;
-        double sum          = 0;
-        for (std::size_t i = 0; i < periods.size(); ++i)
+        for (std::size_t i = 0; i < e.size(); ++i)
           {
-            sum += periods[i].amplitude_over_h;
-            if (i >= w)
-              sum -= periods[i - w].amplitude_over_h;
-            const double e = sum / std::min(i + 1, w);
-            if (!high && e > 1.1 * mid && v.outcome.jumped)
+            if (!high && periods[i].t_end >= 2. && e[i] > mid && sudden(i) && lasts(i))
               {
                 high = true;
                 ++v.n_upward_jumps;
+                if (!v.outcome.jumped)
+                  {
+                    v.outcome.jumped    = true;
+                    v.outcome.jump_time = periods[i].t_end;
+                  }
               }
-            else if (high && e < 0.9 * mid)
+            else if (high && e[i] < 0.9 * mid)
               high = false;
           }
       }

@@ -55,7 +55,7 @@ namespace beamslider
 
   // What a run did, from its period records: trace_outcome (fe_rom_study.h:
   // turn-around, final state; its jump made stricter: sudden, a factor 2
-  // within 1 s) plus the initial direction of the slider
+  // within 1 s, and lasting at least 1 s) plus the initial direction of the slider
   // (toward the nearer clamp or toward the centre, over the first 2 s or up to
   // the jump) and the number of times the envelope crosses its mid level
   // upward (recurrent jumps: a relaxation oscillation), as one line.
@@ -65,7 +65,7 @@ namespace beamslider
     std::string initial_direction; // "toward the clamp", "toward the centre", "stays"
     bool crosses_centre = false;   // x_C/L passed 0.5 during the run
     double initial_drift_over_L = 0; // change of x_C/L over that window [-]
-    unsigned int n_upward_jumps = 0; // envelope crossings of its mid level, upward
+    unsigned int n_upward_jumps = 0; // sudden, lasting rises of the envelope (the first is the jump)
     std::string line;
   };
   CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result);
