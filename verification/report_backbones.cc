@@ -293,7 +293,7 @@ namespace beamslider
         icurves.row({"eq4", CsvWriter::cell(0.02 * i),
                      CsvWriter::cell(iw1 * std::sqrt(1 + ic * 0.0004 * i * i) / (2 * pi)), "0", "backbone"});
 
-      md << "### 3.4 Ideal clamp: single-mode law and the 3:1 interaction\n\n"
+      md << "### 3.3 Ideal clamp: single-mode law and the 3:1 interaction\n\n"
          << "The same beam with ideal clamps (k_r, k_t → ∞; scene `mueller2023-ideal`), where DESIGN §4 quotes "
             "(ω/ω₁)² = 1 + 0.5395 (ŵ/h)²: here c = "
          << fixed(ic, 4) << " on the FE modes of a mesh of " << n_ideal << " elements (ROM and FE), f₁ = "
@@ -341,7 +341,7 @@ namespace beamslider
     }
 
     // 3.3 Cost.
-    md << "### 3.3 Cost\n\n"
+    md << "### 3.4 Cost\n\n"
        << "ROM N = 5: " << sci(rom[5].seconds, 2) << " s, N = 7: " << sci(rom[7].seconds, 2) << " s (" << rom[7].points.size()
        << " points); FE on " << n_elements << " elements (" << fe_system.system.n_dofs() << " DoFs, "
        << fe.harmonics.size() << " harmonics, Newton matrix about half of " << fe_system.system.n_dofs() * fe.harmonics.size()
