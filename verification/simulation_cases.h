@@ -54,8 +54,8 @@ namespace beamslider
                         const std::vector<std::string> &user_overrides);
 
   // What a run did, from its period records: trace_outcome (fe_rom_study.h:
-  // turn-around, final state; its jump made stricter: sudden, a factor 2
-  // within 1 s, and lasting at least 1 s) plus the initial direction of the slider
+  // turn-around, final state; its jump made stricter: sudden (×2 within
+  // 1 s), large (a fifth of the largest envelope) and lasting (1 s)) plus the initial direction of the slider
   // (toward the nearer clamp or toward the centre, over the first 2 s or up to
   // the jump) and the number of times the envelope crosses its mid level
   // upward (recurrent jumps: a relaxation oscillation), as one line.
