@@ -1,7 +1,11 @@
 // Free-slider and prescribed-position runs, see adaptation_run.h.
 #include "contact/adaptation_run.h"
+#include "contact/interruption.h"
+#include "contact/output_file.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -24,6 +28,10 @@ namespace beamslider
           return "non_finite_state";
         case RunStatus::beam_solver_failure:
           return "beam_solver_failure";
+        case RunStatus::unphysical_state:
+          return "unphysical_state";
+        case RunStatus::interrupted:
+          return "interrupted";
       }
     return "unknown";
   }
@@ -178,6 +186,15 @@ namespace beamslider
 
     for (unsigned long k = 0; k < n_steps; ++k)
       {
+        if (interruption_requested())
+          {
+            std::ostringstream m;
+            m << "interrupted by signal " << interruption_signal() << " at t = " << stepper_.state().t
+              << " s; every step up to then is complete";
+            result.status  = RunStatus::interrupted;
+            result.message = m.str();
+            break;
+          }
         const double t_B = stepper_.state().t;
         const StepReport *report = nullptr;
         try
@@ -197,6 +214,11 @@ namespace beamslider
         catch (const NonFiniteState &e)
           {
             result.status  = RunStatus::non_finite_state;
+            result.message = e.what();
+          }
+        catch (const UnphysicalState &e)
+          {
+            result.status  = RunStatus::unphysical_state;
             result.message = e.what();
           }
         catch (const std::runtime_error &e)
@@ -271,15 +293,44 @@ namespace beamslider
     return result;
   }
 
-  TraceCsvWriter::TraceCsvWriter(std::ostream &out, const unsigned int flush_every)
+  namespace
+  {
+    // Throws OutputError if the stream has failed; errno (cleared before the
+    // writes that this check follows) holds the system's reason.
+    void check_stream(const std::ostream &out, const std::string &name)
+    {
+      if (!out)
+        throw OutputError("result file '" + name + "' could not be written: " +
+                          (errno ? std::strerror(errno) : "the stream reported an error"));
+    }
+
+    void flush_checked(std::ostream &out, const std::string &name)
+    {
+      errno = 0;
+      out.flush();
+      check_stream(out, name);
+    }
+  } // namespace
+
+  TraceCsvWriter::TraceCsvWriter(std::ostream &out, const unsigned int flush_every, std::string name,
+                                 const bool with_header)
     : out_(out)
     , flush_every_(std::max(1u, flush_every))
+    , name_(std::move(name))
   {
-    out_ << header() << '\n';
-    out_.flush();
+    if (with_header)
+      out_ << header() << '\n';
+    flush_checked(out_, name_);
   }
 
+  // A destructor must not throw; whoever needs to know calls flush() first.
   TraceCsvWriter::~TraceCsvWriter() { out_.flush(); }
+
+  void TraceCsvWriter::flush()
+  {
+    flush_checked(out_, name_);
+    pending_ = 0;
+  }
 
   const char *TraceCsvWriter::header()
   {
@@ -288,20 +339,21 @@ namespace beamslider
 
   void TraceCsvWriter::write(const TraceRow &r)
   {
+    errno = 0;
     out_ << std::setprecision(10) << r.t << ',' << r.slider_x_over_L << ',' << r.slider_z << ',' << r.slider_beta
          << ',' << r.w_center << ',' << r.w_probe << ',' << r.amplitude_over_h << '\n';
+    check_stream(out_, name_); // a full buffer was written out just now and failed
     if (++pending_ >= flush_every_)
-      {
-        out_.flush();
-        pending_ = 0;
-      }
+      flush();
   }
 
-  PeriodCsvWriter::PeriodCsvWriter(std::ostream &out)
+  PeriodCsvWriter::PeriodCsvWriter(std::ostream &out, std::string name, const bool with_header)
     : out_(out)
+    , name_(std::move(name))
   {
-    out_ << header() << '\n';
-    out_.flush();
+    if (with_header)
+      out_ << header() << '\n';
+    flush_checked(out_, name_);
   }
 
   const char *PeriodCsvWriter::header()
@@ -313,11 +365,12 @@ namespace beamslider
 
   void PeriodCsvWriter::write(const PeriodRecord &p)
   {
+    errno = 0;
     out_ << std::setprecision(10) << p.index << ',' << p.t_start << ',' << p.t_end << ',' << p.slider_x_over_L << ','
          << p.amplitude_over_h << ',' << p.mean_horizontal_contact_force << ',' << p.energy_start << ','
          << p.energy_end << ',' << p.work_gravity << ',' << p.work_damping << ',' << p.work_excitation << ','
          << p.work_impact << ',' << p.work_friction << ',' << p.work_base_contact << ',' << p.energy_residual << ','
          << p.max_solver_iterations << ',' << p.contact_fraction << '\n';
-    out_.flush();
+    flush_checked(out_, name_);
   }
 } // namespace beamslider

@@ -12,9 +12,10 @@
 //     friction, base-through-contacts, and the residual);
 //   - progress.
 // w is the beam's displacement relative to the moving base [m].
-// A run that meets a support, a contact-solver failure or a non-finite state
-// stops cleanly with a status and a message that says when and where; rows
-// and periods written before stay valid (writers flush regularly).
+// A run that meets a support, a contact-solver failure, a non-finite or
+// unphysical state, or an interruption (Ctrl-C, SIGTERM) stops cleanly after
+// the last complete step with a status and a message that says when and
+// where; rows and periods written before stay valid (writers flush regularly).
 #pragma once
 
 #include "contact/base_excitation.h"
@@ -71,7 +72,9 @@ namespace beamslider
     slider_at_support,
     contact_solver_failure,
     non_finite_state,
-    beam_solver_failure // BeamSystem::free_velocity threw a std::runtime_error
+    beam_solver_failure, // BeamSystem::free_velocity threw a std::runtime_error
+    unphysical_state,    // the state left the physically possible set (UnphysicalState)
+    interrupted          // SIGINT/SIGTERM arrived (interruption.h); the last step was finished
   };
   std::string to_string(RunStatus status);
 
@@ -150,29 +153,36 @@ namespace beamslider
   };
 
   // trace.csv: header, one row per call, flushes every `flush_every` rows and
-  // on destruction, so a long run never loses finished work.
+  // on destruction, so a long run never loses finished work. A failed write
+  // or flush throws OutputError naming `name` (the file) and the reason.
+  // `with_header` = false continues a file that has one (a resumed run).
   class TraceCsvWriter
   {
   public:
-    explicit TraceCsvWriter(std::ostream &out, unsigned int flush_every = 1000);
+    explicit TraceCsvWriter(std::ostream &out, unsigned int flush_every = 1000, std::string name = "trace.csv",
+                            bool with_header = true);
     ~TraceCsvWriter();
     void write(const TraceRow &row);
+    void flush();
     static const char *header();
 
   private:
     std::ostream &out_;
     unsigned int flush_every_, pending_ = 0;
+    std::string name_;
   };
 
-  // periods.csv: one row per excitation period (PeriodRecord), flushed each row.
+  // periods.csv: one row per excitation period (PeriodRecord), flushed each
+  // row; failures throw OutputError as for TraceCsvWriter.
   class PeriodCsvWriter
   {
   public:
-    explicit PeriodCsvWriter(std::ostream &out);
+    explicit PeriodCsvWriter(std::ostream &out, std::string name = "periods.csv", bool with_header = true);
     void write(const PeriodRecord &record);
     static const char *header();
 
   private:
     std::ostream &out_;
+    std::string name_;
   };
 } // namespace beamslider

@@ -139,7 +139,22 @@ namespace beamslider
       {
         const double x = geometry_.corner_x(k, s_M);
         if (!(x >= 0. && x <= L))
-          throw SliderAtSupport(t_B, state_.s[0], x, L);
+          {
+            // A physical arrival overshoots by |v_x| Δt/2, micrometres; a
+            // jump past the support by more than the window itself is a
+            // diverging state, not a slider that reached the end.
+            const double overshoot = x < 0. ? -x : x - L;
+            if (!(overshoot <= slider_.window_width))
+              {
+                std::ostringstream msg;
+                msg << "unphysical state at t = " << t_B << " s: a window corner jumped to x = " << x
+                    << " m, past the support by more than the window width B = " << slider_.window_width
+                    << " m within half a step (x_C = " << state_.s[0] << " m, v_x = " << state_.v[0]
+                    << " m/s): the integration diverges; the step is not accepted";
+                throw UnphysicalState(msg.str());
+              }
+            throw SliderAtSupport(t_B, state_.s[0], x, L);
+          }
       }
     q_M_ = state_.q + 0.5 * dt_ * state_.u;
 
@@ -147,6 +162,7 @@ namespace beamslider
     beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
     Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
     const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
+    const double clearance = slider_.window_height - beam_.thickness();
 
     // Active set and force directions at the midpoint.
     std::array<unsigned int, n_slider_corners> active{};
@@ -157,6 +173,16 @@ namespace beamslider
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
         geometry_.evaluate(k, t_M, beam_, base_, q_M_, s_M, corner_);
+        if (corner_.gap < -clearance)
+          {
+            std::ostringstream msg;
+            msg << "unphysical state at t = " << t_B << " s: the " << corner_name(k)
+                << " corner penetrates the beam by " << -corner_.gap << " m, more than the whole clearance R - h = "
+                << clearance << " m (the slider would be through the beam; x_C = " << state_.s[0]
+                << " m): the integration diverges or the time step cannot resolve the contact; the step is not "
+                   "accepted";
+            throw UnphysicalState(msg.str());
+          }
         if (!(corner_.gap <= 0.))
           {
             if (!std::isfinite(corner_.gap))

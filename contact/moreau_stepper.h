@@ -67,7 +67,8 @@ namespace beamslider
     unsigned int iterations;
   };
 
-  // A slider corner reached a support (x ∉ [0, L]).
+  // A slider corner reached a support (x ∉ [0, L]) by a plausible move (an
+  // overshoot of less than the window width in half a step).
   class SliderAtSupport : public std::runtime_error
   {
   public:
@@ -80,6 +81,18 @@ namespace beamslider
 
   // NaN or Inf in the state after a step.
   class NonFiniteState : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // The state left the physically possible set: a corner penetrates the beam
+  // deeper than the whole clearance R − h (the slider would be through the
+  // beam), or the slider jumped past a support by more than its own window
+  // width within half a step. Both mean a diverging integration (parameters
+  // outside the model's range, or a time step that cannot resolve the
+  // contact), never physics; the step is not accepted.
+  class UnphysicalState : public std::runtime_error
   {
   public:
     using std::runtime_error::runtime_error;
@@ -121,8 +134,8 @@ namespace beamslider
     void set_prescribed_horizontal_position(bool prescribed) { prescribed_x_ = prescribed; }
     bool prescribed_horizontal_position() const { return prescribed_x_; }
 
-    // One step of size time_step(). Throws SliderAtSupport, ContactSolverFailure
-    // or NonFiniteState; on a throw the state is unchanged.
+    // One step of size time_step(). Throws SliderAtSupport, ContactSolverFailure,
+    // NonFiniteState or UnphysicalState; on a throw the state is unchanged.
     const StepReport &step();
 
     double time_step() const { return dt_; }

@@ -1,6 +1,8 @@
 // ParaView animation of a beam–slider run, see vtk_animation.h.
 #include "fem/vtk_animation.h"
 
+#include "contact/output_file.h"
+
 #include "fem/fe_beam.h"
 #include "fem/fe_transient.h"
 
@@ -334,15 +336,13 @@ namespace beamslider
     if (times_.size() % 25 == 0)
       {
         write_pvd();
-        csv_.flush();
+        flush_csv();
       }
   }
 
   void VtkAnimationWriter::write_pvd() const
   {
-    std::ofstream out(pvd_file());
-    if (!out)
-      throw std::runtime_error("animation: cannot write '" + pvd_file() + "'");
+    std::ostringstream out;
     out << "<?xml version=\"1.0\"?>\n"
         << "<!-- beam-slider animation; magnification " << magnification_
         << " (transverse displacements and slopes drawn m times; sizes true) -->\n"
@@ -358,11 +358,20 @@ namespace beamslider
             << frame_file("contacts", i, ".vtp") << "\"/>\n";
       }
     out << "  </Collection>\n</VTKFile>\n";
+    // Atomically: a viewer (or a stopped run) never sees half a collection.
+    write_file_atomically(pvd_file(), out.str());
   }
 
   void VtkAnimationWriter::finish()
   {
     write_pvd();
+    flush_csv();
+  }
+
+  void VtkAnimationWriter::flush_csv()
+  {
     csv_.flush();
+    if (!csv_)
+      throw OutputError("result file '" + directory_ + "/frames.csv' could not be written");
   }
 } // namespace beamslider

@@ -108,5 +108,6 @@ namespace beamslider
     double magnification_;
     std::vector<double> times_;
     std::ofstream csv_;
+    void flush_csv(); // throws OutputError if frames.csv could not be written
   };
 } // namespace beamslider

@@ -123,12 +123,22 @@ namespace beamslider
     double window_height() const { return slider.window_height_ratio * beam.thickness; } // R [m]
   };
 
+  // The longest run a scene may ask for, in time steps (End time / Time step):
+  // beyond it the step count would not be exact in a double, and a typing slip
+  // (End time = 1e20) would run without bound.
+  constexpr double max_time_steps = 1e11;
+
   // Reads a scene file, applies overrides of the form "Section/Name=value"
   // (nested sections separated by '/'), validates, and returns the scene.
-  // Throws InputError for a missing file, an unknown parameter, a value outside
-  // its pattern, or an inconsistent combination (see validate_scene).
+  // Throws InputError for a missing file, a folder, FIFO or other non-regular
+  // file, an empty file, a parameter set twice (in the file or by two
+  // overrides), an unknown parameter, a value outside its pattern, or an
+  // inconsistent combination (see validate_scene).
   Scene read_scene(const std::string &filename,
                    const std::vector<std::string> &overrides = {});
+
+  // Refuses two overrides of the same parameter (InputError).
+  void check_overrides_unique(const std::vector<std::string> &overrides);
 
   // Checks the conditions that a single-parameter pattern cannot express
   // (R > h, slider inside the beam, ...). Throws InputError.

@@ -8,7 +8,10 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace beamslider
@@ -36,11 +39,11 @@ namespace beamslider
       const Scene d;
 
       prm.enter_subsection("Beam");
-      prm.declare_entry("Length", num(d.beam.length), Double(0), "L, distance between the supports [m]");
+      prm.declare_entry("Length", num(d.beam.length), Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
       prm.declare_entry("Width", num(d.beam.width), Double(0), "b, beam width [m]");
       prm.declare_entry("Thickness", num(d.beam.thickness), Double(0), "h, beam thickness [m], > 0 and < L/20 (Euler-Bernoulli)");
-      prm.declare_entry("Young's modulus", num(d.beam.youngs_modulus), Double(0), "E [Pa]");
-      prm.declare_entry("Density", num(d.beam.density), Double(0), "rho [kg/m^3]");
+      prm.declare_entry("Young's modulus", num(d.beam.youngs_modulus), Double(1e6, 1e13), "E [Pa], in [1e6, 1e13] (soft polymers to diamond)");
+      prm.declare_entry("Density", num(d.beam.density), Double(1, 1e5), "rho [kg/m^3], in [1, 1e5]");
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
@@ -52,8 +55,8 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Slider");
-      prm.declare_entry("Mass", num(d.slider.mass), Double(0), "m [kg]");
-      prm.declare_entry("Rotary inertia", num(d.slider.inertia), Double(0), "J_C about the centre of mass [kg m^2]");
+      prm.declare_entry("Mass", num(d.slider.mass), Double(0), "m [kg], > 0");
+      prm.declare_entry("Rotary inertia", num(d.slider.inertia), Double(0), "J_C about the centre of mass [kg m^2], > 0; the radius of gyration sqrt(J_C/m) must be at least 3 % of the corners' distance sqrt(d^2 + B^2/4) from the centre of mass (a rigid frame around the window cannot have less)");
       prm.declare_entry("Window width", num(d.slider.window_width), Double(0), "B, horizontal distance of the contact corners [m], < L");
       prm.declare_entry("Window height ratio", num(d.slider.window_height_ratio), Double(0), "R/h, inner window height over beam thickness [-], > 1");
       prm.declare_entry("Centre of mass offset", num(d.slider.com_offset), Double(0), "d, centre of mass below the window centre [m]");
@@ -80,15 +83,15 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Discretisation");
-      prm.declare_entry("Number of elements", std::to_string(d.discretisation.n_elements), Integer(1, 4096), "beam elements of the FE model");
+      prm.declare_entry("Number of elements", std::to_string(d.discretisation.n_elements), Integer(1, 4096), "beam elements of the FE model, at least N + 1 (Number of modes)");
       prm.declare_entry("Axial degree", std::to_string(d.discretisation.axial_degree), Integer(1, 6), "polynomial degree of the axial displacement u");
       prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 10), "N, bending modes of the reduced model");
       prm.declare_entry("Geometric nonlinearity", "true", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
       prm.leave_subsection();
 
       prm.enter_subsection("Time stepping");
-      prm.declare_entry("Time step", num(d.time_stepping.time_step), Double(0), "Delta t [s], > 0");
-      prm.declare_entry("End time", num(d.time_stepping.end_time), Double(0), "[s]");
+      prm.declare_entry("Time step", num(d.time_stepping.time_step), Double(0), "Delta t [s], > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
+      prm.declare_entry("End time", num(d.time_stepping.end_time), Double(0), "[s], at most 1e11 time steps");
       prm.declare_entry("Output rate", num(d.time_stepping.output_rate), Double(0), "samples per second in trace.csv [1/s]");
       prm.leave_subsection();
     }
@@ -200,6 +203,85 @@ namespace beamslider
         prm.leave_subsection();
     }
 
+    // "Section/Sub/Name" of an override, without the value.
+    std::string override_path(const std::string &assignment)
+    {
+      return assignment.substr(0, assignment.find('='));
+    }
+
+    // The text of a scene file, after checking that it is one: a regular,
+    // non-empty file (a folder, a FIFO or a device is refused before it is
+    // opened, so that reading cannot hang).
+    std::string read_scene_text(const std::string &filename)
+    {
+      namespace fs = std::filesystem;
+      std::error_code ec;
+      const fs::file_status status = fs::status(filename, ec);
+      if (ec || !fs::exists(status))
+        throw InputError("Scene file '" + filename + "' does not exist");
+      if (fs::is_directory(status))
+        throw InputError("Scene file '" + filename + "' is a folder, not a scene file (.prm)");
+      if (!fs::is_regular_file(status))
+        throw InputError("Scene file '" + filename +
+                         "' is not a regular file (a FIFO, device or socket); give a .prm file");
+      std::ifstream in(filename, std::ios::binary);
+      if (!in)
+        throw InputError("Scene file '" + filename + "' cannot be opened (unreadable)");
+      std::ostringstream text;
+      text << in.rdbuf();
+      if (text.str().empty())
+        throw InputError("Scene file '" + filename + "' is empty; a scene sets its parameters with 'set Name = value' "
+                         "(see `beamslider scene-template`)");
+      return text.str();
+    }
+
+    // deal.II's reader lets a later `set` silently replace an earlier one; a
+    // scene that sets a parameter twice is almost always an editing slip, so
+    // it is refused. Also refuses a file without any `set`: it would run the
+    // built-in defaults under the file's name.
+    void check_entries_unique(const std::string &filename, const std::string &text)
+    {
+      std::istringstream in(text);
+      std::vector<std::string> sections;
+      std::map<std::string, unsigned int> first_line;
+      std::string line;
+      unsigned int line_number = 0, n_entries = 0;
+      auto trim = [](std::string x) {
+        const auto b = x.find_first_not_of(" \t\r");
+        const auto e = x.find_last_not_of(" \t\r");
+        return b == std::string::npos ? std::string() : x.substr(b, e - b + 1);
+      };
+      while (std::getline(in, line))
+        {
+          ++line_number;
+          line = trim(line.substr(0, line.find('#')));
+          std::istringstream words(line);
+          std::string keyword;
+          words >> keyword;
+          if (keyword == "subsection")
+            sections.push_back(trim(line.substr(keyword.size())));
+          else if (keyword == "end" && !sections.empty())
+            sections.pop_back();
+          else if (keyword == "set")
+            {
+              const std::string rest = line.substr(keyword.size());
+              std::string key;
+              for (const auto &section : sections)
+                key += section + "/";
+              key += trim(rest.substr(0, rest.find('=')));
+              ++n_entries;
+              const auto [it, inserted] = first_line.emplace(key, line_number);
+              if (!inserted)
+                throw InputError("Scene file '" + filename + "', line " + std::to_string(line_number) + ": '" + key +
+                                 "' is set a second time (first on line " + std::to_string(it->second) +
+                                 "); a scene sets each parameter once");
+            }
+        }
+      if (n_entries == 0)
+        throw InputError("Scene file '" + filename + "' sets no parameter (no 'set Name = value' line); "
+                         "see `beamslider scene-template`");
+    }
+
     void require(const bool condition, const std::string &parameter, const double value, const std::string &allowed)
     {
       if (!condition)
@@ -209,6 +291,31 @@ namespace beamslider
 
   void validate_scene(const Scene &s)
   {
+    // NaN and infinity pass no check below silently: every comparison with
+    // NaN is false, so each require() states the allowed set positively.
+    require(std::isfinite(s.slider.mass) && s.slider.mass > 0, "Slider/Mass", s.slider.mass, "must be > 0 kg");
+    require(std::isfinite(s.slider.inertia) && s.slider.inertia > 0, "Slider/Rotary inertia", s.slider.inertia,
+            "must be > 0 kg m^2");
+    {
+      // The Delassus matrix carries 1/m and lever²/J_C; a J_C negligible
+      // against m × lever² makes it singular in effect (the slider would
+      // spin through the beam within one step).
+      const double lever2 = s.slider.com_offset * s.slider.com_offset + 0.25 * s.slider.window_width * s.slider.window_width;
+      const double minimum = 0.03 * 0.03 * s.slider.mass * lever2;
+      require(s.slider.inertia >= minimum, "Slider/Rotary inertia", s.slider.inertia,
+              "must be >= " + num(minimum) + " kg m^2: the radius of gyration sqrt(J_C/m) must be at least 3 % of "
+              "the corners' distance sqrt(d^2 + B^2/4) = " + num(std::sqrt(lever2)) + " m from the centre of mass");
+    }
+    require(std::isfinite(s.contact.gravity), "Contact/Gravity", s.contact.gravity, "must be finite");
+    require(std::isfinite(s.excitation.acceleration_amplitude), "Excitation/Acceleration amplitude",
+            s.excitation.acceleration_amplitude, "must be finite");
+    require(std::isfinite(s.contact.friction_coefficient), "Contact/Friction coefficient",
+            s.contact.friction_coefficient, "must be finite");
+    require(std::isfinite(s.slider.com_offset), "Slider/Centre of mass offset", s.slider.com_offset, "must be finite");
+    require(s.discretisation.n_elements >= s.discretisation.n_modes + 1, "Discretisation/Number of elements",
+            s.discretisation.n_elements,
+            "must be at least Number of modes + 1 = " + std::to_string(s.discretisation.n_modes + 1) +
+              " so that the mesh carries the reduced model's modes");
     require(s.beam.length > 0, "Beam/Length", s.beam.length, "must be > 0 m");
     require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
     require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
@@ -230,7 +337,21 @@ namespace beamslider
               "] so that the slider's window is on the beam");
     require(s.damping_ratio >= 0 && s.damping_ratio < 1, "Damping/Modal damping ratio", s.damping_ratio, "must be in [0, 1)");
     require(s.excitation.frequency_hz > 0, "Excitation/Frequency", s.excitation.frequency_hz, "must be > 0 Hz");
-    require(s.time_stepping.time_step > 0, "Time stepping/Time step", s.time_stepping.time_step, "must be > 0 s");
+    require(std::isfinite(s.time_stepping.time_step) && s.time_stepping.time_step > 0, "Time stepping/Time step",
+            s.time_stepping.time_step, "must be > 0 s");
+    {
+      const double period = 1. / s.excitation.frequency_hz;
+      require(s.time_stepping.time_step <= period / 20., "Time stepping/Time step", s.time_stepping.time_step,
+              "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
+                " s, to resolve the excitation");
+    }
+    require(std::isfinite(s.time_stepping.end_time) && s.time_stepping.end_time >= 0, "Time stepping/End time",
+            s.time_stepping.end_time, "must be >= 0 s");
+    require(s.time_stepping.end_time / s.time_stepping.time_step <= max_time_steps, "Time stepping/End time",
+            s.time_stepping.end_time,
+            "would need " + num(s.time_stepping.end_time / s.time_stepping.time_step) + " time steps of " +
+              num(s.time_stepping.time_step) + " s; at most " + num(max_time_steps) + " (End time <= " +
+              num(max_time_steps * s.time_stepping.time_step) + " s) are allowed");
     require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
     if (!s.supports.ideal_clamp)
       {
@@ -241,16 +362,30 @@ namespace beamslider
       }
   }
 
+  void check_overrides_unique(const std::vector<std::string> &overrides)
+  {
+    std::map<std::string, std::string> seen;
+    for (const auto &o : overrides)
+      {
+        const auto [it, inserted] = seen.emplace(override_path(o), o);
+        if (!inserted)
+          throw InputError("--set \"" + o + "\": '" + it->first + "' is already set by --set \"" + it->second +
+                           "\"; give each parameter once");
+      }
+  }
+
   Scene read_scene(const std::string &filename, const std::vector<std::string> &overrides)
   {
-    if (!std::ifstream(filename))
-      throw InputError("Scene file '" + filename + "' cannot be opened (missing or unreadable)");
+    const std::string text = read_scene_text(filename);
+    check_entries_unique(filename, text);
+    check_overrides_unique(overrides);
 
     ParameterHandler prm;
     declare(prm);
     try
       {
-        prm.parse_input(filename);
+        std::istringstream in(text);
+        prm.parse_input(in, filename);
       }
     catch (const dealii::ExceptionBase &e)
       {

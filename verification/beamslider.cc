@@ -11,9 +11,18 @@
 //   beamslider animate SCENE --model fe|rom         ParaView time series (.pvd)
 //   beamslider verify [SCENE] [--full]              the verification report
 //   beamslider scene-template                       every parameter with unit and range
+//
+// Exit status: 0 success (a run that reaches a support is a physical outcome);
+// 1 a run or a solver failed, or results could not be written; 2 bad input
+// (options, scene, parameters; the message names the parameter, its value and
+// the allowed range); 128 + signal when interrupted (130 Ctrl-C, 143 SIGTERM).
+#include "contact/interruption.h"
+#include "contact/output_file.h"
 #include "meshes/scene.h"
+#include "verification/cli_validators.h"
 #include "verification/commands.h"
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -22,11 +31,31 @@
 
 using namespace beamslider;
 
+namespace
+{
+  int run_command_line(int argc, char **argv);
+}
+
 int main(int argc, char **argv)
 {
   // PETSc/SLEPc (the eigensolver) need MPI initialised; one process.
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  install_interruption_handlers();
+  int status = run_command_line(argc, argv);
+  if (status == 0 && !output_failures().empty())
+    status = 1; // a chart or another result file was not written
+  if (interruption_requested())
+    {
+      std::cerr << "interrupted by signal " << interruption_signal() << std::endl;
+      status = interruption_exit_code();
+    }
+  return status;
+}
 
+namespace
+{
+int run_command_line(int argc, char **argv)
+{
   CLI::App app{"beamslider: FE and reduced-order models of a beam with a sliding mass (cross-verification suite)"};
   app.require_subcommand(1);
 
@@ -44,57 +73,62 @@ int main(int argc, char **argv)
   ModesOptions modes;
   auto *modes_cmd = app.add_subcommand("modes", "linear bending modes of the bare beam or with a bonded slider");
   add_common(modes_cmd, true);
-  modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)");
-  modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(CLI::Range(1, 50));
-  modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(CLI::Range(1, 4096));
+  modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)")
+    ->check(finite_in(0., 1.));
+  modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(integer_in(1, 50));
+  modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(integer_in(1, 4096));
 
   CoefficientsOptions coefficients;
   auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
   add_common(coefficients_cmd, true);
   coefficients_cmd->add_option("--method", coefficients.method, "analytic | step | step-condensed | ice")
     ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
-  coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(CLI::Range(1, 10));
+  coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
 
   BackboneOptions backbone;
   auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
   add_common(backbone_cmd, true);
   backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(CLI::Range(1, 10));
-  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(CLI::Range(1, 40));
-  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h")->check(CLI::PositiveNumber);
+  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
+  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
+  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h, in (0.01, 10]")->check(finite_in(0.01, 10., Bound::open, Bound::closed));
 
   SimulateOptions simulate;
   auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
   add_common(simulate_cmd, true);
   simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
   simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
-  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(CLI::PositiveNumber);
+  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
   simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
-  simulate_cmd->add_option("--tolerance", simulate.tolerance, "error tolerance for --model auto")->check(CLI::PositiveNumber);
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "error tolerance for --model auto")->check(finite_positive());
+  simulate_cmd->add_flag("--allow-large-output", simulate.allow_large_output,
+                         "allow a trace of more than " + std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
+                           " rows (End time x Output rate)");
 
   SweepOptions sweep;
   auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
   add_common(sweep_cmd, true);
   sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(CLI::Range(1e-4, 0.1));
+  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
   sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
-    ->check(CLI::NonNegativeNumber);
+    ->check(finite_non_negative());
   sweep_cmd->add_option("--average-time", sweep.average_time, "simulated time averaged per position [s]")
-    ->check(CLI::PositiveNumber);
-  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)");
-  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L");
+    ->check(finite_positive());
+  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)")
+    ->check(finite_in(0., 1.));
+  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
   sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
-    ->check(CLI::NonNegativeNumber);
+    ->check(finite_non_negative());
 
   AnimateOptions animate;
   auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
   add_common(animate_cmd, true);
   animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
   animate_cmd->add_option("--case", animate.case_name, "a published case or ablation");
-  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(CLI::PositiveNumber);
-  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(CLI::NonNegativeNumber);
-  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(CLI::PositiveNumber);
-  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(CLI::PositiveNumber);
+  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
+  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
+  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
+  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(finite_positive());
 
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
@@ -103,7 +137,25 @@ int main(int argc, char **argv)
 
   auto *template_cmd = app.add_subcommand("scene-template", "print a scene file with every parameter, its unit and range");
 
-  CLI11_PARSE(app, argc, argv);
+  try
+    {
+      app.parse(argc, argv);
+    }
+  catch (const CLI::CallForHelp &e)
+    {
+      return app.exit(e);
+    }
+  catch (const CLI::CallForAllHelp &e)
+    {
+      return app.exit(e);
+    }
+  catch (const CLI::ParseError &e)
+    {
+      // One readable line and status 2, like every other input error.
+      std::cerr << "error: " << describe_parse_error(app, e, argc, argv) << "\n(see 'beamslider --help' or 'beamslider COMMAND --help')"
+                << std::endl;
+      return 2;
+    }
 
   try
     {
@@ -132,10 +184,33 @@ int main(int argc, char **argv)
       std::cerr << "error: " << e.what() << std::endl;
       return 2;
     }
+  catch (const std::invalid_argument &e)
+    {
+      // The library's checks of values that came from the scene or the
+      // options (a time step above the model's stability limit, ...).
+      std::cerr << "error: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const OutputError &e)
+    {
+      std::cerr << "error: results not written: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's what() carries a stack trace and source lines that mean
+      // nothing to a user; its name and additional information do.
+      std::ostringstream info;
+      e.print_info(info);
+      std::cerr << "beamslider failed: " << e.get_exc_name() << ": " << info.str() << std::endl;
+      return 1;
+    }
   catch (const std::exception &e)
     {
-      std::cerr << "beamslider failed: " << e.what() << std::endl;
+      const std::string what = e.what();
+      std::cerr << "beamslider failed: " << (what.empty() ? "unknown error" : what) << std::endl;
       return 1;
     }
   return 0;
 }
+} // namespace

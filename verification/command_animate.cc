@@ -7,6 +7,7 @@
 // trace.csv (the ROM's columns), frames.csv and frames.png (a strip of stills
 // drawn by scripts/plot_frames.py).
 #include "contact/adaptation_run.h"
+#include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
@@ -64,8 +65,8 @@ namespace beamslider
     run_options.end_time          = end_time;
     run_options.progress_interval = 1e9;
     AdaptationRun run(scene, *beam, run_options);
-    std::ofstream trace_file(dir + "/trace.csv");
-    TraceCsvWriter trace(trace_file);
+    OutputFile trace_file(dir + "/trace.csv");
+    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path());
     run.on_trace_row = [&trace](const TraceRow &row) { trace.write(row); };
 
     VtkAnimationWriter writer(dir, options.magnification);

@@ -22,6 +22,7 @@
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_operator.h"
@@ -32,6 +33,7 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace beamslider
 {
@@ -91,7 +93,7 @@ namespace beamslider
         eq4.row({CsvWriter::cell(a), CsvWriter::cell(omega_1 * std::sqrt(1 + c * a * a) / (2 * pi))});
       }
 
-    std::ofstream summary(dir + "/summary.md");
+    std::ostringstream summary;
     summary << "# Backbone: scene `" << scene.name << "`, model " << options.model << "\n\n"
             << "Amplitude: first-harmonic amplitude of w(L/2), the deflection at mid-span relative to the moving base, "
                "over the thickness h = "
@@ -111,7 +113,7 @@ namespace beamslider
               << g.restart_amplitude / h << " (f = " << g.restart_omega / (2 * pi)
               << " Hz; extrapolated backbone predicted " << g.restart_omega / g.predicted_omega - 1
               << " relative off)\n";
-    summary.close();
+    write_text_file(dir + "/summary.md", summary.str());
 
     const bool plotted = run_plot_script("plot_backbones.py", {"command", dir});
     std::cout << "Backbone of scene '" << scene.name << "' (" << model_text << "): " << backbone.points.size()

@@ -5,12 +5,14 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/coefficient_methods.h"
 #include "verification/commands.h"
 
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace beamslider
 {
@@ -30,7 +32,7 @@ namespace beamslider
     const CoefficientResult r = compute_coefficients(beam, modes, basis, options.method, scale);
 
     write_coefficients_csv(dir + "/coefficients.csv", r.fit.cubic);
-    std::ofstream summary(dir + "/summary.md");
+    std::ostringstream summary;
     summary << "# Cubic coefficients: scene `" << scene.name << "`, method `" << r.method << "`, N = " << N << "\n\n"
             << "- FE mesh: " << beam.n_elements() << " elements, " << beam.n_dofs() << " DoFs\n"
             << "- membrane stiffness k_ax = " << basis.membrane_stiffness << " N/m\n"
@@ -43,6 +45,7 @@ namespace beamslider
     if (r.method == "ice")
       summary << "- relative fit residual: " << r.fit.relative_fit_residual << ", largest |q_j|/a_j reached: "
               << r.fit.max_relative_response << "\n";
+    write_text_file(dir + "/summary.md", summary.str());
     std::cout << "Coefficients of scene '" << scene.name << "' by " << r.method << " (N = " << N << "): b_111 = "
               << r.fit.cubic.front().value << ", " << r.n_static_solves << " static solves, " << r.seconds << " s\n"
               << "Wrote " << dir << "/coefficients.csv and " << dir << "/summary.md\n";

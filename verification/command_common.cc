@@ -1,7 +1,8 @@
+#include "contact/output_file.h"
 #include "meshes/scene.h"
+#include "verification/child_process.h"
 #include "verification/commands.h"
 
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -29,18 +30,39 @@ namespace beamslider
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
-      throw InputError("--output '" + dir.string() + "' cannot be created: " + ec.message());
+      throw OutputError("output folder '" + dir.string() + "' cannot be created: " + ec.message());
+    if (!fs::is_directory(dir, ec))
+      throw OutputError("output folder '" + dir.string() + "' is not a folder");
     return dir.string();
   }
 
+  namespace
+  {
+    std::vector<std::string> &failed_outputs()
+    {
+      static std::vector<std::string> failures;
+      return failures;
+    }
+  } // namespace
+
+  void note_output_failure(const std::string &what)
+  {
+    std::cerr << "error: " << what << std::endl;
+    failed_outputs().push_back(what);
+  }
+
+  const std::vector<std::string> &output_failures() { return failed_outputs(); }
+
   bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments)
   {
-    std::string command = std::string(BEAMSLIDER_PYTHON) + " " + BEAMSLIDER_SOURCE_DIR + "/scripts/" + script;
-    for (const auto &a : arguments)
-      command += " '" + a + "'";
-    const int status = std::system(command.c_str());
-    if (status != 0)
-      std::cerr << "warning: plotting failed (" << command << "); the CSV files are complete\n";
-    return status == 0;
+    // The interpreter was found once, at configure time (CMake); the script
+    // and every argument go to it as separate strings, never through a shell.
+    std::vector<std::string> argv = {BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script};
+    argv.insert(argv.end(), arguments.begin(), arguments.end());
+    const ChildResult result = run_child(argv);
+    if (!result.succeeded())
+      note_output_failure("the chart of " + script + " was not drawn (" + result.error +
+                          "); the CSV files beside it are complete");
+    return result.succeeded();
   }
 } // namespace beamslider

@@ -14,6 +14,8 @@
 //   animation.pvd (+ files) with --animate: the last 0.1 s at 2000 frames/s
 // Both CSV files are flushed as the run goes: a stopped run keeps them.
 #include "contact/adaptation_run.h"
+#include "contact/interruption.h"
+#include "contact/output_file.h"
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
@@ -51,9 +53,23 @@ namespace beamslider
     const SimulationCase *the_case = options.case_name.empty() ? nullptr : &find_case(options.case_name);
     SimulationOutcome outcome;
     Scene &scene = outcome.scene;
-    scene = the_case ? read_case_scene(scene_file, *the_case, common.overrides) : read_scene(scene_file, common.overrides);
+    std::vector<std::string> modified; // the case's own parameters the user changed
+    scene = the_case ? read_case_scene(scene_file, *the_case, common.overrides, &modified)
+                     : read_scene(scene_file, common.overrides);
     if (options.end_time)
-      scene.time_stepping.end_time = *options.end_time;
+      {
+        scene.time_stepping.end_time = *options.end_time;
+        validate_scene(scene); // the step count limit
+      }
+    const double n_rows = scene.time_stepping.end_time * scene.time_stepping.output_rate;
+    if (n_rows > SimulateOptions::max_trace_rows && !options.allow_large_output)
+      {
+        std::ostringstream m;
+        m << "End time " << scene.time_stepping.end_time << " s at Output rate " << scene.time_stepping.output_rate
+          << " 1/s would write " << n_rows << " rows to trace.csv, more than " << SimulateOptions::max_trace_rows
+          << " (about 1 GB); lower 'Time stepping/Output rate' or pass --allow-large-output";
+        throw InputError(m.str());
+      }
     const std::string dir = outcome.dir =
       prepare_output_dir(common, scene.name, the_case ? "simulate/" + the_case->name : std::string("simulate"));
 
@@ -83,10 +99,18 @@ namespace beamslider
 
     RunOptions run_options        = RunOptions::from_scene(scene);
     run_options.progress_interval = std::max(1., end_time / 20.);
+    if (!(scene.time_stepping.time_step <= beam->max_stable_time_step()))
+      {
+        std::ostringstream m;
+        m << "Parameter 'Time stepping/Time step' = " << scene.time_stepping.time_step
+          << " s is not allowed: the " << setting.label() << " is stable only for time steps up to "
+          << beam->max_stable_time_step() << " s (explicit scheme: 2/omega_max)";
+        throw InputError(m.str());
+      }
     AdaptationRun run(scene, *beam, run_options);
-    std::ofstream trace_file(dir + "/trace.csv"), period_file(dir + "/periods.csv");
-    TraceCsvWriter trace(trace_file);
-    PeriodCsvWriter period_writer(period_file);
+    OutputFile trace_file(dir + "/trace.csv"), period_file(dir + "/periods.csv");
+    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path());
+    PeriodCsvWriter period_writer(period_file.stream(), period_file.path());
     std::vector<PeriodRecord> periods;
     run.on_trace_row = [&trace](const TraceRow &row) { trace.write(row); };
     run.on_period    = [&](const PeriodRecord &r) {
@@ -129,8 +153,9 @@ namespace beamslider
     else
       result = run.run();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    trace_file.flush();
-    period_file.flush();
+    trace.flush();
+    trace_file.close();
+    period_file.close();
 
     outcome.result       = result;
     outcome.wall_seconds = wall;
@@ -138,7 +163,15 @@ namespace beamslider
     const CaseVerdict &verdict = outcome.verdict;
     std::ostringstream summary;
     summary << "# simulate: scene `" << scene.name << "`" << (the_case ? ", case `" + the_case->name + "`" : "") << "\n\n";
-    if (the_case)
+    if (the_case && !modified.empty())
+      {
+        summary << "- Case: " << the_case->name << ", modified: ";
+        for (std::size_t i = 0; i < modified.size(); ++i)
+          summary << (i ? "; " : "") << modified[i];
+        summary << ".\n- Not compared with the published behaviour (" << the_case->published
+                << "): the run changes parameters the case fixes.\n";
+      }
+    else if (the_case)
       {
         summary << "- Case: " << the_case->description << ".\n- Published: " << the_case->published << ".\n";
         const std::string differs = disagreements(outcome.verdict, the_case->expected);
@@ -151,11 +184,17 @@ namespace beamslider
             << "- Status: " << to_string(result.status) << (result.message.empty() ? "" : ": " + result.message) << ".\n"
             << "- Verdict: " << verdict.line << ".\n"
             << "\nFiles: trace.csv, periods.csv" << (animation ? ", animation.pvd" : "") << ", trace.png.\n";
-    std::ofstream(dir + "/summary.md") << summary.str();
+    write_text_file(dir + "/summary.md", summary.str());
+    if (result.status != RunStatus::completed && result.status != RunStatus::slider_at_support)
+      std::cerr << "simulate: " << to_string(result.status) << ": " << result.message << std::endl;
 
-    std::ostringstream title;
-    title << scene.name << (the_case ? " / " + the_case->name : std::string()) << " (" << setting.label() << ")";
-    run_plot_script("plot_trace.py", {dir, title.str(), std::to_string(scene.beam.thickness)});
+    // No chart of an interrupted run: the user asked it to stop.
+    if (result.status != RunStatus::interrupted)
+      {
+        std::ostringstream title;
+        title << scene.name << (the_case ? " / " + the_case->name : std::string()) << " (" << setting.label() << ")";
+        run_plot_script("plot_trace.py", {dir, title.str(), std::to_string(scene.beam.thickness)});
+      }
 
     if (verbose)
       std::cout << summary.str();
@@ -167,7 +206,10 @@ namespace beamslider
     const SimulationOutcome outcome = run_simulation(common, options);
     const RunResult &result         = outcome.result;
     // Reaching a support is a physical outcome of the scene (the run stops
-    // there by design); a failing solver or a non-finite state is not.
+    // there by design); a failing solver, a non-finite or unphysical state is
+    // not; an interrupted run exits as the signal says (130, 143).
+    if (result.status == RunStatus::interrupted)
+      return interruption_exit_code();
     return result.status == RunStatus::completed || result.status == RunStatus::slider_at_support ? 0 : 1;
   }
 } // namespace beamslider

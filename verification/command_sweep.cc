@@ -1,6 +1,7 @@
 // `beamslider sweep SCENE`: prescribed-slider-position sweeps (seed §4.2–4.3,
 // DESIGN.md §1.5), both directions, with the Eq. 5 resonance curve and the
 // free-slider run overlaid; files and columns in verification/pcs_sweep.h.
+#include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
 #include "verification/pcs_sweep.h"
@@ -40,8 +41,8 @@ namespace beamslider
 
     const PcsStudy study = run_pcs_sweep(scene, settings, dir);
     const std::string text = describe(study, scene);
-    std::ofstream(dir + "/summary.md") << "# PCS sweep: scene `" << scene.name << "`, model " << settings.model << "\n\n"
-                                       << text;
+    write_text_file(dir + "/summary.md",
+                    "# PCS sweep: scene `" + scene.name + "`, model " + settings.model + "\n\n" + text);
     std::cout << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
     const bool complete = study.up.last_run.status == RunStatus::completed &&
                           study.down.last_run.status == RunStatus::completed;

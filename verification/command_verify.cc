@@ -1,4 +1,5 @@
 // `beamslider verify`: the verification report on one scene.
+#include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
 #include "verification/report.h"
@@ -25,7 +26,7 @@ namespace beamslider
                    "sit beside this file.\n\n";
     // Each section appends to report.md and is flushed to disk before the
     // next starts, so a failure late in the report keeps the earlier ones.
-    auto flush = [&report] { std::ofstream(report.dir + "/report.md") << report.text.str(); };
+    auto flush = [&report] { write_text_file(report.dir + "/report.md", report.text.str()); };
     add_frequency_section(report, scene);
     flush();
     add_coefficient_section(report, scene, options.full);
@@ -38,7 +39,7 @@ namespace beamslider
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.text << "---\nTotal time of this report: " << seconds << " s.\n";
-    std::ofstream(report.dir + "/report.md") << report.text.str();
+    flush();
     std::cout << "Wrote " << report.dir << "/report.md (" << seconds << " s)" << std::endl;
     return 0;
   }

@@ -54,6 +54,11 @@ namespace beamslider
     std::optional<double> end_time;   // [s], overrides the scene's/case's
     bool animate = false;             // also write a .pvd animation
     std::optional<double> tolerance;  // for --model auto
+    bool allow_large_output = false;  // more than max_trace_rows rows in trace.csv
+
+    // trace.csv rows (End time × Output rate) allowed without
+    // --allow-large-output: 1e7 rows are about 1 GB.
+    static constexpr double max_trace_rows = 1e7;
   };
   int run_simulate(const CommonOptions &common, const SimulateOptions &options);
 
@@ -83,9 +88,17 @@ namespace beamslider
   // Resolves a scene argument: the path as given, else relative to the
   // source tree's meshes/ (so `beamslider modes mueller2023` works anywhere).
   std::string resolve_scene_path(const std::string &scene);
-  // Creates (if needed) and returns the output folder for a command.
+  // Creates (if needed) and returns the output folder for a command; throws
+  // OutputError if it cannot.
   std::string prepare_output_dir(const CommonOptions &common, const std::string &scene_name, const std::string &command);
-  // Runs a plotting script from scripts/ with Debian's python3 + matplotlib;
-  // returns false (with a warning printed) if plotting is unavailable.
+  // Runs a plotting script from scripts/ with Debian's python3 + matplotlib,
+  // as a child process with an argument vector (no shell). A chart that could
+  // not be drawn is a result not written: it is recorded (note_output_failure)
+  // and the command exits with status 1 at its end; returns whether it worked.
   bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments);
+
+  // A result that could not be written but need not stop the command (a
+  // chart): printed on stderr at once and remembered; main() exits with 1.
+  void note_output_failure(const std::string &what);
+  const std::vector<std::string> &output_failures();
 } // namespace beamslider

@@ -1,7 +1,10 @@
 // A small CSV writer: a header of named columns (SI units in the names where
 // they are not obvious), then rows of numbers or strings. Rows are flushed as
-// they are written, so a long run never loses finished work.
+// they are written, so a long run never loses finished work; a failed open or
+// write throws OutputError.
 #pragma once
+
+#include "contact/output_file.h"
 
 #include <fstream>
 #include <iomanip>
@@ -18,9 +21,10 @@ namespace beamslider
     CsvWriter(const std::string &filename, const std::vector<std::string> &columns)
       : out(filename)
       , n_columns(columns.size())
+      , filename_(filename)
     {
       if (!out)
-        throw std::runtime_error("Cannot open '" + filename + "' for writing");
+        throw OutputError("result file '" + filename + "' cannot be opened for writing");
       for (std::size_t i = 0; i < columns.size(); ++i)
         out << (i ? "," : "") << columns[i];
       out << '\n';
@@ -35,6 +39,8 @@ namespace beamslider
       for (std::size_t i = 0; i < cells.size(); ++i)
         out << (i ? "," : "") << cells[i];
       out << '\n' << std::flush;
+      if (!out)
+        throw OutputError("result file '" + filename_ + "' could not be written");
     }
 
     static std::string cell(const double x, const int digits = 10)
@@ -49,5 +55,6 @@ namespace beamslider
   private:
     std::ofstream out;
     std::size_t n_columns;
+    std::string filename_;
   };
 } // namespace beamslider

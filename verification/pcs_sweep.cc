@@ -1,6 +1,8 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
 #include "verification/pcs_sweep.h"
 
+#include "contact/output_file.h"
+
 #include "contact/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
@@ -129,8 +131,8 @@ namespace beamslider
         options.output_rate              = 1.;
         options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
         AdaptationRun run(scene, *beam, options);
-        std::ofstream file(dir + "/free_periods.csv");
-        PeriodCsvWriter periods(file);
+        OutputFile file(dir + "/free_periods.csv");
+        PeriodCsvWriter periods(file.stream(), file.path());
         std::vector<PeriodRecord> records;
         run.on_period = [&periods, &records](const PeriodRecord &r) {
           periods.write(r);

@@ -119,12 +119,28 @@ namespace beamslider
   }
 
   Scene read_case_scene(const std::string &scene_file, const SimulationCase &c,
-                        const std::vector<std::string> &user_overrides)
+                        const std::vector<std::string> &user_overrides, std::vector<std::string> *modified)
   {
-    std::vector<std::string> overrides = c.overrides;
+    check_overrides_unique(user_overrides);
+    auto path_of = [](const std::string &o) { return o.substr(0, o.find('=')); };
+    std::vector<std::string> case_overrides = c.overrides;
     std::ostringstream end;
     end << "Time stepping/End time=" << c.end_time;
-    overrides.push_back(end.str());
+    case_overrides.push_back(end.str());
+
+    // The user's value replaces the case's; a change of what the case itself
+    // sets (other than its end time) is reported, because the run is then no
+    // longer the published case.
+    std::vector<std::string> overrides;
+    for (const auto &o : case_overrides)
+      {
+        const auto user = std::find_if(user_overrides.begin(), user_overrides.end(),
+                                       [&](const std::string &u) { return path_of(u) == path_of(o); });
+        if (user == user_overrides.end())
+          overrides.push_back(o);
+        else if (modified && path_of(o) != "Time stepping/End time")
+          modified->push_back(*user + " (the case sets " + o.substr(o.find('=') + 1) + ")");
+      }
     overrides.insert(overrides.end(), user_overrides.begin(), user_overrides.end());
     return read_scene(scene_file, overrides);
   }

@@ -49,9 +49,12 @@ namespace beamslider
   const SimulationCase &find_case(const std::string &name);
 
   // The scene file with the case's overrides, then the user's; the end time
-  // is the case's (the user's --set "Time stepping/End time" wins).
+  // is the case's (the user's --set "Time stepping/End time" wins). A user
+  // override of a parameter the case sets replaces the case's value and is
+  // listed in `modified` ("Contact/Friction coefficient=0.5 (the case sets 0)"):
+  // such a run is no longer the published case.
   Scene read_case_scene(const std::string &scene_file, const SimulationCase &c,
-                        const std::vector<std::string> &user_overrides);
+                        const std::vector<std::string> &user_overrides, std::vector<std::string> *modified = nullptr);
 
   // What a run did, from its period records: trace_outcome (fe_rom_study.h:
   // turn-around, final state; its jump made stricter: sudden (×2 within

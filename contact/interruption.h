@@ -1,0 +1,32 @@
+// Ctrl-C and kill without losing finished work.
+//
+// install_interruption_handlers() makes SIGINT and SIGTERM set a flag instead
+// of killing the process. Long loops (AdaptationRun's time stepping, the
+// studies built on it) poll interruption_requested() once per step, finish
+// the step they are in, and stop with status `interrupted`; the command then
+// writes complete rows and its summary and exits with 128 + the signal
+// (130 for SIGINT, 143 for SIGTERM), as a shell expects. A second signal of
+// the same kind while the first is being handled is ignored: the run is
+// already stopping.
+//
+// It also ignores SIGXFSZ, so that a file-size limit makes a write fail (and
+// OutputFile report it) instead of killing the process with a half-written
+// row.
+#pragma once
+
+namespace beamslider
+{
+  void install_interruption_handlers();
+
+  // True once SIGINT or SIGTERM arrived (cheap: one relaxed atomic load).
+  bool interruption_requested();
+
+  // The signal that arrived (0 if none).
+  int interruption_signal();
+
+  // 128 + the signal, the exit status of an interrupted command.
+  int interruption_exit_code();
+
+  // For tests: pretend that `signal` arrived (0 clears the flag).
+  void set_interruption_for_testing(int signal);
+} // namespace beamslider

@@ -1,0 +1,126 @@
+// Runs the built `beamslider` executable as a user would, for end-to-end
+// tests: its own process (fork + exec with an argument vector), stdout and
+// stderr captured to files, an optional file-size limit, an optional signal
+// sent after a delay, and a time limit after which the child is killed (so a
+// test that would hang fails instead).
+#pragma once
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <fcntl.h>
+#include <vector>
+
+namespace beamslider::testing
+{
+  struct CliRun
+  {
+    int exit_code  = -1; // when it exited
+    int signal     = 0;  // when a signal ended it
+    bool timed_out = false;
+    std::string out, err;
+  };
+
+  struct CliLimits
+  {
+    double timeout_seconds      = 120;
+    long file_size_limit        = -1;  // bytes (RLIMIT_FSIZE), -1 = none
+    int send_signal             = 0;   // sent once after signal_delay_seconds
+    double signal_delay_seconds = 0;
+    std::string working_directory; // "" = the test's
+  };
+
+  inline std::string read_file(const std::filesystem::path &path)
+  {
+    std::ifstream in(path);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  // A fresh, empty folder for one test.
+  inline std::filesystem::path fresh_folder(const std::string &name)
+  {
+    const auto dir = std::filesystem::temp_directory_path() / ("beamslider_test_" + name + "_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+  }
+
+  inline CliRun run_beamslider(const std::vector<std::string> &args, const CliLimits &limits = {})
+  {
+    const auto scratch  = fresh_folder("cli_io");
+    const auto out_file = scratch / "stdout", err_file = scratch / "stderr";
+    std::vector<std::string> argv = {BEAMSLIDER_EXECUTABLE};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char *> c_argv;
+    for (auto &a : argv)
+      c_argv.push_back(a.data());
+    c_argv.push_back(nullptr);
+
+    const pid_t pid = fork();
+    if (pid == 0)
+      {
+        // The child: no shell, just exec with the vector.
+        setpgid(0, 0);
+        const int o = open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int e = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(o, 1);
+        dup2(e, 2);
+        const int null_in = open("/dev/null", O_RDONLY);
+        dup2(null_in, 0);
+        if (!limits.working_directory.empty() && chdir(limits.working_directory.c_str()) != 0)
+          _exit(126);
+        if (limits.file_size_limit >= 0)
+          {
+            rlimit r{static_cast<rlim_t>(limits.file_size_limit), static_cast<rlim_t>(limits.file_size_limit)};
+            setrlimit(RLIMIT_FSIZE, &r);
+          }
+        execv(c_argv[0], c_argv.data());
+        _exit(127);
+      }
+
+    CliRun run;
+    const auto start = std::chrono::steady_clock::now();
+    bool signalled   = false;
+    int status       = 0;
+    while (true)
+      {
+        const pid_t done = waitpid(pid, &status, WNOHANG);
+        if (done == pid)
+          break;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (limits.send_signal && !signalled && elapsed >= limits.signal_delay_seconds)
+          {
+            kill(pid, limits.send_signal);
+            signalled = true;
+          }
+        if (elapsed > limits.timeout_seconds)
+          {
+            kill(-pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            run.timed_out = true;
+            break;
+          }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    if (!run.timed_out)
+      {
+        if (WIFEXITED(status))
+          run.exit_code = WEXITSTATUS(status);
+        else if (WIFSIGNALED(status))
+          run.signal = WTERMSIG(status);
+      }
+    run.out = read_file(out_file);
+    run.err = read_file(err_file);
+    std::filesystem::remove_all(scratch);
+    return run;
+  }
+} // namespace beamslider::testing
