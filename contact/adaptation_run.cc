@@ -66,14 +66,65 @@ namespace beamslider
         throw std::invalid_argument(m.str());
       }
     const double x_C = scene.initial.slider_position_over_L * beam.length();
-    stepper_.set_state(stepper_.resting_state(x_C, 0.));
+    set_state(stepper_.resting_state(x_C, 0.));
     stepper_.set_prescribed_horizontal_position(options_.prescribed_slider_position);
   }
 
   void AdaptationRun::set_state(const SystemState &state)
   {
     stepper_.set_state(state);
-    period_open_ = false;
+    period_open_         = false;
+    next_output_         = state.t;
+    next_progress_       = state.t + options_.progress_interval;
+    last_row_is_current_ = false;
+  }
+
+  void save_period(CheckpointWriter &out, const PeriodRecord &p)
+  {
+    out.put(std::uint64_t(p.index));
+    for (const double x : {p.t_start, p.t_end, p.slider_x_over_L, p.amplitude_over_h, p.mean_horizontal_contact_force,
+                           p.energy_start, p.energy_end, p.work_gravity, p.work_damping, p.work_excitation,
+                           p.work_impact, p.work_friction, p.work_base_contact, p.energy_residual, p.contact_fraction})
+      out.put(x);
+    out.put(std::uint64_t(p.max_solver_iterations));
+  }
+
+  PeriodRecord load_period(CheckpointReader &in)
+  {
+    PeriodRecord p;
+    p.index = in.get_uint();
+    for (double *x : {&p.t_start, &p.t_end, &p.slider_x_over_L, &p.amplitude_over_h, &p.mean_horizontal_contact_force,
+                      &p.energy_start, &p.energy_end, &p.work_gravity, &p.work_damping, &p.work_excitation,
+                      &p.work_impact, &p.work_friction, &p.work_base_contact, &p.energy_residual, &p.contact_fraction})
+      *x = in.get_double();
+    p.max_solver_iterations = in.get_uint();
+    return p;
+  }
+
+  void AdaptationRun::save(CheckpointWriter &out) const
+  {
+    stepper_.save(out);
+    out.put(period_open_);
+    save_period(out, current_);
+    for (const double x : {w_min_, w_max_, x_sum_, impulse_x_, last_amplitude_over_h_, next_output_, next_progress_})
+      out.put(x);
+    out.put(std::uint64_t(period_steps_));
+    out.put(std::uint64_t(contact_steps_));
+    out.put(have_amplitude_);
+    out.put(last_row_is_current_);
+  }
+
+  void AdaptationRun::load(CheckpointReader &in)
+  {
+    stepper_.load(in);
+    period_open_ = in.get_bool();
+    current_     = load_period(in);
+    for (double *x : {&w_min_, &w_max_, &x_sum_, &impulse_x_, &last_amplitude_over_h_, &next_output_, &next_progress_})
+      *x = in.get_double();
+    period_steps_        = in.get_uint();
+    contact_steps_       = in.get_uint();
+    have_amplitude_      = in.get_bool();
+    last_row_is_current_ = in.get_bool();
   }
 
   void AdaptationRun::set_slider_position(const double x_C)
@@ -144,7 +195,19 @@ namespace beamslider
       on_period(p);
   }
 
-  RunResult AdaptationRun::run() { return run_until(options_.end_time); }
+  RunResult AdaptationRun::run()
+  {
+    RunResult result = run_until(options_.end_time);
+    finish_trace();
+    return result;
+  }
+
+  void AdaptationRun::finish_trace()
+  {
+    if (!last_row_is_current_ && on_trace_row)
+      on_trace_row(make_row());
+    last_row_is_current_ = true;
+  }
 
   RunResult AdaptationRun::run_until(const double t_end)
   {
@@ -158,23 +221,22 @@ namespace beamslider
     const unsigned long n_steps = t_end > t0 ? static_cast<unsigned long>(std::llround((t_end - t0) / dt)) : 0;
     const double output_interval = options_.output_rate > 0. ? 1. / options_.output_rate : 0.;
     const double eps             = 1e-9 * dt;
-    double next_output           = t0;
-    double next_progress         = t0 + options_.progress_interval;
-    bool last_row_is_current     = false;
 
     auto emit_row_if_due = [&]() {
       const double t = stepper_.state().t;
-      if (t + eps >= next_output)
+      if (t + eps >= next_output_)
         {
           if (on_trace_row)
             on_trace_row(make_row());
-          last_row_is_current = true;
+          last_row_is_current_ = true;
           if (output_interval > 0.)
-            while (next_output <= t + eps)
-              next_output += output_interval;
+            while (next_output_ <= t + eps)
+              next_output_ += output_interval;
+          else
+            next_output_ = t + eps;
         }
       else
-        last_row_is_current = false;
+        last_row_is_current_ = false;
     };
 
     // Periods run on the absolute grid k T; a run that starts off the grid
@@ -267,7 +329,7 @@ namespace beamslider
 
         emit_row_if_due();
 
-        if (on_progress && s.t + eps >= next_progress)
+        if (on_progress && s.t + eps >= next_progress_)
           {
             const double wall = std::chrono::duration<double>(clock::now() - start).count();
             RunProgress pr;
@@ -277,14 +339,14 @@ namespace beamslider
             pr.amplitude_over_h = last_amplitude_over_h_;
             pr.steps_per_second = wall > 0 ? result.n_steps / wall : 0.;
             on_progress(pr);
-            while (next_progress <= s.t + eps)
-              next_progress += options_.progress_interval;
+            while (next_progress_ <= s.t + eps)
+              next_progress_ += options_.progress_interval;
           }
       }
 
     // A stopped run ends its trace with the last good state.
-    if (!last_row_is_current && on_trace_row)
-      on_trace_row(make_row());
+    if (result.status != RunStatus::completed)
+      finish_trace();
 
     result.t_end            = stepper_.state().t;
     result.slider_x_over_L  = stepper_.state().s[0] / L;

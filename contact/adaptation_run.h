@@ -20,6 +20,7 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
+#include "contact/checkpoint.h"
 #include "contact/moreau_stepper.h"
 #include "meshes/scene.h"
 
@@ -58,6 +59,10 @@ namespace beamslider
     unsigned int max_solver_iterations = 0;
     double contact_fraction = 0; // fraction of steps with ≥ 1 active corner [-]
   };
+
+  // A period record in a checkpoint (checkpoint.h), bit for bit.
+  void save_period(CheckpointWriter &out, const PeriodRecord &record);
+  PeriodRecord load_period(CheckpointReader &in);
 
   struct RunProgress
   {
@@ -115,9 +120,21 @@ namespace beamslider
     std::function<void(const PeriodRecord &)> on_period;
     std::function<void(const RunProgress &)> on_progress;
 
-    // Runs from the current state to options.end_time (or to t_end).
+    // Runs from the current state to options.end_time and ends the trace
+    // with the last state (finish_trace).
     RunResult run();
+    // Runs from the current state to t_end. Trace rows follow the output
+    // grid across calls (a run in pieces writes the same rows as one run);
+    // a run that stops early (any status but `completed`) ends its trace
+    // with the last good state at once, a completed piece does not.
     RunResult run_until(double t_end);
+    // Writes the current state as the last trace row unless it was just written.
+    void finish_trace();
+
+    // The run's whole state (stepper, beam model, period accumulators,
+    // output cursors) for bit-identical checkpoints (checkpoint.h).
+    void save(CheckpointWriter &out) const;
+    void load(CheckpointReader &in);
 
     // State access, for sweeps that continue from the previous state.
     const SystemState &state() const { return stepper_.state(); }
@@ -149,6 +166,12 @@ namespace beamslider
     unsigned long period_steps_ = 0, contact_steps_ = 0;
     double last_amplitude_over_h_ = 0;
     bool have_amplitude_          = false;
+
+    // Output cursors: next trace row and progress report [s]; whether the
+    // last trace row shows the current state.
+    double next_output_        = 0;
+    double next_progress_      = 0;
+    bool last_row_is_current_  = false;
     mutable BeamPointKinematics point_;
   };
 

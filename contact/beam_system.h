@@ -31,6 +31,9 @@ namespace beamslider
     Eigen::VectorXd grad_dw; // ∂w'/∂q
   };
 
+  class CheckpointWriter;
+  class CheckpointReader;
+
   class BeamSystem
   {
   public:
@@ -77,5 +80,13 @@ namespace beamslider
       damping_work    = std::numeric_limits<double>::quiet_NaN();
       excitation_work = std::numeric_limits<double>::quiet_NaN();
     }
+
+    // Whatever the model carries from one step to the next and that changes
+    // a later step's result in any bit (a reused factorisation and the point
+    // it was made at, a predictor's history), for checkpoints
+    // (contact/checkpoint.h): a model restored by load_state continues
+    // bit-identically. A model without such state keeps the defaults.
+    virtual void save_state(CheckpointWriter & /*out*/) const {}
+    virtual void load_state(CheckpointReader & /*in*/) {}
   };
 } // namespace beamslider

@@ -115,6 +115,37 @@ namespace beamslider
       p.setZero();
   }
 
+  void MoreauStepper::save(CheckpointWriter &out) const
+  {
+    out.put(state_.t);
+    out.put(state_.q);
+    out.put(state_.u);
+    out.put(state_.s);
+    out.put(state_.v);
+    out.put(t_origin_);
+    out.put(std::uint64_t(steps_taken_));
+    for (const auto &p : warm_)
+      out.put(p);
+    out.put(prescribed_x_);
+    beam_.save_state(out);
+  }
+
+  void MoreauStepper::load(CheckpointReader &in)
+  {
+    const Eigen::Index n = beam_.n_dofs();
+    state_.t             = in.get_double();
+    state_.q             = in.get_vector(n);
+    state_.u             = in.get_vector(n);
+    in.get(state_.s);
+    in.get(state_.v);
+    t_origin_    = in.get_double();
+    steps_taken_ = in.get_uint();
+    for (auto &p : warm_)
+      in.get(p);
+    prescribed_x_ = in.get_bool();
+    beam_.load_state(in);
+  }
+
   double MoreauStepper::slider_kinetic_energy() const
   {
     const auto &v = state_.v;

@@ -33,6 +33,7 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
+#include "contact/checkpoint.h"
 #include "contact/prox_solver.h"
 #include "contact/slider_contact.h"
 
@@ -147,6 +148,12 @@ namespace beamslider
     // Energies [J]: beam (relative to the base), slider kinetic.
     double beam_energy() const { return beam_.energy(state_.q, state_.u); }
     double slider_kinetic_energy() const;
+
+    // Everything that carries from one step to the next (state, time origin
+    // and step count, warm starts, the held-position switch, and the beam
+    // model's own state), for bit-identical checkpoints (checkpoint.h).
+    void save(CheckpointWriter &out) const;
+    void load(CheckpointReader &in);
 
     // Impulses carried to the next step (warm start), (P_N, P_T) per corner.
     const std::array<Eigen::Vector2d, n_slider_corners> &corner_impulses() const { return warm_; }

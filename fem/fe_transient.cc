@@ -1,6 +1,8 @@
 // The FE beam as a BeamSystem: implicit midpoint (Moreau–Jean θ = 1/2), see fe_transient.h.
 #include "fem/fe_transient.h"
 
+#include "contact/checkpoint.h"
+
 #include <deal.II/base/quadrature_lib.h>
 
 #include <cmath>
@@ -227,7 +229,50 @@ namespace beamslider
     factorised_      = true;
     factorised_dt_   = dt;
     factorised_step_ = stats_.steps;
+    factorised_q_bar_ = q_bar;
     ++stats_.factorisations;
+  }
+
+  // The modified-Newton iteration reuses the last factorisation, so the
+  // iterates of every later step depend on where it was made: a checkpoint
+  // keeps that point (and the predictor's last step) and the restored model
+  // factorises there again, which gives the same matrix to the bit.
+  void FETransientBeam::save_state(CheckpointWriter &out) const
+  {
+    out.put(factorised_);
+    Eigen::VectorXd q_bar;
+    to_eigen(factorised_q_bar_, q_bar);
+    out.put(q_bar);
+    out.put(factorised_dt_);
+    out.put(std::uint64_t(factorised_step_));
+    out.put(std::uint64_t(stats_.steps));
+    out.put(have_last_);
+    out.put(last_dt_);
+    out.put(last_acceleration_);
+    out.put(have_last_ ? last_u_B_ : Eigen::VectorXd::Zero(n_dofs()).eval());
+    out.put(have_last_ ? last_u_free_ : Eigen::VectorXd::Zero(n_dofs()).eval());
+  }
+
+  void FETransientBeam::load_state(CheckpointReader &in)
+  {
+    const bool factorised          = in.get_bool();
+    const Eigen::VectorXd q_bar    = in.get_vector(n_dofs());
+    const double factorised_dt     = in.get_double();
+    const unsigned long step       = in.get_uint();
+    stats_.steps                   = in.get_uint();
+    have_last_                     = in.get_bool();
+    last_dt_                       = in.get_double();
+    last_acceleration_             = in.get_double();
+    last_u_B_                      = in.get_vector(n_dofs());
+    last_u_free_                   = in.get_vector(n_dofs());
+    factorised_                    = false;
+    if (factorised)
+      {
+        dealii::Vector<double> q(n_dofs());
+        to_dealii(q_bar, q);
+        factorise(q, factorised_dt);
+        factorised_step_ = step;
+      }
   }
 
   void FETransientBeam::solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const

@@ -141,6 +141,8 @@ namespace beamslider
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
     void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
+    void save_state(CheckpointWriter &out) const override;
+    void load_state(CheckpointReader &in) override;
 
     // Strain energy V(q) [J] and internal force f(q) [N, N m] (FEBeam's assembly).
     double strain_energy(const Eigen::VectorXd &q) const;
@@ -185,6 +187,7 @@ namespace beamslider
     bool factorised_        = false;
     double factorised_dt_   = 0;
     unsigned long factorised_step_ = 0;
+    dealii::Vector<double> factorised_q_bar_; // where K_t of the factorisation was taken
     Eigen::MatrixXd Z_;            // S₀⁻¹ U
     Eigen::MatrixXd U_;            // [M φ_n]
     Eigen::VectorXd Dg_;           // Δt/2 · 2 D ω_n

@@ -144,5 +144,5 @@ TEST(SceneErrors, MissingFile)
       m = e.what();
     }
   expect_contains(m, "no-such-scene.prm");
-  expect_contains(m, "cannot be opened");
+  expect_contains(m, "does not exist");
 }

@@ -95,12 +95,18 @@ int run_command_line(int argc, char **argv)
 
   SimulateOptions simulate;
   auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
-  add_common(simulate_cmd, true);
+  add_common(simulate_cmd, false);
   simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
   simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
   simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
   simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
   simulate_cmd->add_option("--tolerance", simulate.tolerance, "error tolerance for --model auto")->check(finite_positive());
+  simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
+                           "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
+    ->check(finite_positive());
+  simulate_cmd->add_option("--resume", simulate.resume_dir,
+                           "continue the run whose checkpoint.bin is in DIR (scene, case, model and parameters from "
+                           "it; --end-time may extend it)");
   simulate_cmd->add_flag("--allow-large-output", simulate.allow_large_output,
                          "allow a trace of more than " + std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
                            " rows (End time x Output rate)");
@@ -166,7 +172,15 @@ int run_command_line(int argc, char **argv)
       if (*backbone_cmd)
         return run_backbone(common, backbone);
       if (*simulate_cmd)
-        return run_simulate(common, simulate);
+        {
+          if (!simulate.resume_dir.empty())
+            for (const char *given : {"scene", "--set", "--case", "--model", "--output"})
+              if (simulate_cmd->get_option(given)->count() > 0)
+                throw InputError(std::string("simulate --resume takes the scene, case, model, parameters and folder "
+                                             "from the checkpoint; ") +
+                                 given + " cannot be given with it (only --end-time, --checkpoint-every)");
+          return run_simulate(common, simulate);
+        }
       if (*sweep_cmd)
         return run_sweep(common, sweep);
       if (*animate_cmd)

@@ -14,6 +14,7 @@
 //   animation.pvd (+ files) with --animate: the last 0.1 s at 2000 frames/s
 // Both CSV files are flushed as the run goes: a stopped run keeps them.
 #include "contact/adaptation_run.h"
+#include "contact/checkpoint.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/vtk_animation.h"
@@ -23,6 +24,8 @@
 #include "verification/simulation_cases.h"
 
 #include <chrono>
+#include <filesystem>
+#include <optional>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -38,10 +41,127 @@ namespace beamslider
     // adaptation has happened, at a frame rate that resolves the excitation.
     constexpr double animation_window = 0.1;   // [s]
     constexpr double animation_rate   = 2000.; // frames per simulated second
+
+    // What a checkpoint must say besides the run's state: how the run was
+    // asked for (so that --resume rebuilds the same model), where its files
+    // end, and the period records the verdict needs.
+    struct RunDescription
+    {
+      std::string scene_file; // absolute
+      std::uint64_t scene_hash = 0;
+      std::vector<std::string> overrides;
+      std::string case_name;
+      ModelSetting setting;
+      double end_time = 0;
+      std::string why;
+      std::uint64_t trace_bytes = 0, period_bytes = 0; // file sizes at the checkpoint
+      std::uint64_t n_steps     = 0;
+      double wall_seconds       = 0;
+      std::vector<PeriodRecord> periods;
+    };
+
+    // The scene's content: the file's bytes, the overrides and the case, so
+    // that a checkpoint is refused when any of them changed.
+    std::uint64_t scene_content_hash(const std::string &scene_file, const std::vector<std::string> &overrides,
+                                     const std::string &case_name)
+    {
+      std::ifstream in(scene_file, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      std::uint64_t hash = fnv1a(text.str());
+      for (const auto &o : overrides)
+        hash = fnv1a(o + '\n', hash);
+      return fnv1a("case:" + case_name, hash);
+    }
+
+    void save_description(CheckpointWriter &out, const RunDescription &d)
+    {
+      out.put(d.scene_file);
+      out.put(d.scene_hash);
+      out.put(std::uint64_t(d.overrides.size()));
+      for (const auto &o : d.overrides)
+        out.put(o);
+      out.put(d.case_name);
+      out.put(d.setting.family);
+      out.put(std::uint64_t(d.setting.n_modes));
+      out.put(std::uint64_t(d.setting.n_elements));
+      out.put(d.setting.time_step);
+      out.put(d.end_time);
+      out.put(d.why);
+      out.put(d.trace_bytes);
+      out.put(d.period_bytes);
+      out.put(d.n_steps);
+      out.put(d.wall_seconds);
+      out.put(std::uint64_t(d.periods.size()));
+      for (const auto &p : d.periods)
+        save_period(out, p);
+    }
+
+    RunDescription load_description(CheckpointReader &in)
+    {
+      RunDescription d;
+      d.scene_file = in.get_string();
+      d.scene_hash = in.get_uint();
+      d.overrides.resize(in.get_uint());
+      for (auto &o : d.overrides)
+        o = in.get_string();
+      d.case_name           = in.get_string();
+      d.setting.family      = in.get_string();
+      d.setting.n_modes     = in.get_uint();
+      d.setting.n_elements  = in.get_uint();
+      d.setting.time_step   = in.get_double();
+      d.end_time            = in.get_double();
+      d.why                 = in.get_string();
+      d.trace_bytes         = in.get_uint();
+      d.period_bytes        = in.get_uint();
+      d.n_steps             = in.get_uint();
+      d.wall_seconds        = in.get_double();
+      const std::uint64_t n = in.get_uint();
+      for (std::uint64_t i = 0; i < n; ++i)
+        d.periods.push_back(load_period(in));
+      return d;
+    }
   } // namespace
 
-  SimulationOutcome run_simulation(const CommonOptions &common, const SimulateOptions &options, const bool verbose)
+  SimulationOutcome run_simulation(const CommonOptions &given_common, const SimulateOptions &given_options,
+                                   const bool verbose)
   {
+    // --resume DIR: the scene, overrides, case and model come from DIR's
+    // checkpoint; the run continues from its state into the same files.
+    CommonOptions common    = given_common;
+    SimulateOptions options = given_options;
+    std::optional<CheckpointReader> checkpoint;
+    RunDescription saved;
+    const bool resuming = !options.resume_dir.empty();
+    if (resuming)
+      {
+        if (options.animate)
+          throw InputError("--resume cannot be combined with --animate; animate the end of the resumed run with "
+                           "`beamslider animate`");
+        try
+          {
+            checkpoint.emplace(read_checkpoint_file(options.resume_dir + "/checkpoint.bin"));
+            saved = load_description(*checkpoint);
+          }
+        catch (const CheckpointError &e)
+          {
+            throw InputError(std::string("--resume: ") + e.what());
+          }
+        common.scene_file  = saved.scene_file;
+        common.overrides   = saved.overrides;
+        common.output_dir  = options.resume_dir;
+        options.case_name  = saved.case_name;
+        options.model      = saved.setting.family;
+        if (!options.end_time)
+          options.end_time = saved.end_time;
+        if (scene_content_hash(saved.scene_file, saved.overrides, saved.case_name) != saved.scene_hash)
+          throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for another scene: '" +
+                           saved.scene_file + "' or its parameters changed since; a resumed run would not continue "
+                           "the same computation");
+      }
+    if (options.checkpoint_every && options.animate)
+      throw InputError("--checkpoint-every cannot be combined with --animate");
+
     if (options.model != "rom" && options.model != "fe" && options.model != "auto")
       throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
     if (options.model == "auto" && !options.tolerance)
@@ -49,7 +169,7 @@ namespace beamslider
     if (options.end_time && !(*options.end_time > 0.))
       throw InputError("--end-time " + std::to_string(*options.end_time) + " s must be > 0");
 
-    const std::string scene_file = resolve_scene_path(common.scene_file);
+    const std::string scene_file = std::filesystem::absolute(resolve_scene_path(common.scene_file)).string();
     const SimulationCase *the_case = options.case_name.empty() ? nullptr : &find_case(options.case_name);
     SimulationOutcome outcome;
     Scene &scene = outcome.scene;
@@ -81,7 +201,13 @@ namespace beamslider
     setting.n_elements = scene.discretisation.n_elements;
     setting.time_step = scene.time_stepping.time_step;
     std::string &why = outcome.why;
-    if (options.model == "auto")
+    if (resuming)
+      {
+        setting = saved.setting;
+        why     = saved.why;
+        scene.time_stepping.time_step = setting.time_step;
+      }
+    else if (options.model == "auto")
       {
         std::cout << "simulate --model auto: running the candidate models over 0.5 s against the FE reference ..."
                   << std::endl;
@@ -108,10 +234,42 @@ namespace beamslider
         throw InputError(m.str());
       }
     AdaptationRun run(scene, *beam, run_options);
-    OutputFile trace_file(dir + "/trace.csv"), period_file(dir + "/periods.csv");
-    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path());
-    PeriodCsvWriter period_writer(period_file.stream(), period_file.path());
     std::vector<PeriodRecord> periods;
+    if (resuming)
+      {
+        try
+          {
+            run.load(*checkpoint);
+            if (!checkpoint->at_end())
+              throw CheckpointError("the checkpoint holds more than this model's state");
+          }
+        catch (const CheckpointError &e)
+          {
+            throw InputError("--resume: checkpoint in '" + dir + "' does not fit the model: " + e.what());
+          }
+        if (!(end_time > run.state().t))
+          {
+            std::ostringstream m;
+            m << "--resume: --end-time " << end_time << " s must lie after the checkpoint's time " << run.state().t
+              << " s";
+            throw InputError(m.str());
+          }
+        // Rows written after the checkpoint by the run that stopped are
+        // dropped; the resumed run writes them again, identically.
+        for (const auto &[file, size] : {std::pair(dir + "/trace.csv", saved.trace_bytes),
+                                         std::pair(dir + "/periods.csv", saved.period_bytes)})
+          {
+            std::error_code ec;
+            std::filesystem::resize_file(file, size, ec);
+            if (ec)
+              throw OutputError("--resume: '" + file + "' cannot be cut back to the checkpoint: " + ec.message());
+          }
+        periods = saved.periods;
+        std::cout << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
+      }
+    OutputFile trace_file(dir + "/trace.csv", resuming), period_file(dir + "/periods.csv", resuming);
+    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path(), !resuming);
+    PeriodCsvWriter period_writer(period_file.stream(), period_file.path(), !resuming);
     run.on_trace_row = [&trace](const TraceRow &row) { trace.write(row); };
     run.on_period    = [&](const PeriodRecord &r) {
       period_writer.write(r);
@@ -151,7 +309,56 @@ namespace beamslider
         animation->finish();
       }
     else
-      result = run.run();
+      {
+        // In pieces of --checkpoint-every, each followed by a checkpoint
+        // (files flushed first, so the sizes it records are on disk); one
+        // piece without it. The trace is the same either way.
+        const double every = options.checkpoint_every.value_or(0.);
+        auto write_checkpoint = [&] {
+          trace.flush();
+          trace_file.flush();
+          period_file.flush();
+          RunDescription d;
+          d.scene_file   = scene_file;
+          d.overrides    = common.overrides;
+          d.case_name    = the_case ? the_case->name : std::string();
+          d.scene_hash   = scene_content_hash(scene_file, d.overrides, d.case_name);
+          d.setting      = setting;
+          d.end_time     = end_time;
+          d.why          = why;
+          d.trace_bytes  = std::filesystem::file_size(trace_file.path());
+          d.period_bytes = std::filesystem::file_size(period_file.path());
+          d.n_steps      = saved.n_steps + result.n_steps;
+          d.wall_seconds = saved.wall_seconds +
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          d.periods      = periods;
+          CheckpointWriter out;
+          save_description(out, d);
+          run.save(out);
+          write_file_atomically(dir + "/checkpoint.bin", checkpoint_file_bytes(out.bytes()));
+        };
+        const double eps = 1e-9 * scene.time_stepping.time_step;
+        double t_stop    = every > 0. ? (std::floor(run.state().t / every + 1e-9) + 1.) * every : end_time;
+        while (true)
+          {
+            t_stop                = std::min(t_stop, end_time);
+            const RunResult piece = run.run_until(t_stop);
+            result.status         = piece.status;
+            result.message        = piece.message;
+            result.n_steps += piece.n_steps;
+            result.t_end           = piece.t_end;
+            result.slider_x_over_L = piece.slider_x_over_L;
+            result.max_solver_iterations = std::max(result.max_solver_iterations, piece.max_solver_iterations);
+            if (piece.status != RunStatus::completed)
+              break;
+            if (every > 0.)
+              write_checkpoint();
+            if (t_stop >= end_time - eps)
+              break;
+            t_stop += every;
+          }
+        run.finish_trace();
+      }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     trace.flush();
     trace_file.close();
@@ -179,6 +386,13 @@ namespace beamslider
       }
     summary << "- Model: " << setting.label() << ".\n"
             << (why.empty() ? "" : "- Chosen by --model auto:\n\n```\n" + why + "\n```\n\n")
+            << (resuming ? "- Resumed from the checkpoint in this folder (" + std::to_string(saved.n_steps) +
+                             " steps done before).\n"
+                         : std::string())
+            << (options.checkpoint_every ? "- Checkpoint every " + std::to_string(*options.checkpoint_every) +
+                                             " s simulated: checkpoint.bin (resume with `beamslider simulate --resume " +
+                                             dir + "`).\n"
+                                         : std::string())
             << "- Simulated " << result.t_end << " s of " << end_time << " s in " << wall << " s wall ("
             << (wall > 0 ? result.n_steps / wall : 0.) << " steps/s).\n"
             << "- Status: " << to_string(result.status) << (result.message.empty() ? "" : ": " + result.message) << ".\n"

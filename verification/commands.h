@@ -55,6 +55,8 @@ namespace beamslider
     bool animate = false;             // also write a .pvd animation
     std::optional<double> tolerance;  // for --model auto
     bool allow_large_output = false;  // more than max_trace_rows rows in trace.csv
+    std::optional<double> checkpoint_every; // [s] simulated between checkpoints (checkpoint.bin)
+    std::string resume_dir;           // continue the run whose checkpoint is in this folder
 
     // trace.csv rows (End time × Output rate) allowed without
     // --allow-large-output: 1e7 rows are about 1 GB.
