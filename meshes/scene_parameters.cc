@@ -74,7 +74,8 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Excitation");
-      prm.declare_entry("Frequency", num(d.excitation.frequency_hz), Double(0), "f_ex [Hz], > 0");
+      prm.declare_entry("Frequency", num(d.excitation.frequency_hz), Double(0.1, 1e5),
+                        "f_ex [Hz], in [0.1, 1e5] (at lower frequencies the base displacement a/Omega^2 swamps the micrometre gaps in round-off)");
       prm.declare_entry("Acceleration amplitude", num(d.excitation.acceleration_amplitude), Double(0), "base acceleration amplitude [m/s^2]");
       prm.leave_subsection();
 

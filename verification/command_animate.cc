@@ -7,6 +7,7 @@
 // trace.csv (the ROM's columns), frames.csv and frames.png (a strip of stills
 // drawn by scripts/plot_frames.py).
 #include "contact/adaptation_run.h"
+#include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
@@ -81,14 +82,19 @@ namespace beamslider
           break;
         writer.write(make_animation_frame(run.stepper(), sample_beam(*beam, run.state().q, k_ax)));
       }
+    run.finish_trace();
+    trace.flush();
+    trace_file.close();
     writer.finish();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last.status != RunStatus::completed)
-      std::cout << "the run stopped early (" << to_string(last.status) << "): " << last.message << "\n";
+      std::cerr << "animate: the run stopped early (" << to_string(last.status) << "): " << last.message << "\n";
     std::cout << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file() << " (" << wall
               << " s wall, final x_C/L = " << run.state().s[0] / scene.beam.length << ")" << std::endl;
 
+    if (last.status == RunStatus::interrupted)
+      return interruption_exit_code();
     run_plot_script("plot_frames.py", {dir + "/frames.csv", dir + "/frames.png"});
-    return last.status == RunStatus::completed ? 0 : 1;
+    return last.status == RunStatus::completed || last.status == RunStatus::slider_at_support ? 0 : 1;
   }
 } // namespace beamslider

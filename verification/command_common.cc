@@ -36,6 +36,14 @@ namespace beamslider
     return dir.string();
   }
 
+  void require_mesh_for_modes(const unsigned int n_elements, const unsigned int n_modes, const std::string &option)
+  {
+    if (n_elements < n_modes + 1)
+      throw InputError(option + " " + std::to_string(n_modes) + " needs a mesh of at least " +
+                       std::to_string(n_modes + 1) + " elements; 'Discretisation/Number of elements' (or --elements) is " +
+                       std::to_string(n_elements));
+  }
+
   namespace
   {
     std::vector<std::string> &failed_outputs()

@@ -26,6 +26,8 @@ namespace beamslider
     const std::string dir = prepare_output_dir(common, scene.name, "modes");
 
     const auto start = std::chrono::steady_clock::now();
+    require_mesh_for_modes(options.n_elements ? options.n_elements : scene.discretisation.n_elements, options.n_modes,
+                           "--modes");
     const FEBeam beam(scene, options.n_elements);
     const FEModes bare = compute_bending_modes(beam, options.n_modes);
     std::optional<FEModes> bonded;

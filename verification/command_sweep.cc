@@ -46,6 +46,10 @@ namespace beamslider
     std::cout << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
     const bool complete = study.up.last_run.status == RunStatus::completed &&
                           study.down.last_run.status == RunStatus::completed;
+    for (const auto *branch : {&study.up, &study.down})
+      if (branch->last_run.status != RunStatus::completed)
+        std::cerr << "sweep: a branch stopped early (" << to_string(branch->last_run.status)
+                  << "): " << branch->last_run.message << std::endl;
     return complete ? 0 : 1;
   }
 } // namespace beamslider

@@ -1,4 +1,5 @@
 // `beamslider verify`: the verification report on one scene.
+#include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
@@ -27,15 +28,35 @@ namespace beamslider
     // Each section appends to report.md and is flushed to disk before the
     // next starts, so a failure late in the report keeps the earlier ones.
     auto flush = [&report] { write_text_file(report.dir + "/report.md", report.text.str()); };
+    // Between sections, an interruption (Ctrl-C) ends the report with what
+    // is complete; the studies inside a section stop at their next step.
+    auto interrupted = [&] {
+      if (!interruption_requested())
+        return false;
+      report.text << "\n---\n**Interrupted** (signal " << interruption_signal()
+                  << "): the sections above are complete, the rest was not run.\n";
+      flush();
+      return true;
+    };
     add_frequency_section(report, scene);
     flush();
+    if (interrupted())
+      return interruption_exit_code();
     add_coefficient_section(report, scene, options.full);
     flush();
+    if (interrupted())
+      return interruption_exit_code();
     add_backbone_section(report, scene, options.full);
     flush();
+    if (interrupted())
+      return interruption_exit_code();
     add_contact_section(report, scene, options.full);
     flush();
+    if (interrupted())
+      return interruption_exit_code();
     add_fe_rom_section(report, scene, options.full);
+    if (interrupted())
+      return interruption_exit_code();
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.text << "---\nTotal time of this report: " << seconds << " s.\n";

@@ -90,6 +90,11 @@ namespace beamslider
   // Resolves a scene argument: the path as given, else relative to the
   // source tree's meshes/ (so `beamslider modes mueller2023` works anywhere).
   std::string resolve_scene_path(const std::string &scene);
+  // Refuses (InputError) a mesh too coarse for n_modes bending modes: at
+  // least n_modes + 1 elements (the rule validate_scene applies to the
+  // scene's own N), so that the eigensolver has the DoFs to find them.
+  void require_mesh_for_modes(unsigned int n_elements, unsigned int n_modes, const std::string &option);
+
   // Creates (if needed) and returns the output folder for a command; throws
   // OutputError if it cannot.
   std::string prepare_output_dir(const CommonOptions &common, const std::string &scene_name, const std::string &command);
