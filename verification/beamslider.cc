@@ -60,19 +60,18 @@ int run_command_line(int argc, char **argv)
   app.require_subcommand(1);
 
   CommonOptions common;
-  auto add_common = [&common](CLI::App *sub, const bool scene_required) {
-    auto *scene = sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
-    if (scene_required)
-      scene->required();
-    else
-      common.scene_file = "mueller2023";
+  // The same options mean the same on every sub-command: the scene (a path or
+  // a name in meshes/, default mueller2023), --set, --output.
+  common.scene_file = "mueller2023";
+  auto add_common = [&common](CLI::App *sub) {
+    sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
     sub->add_option("--set", common.overrides, "override a parameter: \"Section/Name=value\" (repeatable)");
     sub->add_option("--output,-o", common.output_dir, "output folder (default reports/<scene>/<command>)");
   };
 
   ModesOptions modes;
   auto *modes_cmd = app.add_subcommand("modes", "linear bending modes of the bare beam or with a bonded slider");
-  add_common(modes_cmd, true);
+  add_common(modes_cmd);
   modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)")
     ->check(finite_in(0., 1.));
   modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(integer_in(1, 50));
@@ -80,14 +79,14 @@ int run_command_line(int argc, char **argv)
 
   CoefficientsOptions coefficients;
   auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
-  add_common(coefficients_cmd, true);
+  add_common(coefficients_cmd);
   coefficients_cmd->add_option("--method", coefficients.method, "analytic | step | step-condensed | ice")
     ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
   coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
 
   BackboneOptions backbone;
   auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
-  add_common(backbone_cmd, true);
+  add_common(backbone_cmd);
   backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
   backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
   backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
@@ -95,7 +94,7 @@ int run_command_line(int argc, char **argv)
 
   SimulateOptions simulate;
   auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
-  add_common(simulate_cmd, false);
+  add_common(simulate_cmd);
   simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
   simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
   simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
@@ -113,8 +112,9 @@ int run_command_line(int argc, char **argv)
 
   SweepOptions sweep;
   auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
-  add_common(sweep_cmd, true);
+  add_common(sweep_cmd);
   sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see README)");
   sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
   sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
     ->check(finite_non_negative());
@@ -128,9 +128,9 @@ int run_command_line(int argc, char **argv)
 
   AnimateOptions animate;
   auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
-  add_common(animate_cmd, true);
+  add_common(animate_cmd);
   animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
-  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation");
+  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see README)");
   animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
   animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
   animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
@@ -138,7 +138,7 @@ int run_command_line(int argc, char **argv)
 
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
-  add_common(verify_cmd, false);
+  add_common(verify_cmd);
   verify_cmd->add_flag("--full", verify.full, "run the long studies too");
 
   auto *template_cmd = app.add_subcommand("scene-template", "print a scene file with every parameter, its unit and range");

@@ -27,13 +27,9 @@ namespace beamslider
 {
   int run_animate(const CommonOptions &common, const AnimateOptions &options)
   {
-    if (!options.case_name.empty())
-      throw InputError("--case '" + options.case_name +
-                       "': animate takes the scene as it is; set the case's parameters with --set "
-                       "(e.g. --set Excitation/Frequency=124)");
     if (options.model != "fe" && options.model != "rom")
       throw InputError("--model '" + options.model + "' is not one of fe, rom");
-    const Scene scene     = read_scene(resolve_scene_path(common.scene_file), common.overrides);
+    const Scene scene     = read_command_scene(common, options.case_name);
     const double end_time = options.end_time.value_or(0.2);
     if (!(options.start_time < end_time))
       throw InputError("--start-time " + std::to_string(options.start_time) + " s must lie before the end time " +

@@ -2,6 +2,7 @@
 #include "meshes/scene.h"
 #include "verification/child_process.h"
 #include "verification/commands.h"
+#include "verification/simulation_cases.h"
 
 #include <filesystem>
 #include <iostream>
@@ -34,6 +35,15 @@ namespace beamslider
     if (!fs::is_directory(dir, ec))
       throw OutputError("output folder '" + dir.string() + "' is not a folder");
     return dir.string();
+  }
+
+  Scene read_command_scene(const CommonOptions &common, const std::string &case_name,
+                           std::vector<std::string> *modified)
+  {
+    const std::string file = resolve_scene_path(common.scene_file);
+    if (case_name.empty())
+      return read_scene(file, common.overrides);
+    return read_case_scene(file, find_case(case_name), common.overrides, modified);
   }
 
   void require_mesh_for_modes(const unsigned int n_elements, const unsigned int n_modes, const std::string &option)

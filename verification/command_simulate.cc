@@ -174,8 +174,7 @@ namespace beamslider
     SimulationOutcome outcome;
     Scene &scene = outcome.scene;
     std::vector<std::string> modified; // the case's own parameters the user changed
-    scene = the_case ? read_case_scene(scene_file, *the_case, common.overrides, &modified)
-                     : read_scene(scene_file, common.overrides);
+    scene = read_command_scene(common, options.case_name, &modified);
     if (options.end_time)
       {
         scene.time_stepping.end_time = *options.end_time;

@@ -14,7 +14,7 @@ namespace beamslider
 {
   int run_sweep(const CommonOptions &common, const SweepOptions &options)
   {
-    const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
+    const Scene scene = read_command_scene(common, options.case_name);
     PcsStudySettings settings;
     settings.model = options.model;
     settings.sweep = PcsSweepSettings::for_scene(scene);

@@ -73,6 +73,7 @@ namespace beamslider
     double settle_time  = 0.5;           // [s] per position before averaging
     double average_time = 0.2;           // [s] averaged per position
     std::optional<double> free_time;     // [s] free-slider run overlaid; default the scene's end time
+    std::string case_name;               // a published case or ablation ("" = the scene as it is)
   };
   int run_sweep(const CommonOptions &common, const SweepOptions &options);
 
@@ -86,6 +87,14 @@ namespace beamslider
     std::string case_name;
   };
   int run_animate(const CommonOptions &common, const AnimateOptions &options);
+
+  // The scene of a command that simulates: the scene file, or with a case
+  // name the file with the case's parameters (simulation_cases.h); the
+  // user's overrides last. `modified` lists the case's own parameters the
+  // user changed.
+  struct Scene;
+  Scene read_command_scene(const CommonOptions &common, const std::string &case_name,
+                           std::vector<std::string> *modified = nullptr);
 
   // Resolves a scene argument: the path as given, else relative to the
   // source tree's meshes/ (so `beamslider modes mueller2023` works anywhere).
