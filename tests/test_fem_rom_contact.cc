@@ -48,6 +48,8 @@
 #include "verification/fe_rom_study.h"
 #include "verification/report.h"
 
+#include "tests/fem_test_loads.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -135,15 +137,8 @@ TEST(FEAgainstROM, StaticTruncationOfTheSliderLoadFallsFromSevenToTenModes)
   FEStatics statics(beam, modes, 1);
   const unsigned int n = beam.n_dofs();
   const double L = scene.beam.length, B = scene.slider.window_width, x_C = 0.3 * L;
-  const double weight = scene.slider_mass() * scene.contact.gravity;
-  dealii::Vector<double> F(n), xs(n);
-  for (const double xp : {x_C - 0.5 * B, x_C + 0.5 * B})
-    {
-      const FEPointShape p = beam.point_shape(xp);
-      for (unsigned int a = 0; a < 4; ++a)
-        F[p.w_dofs[a]] -= 0.5 * weight * p.w_values[a];
-    }
-  beam.constraints().set_zero(F);
+  const dealii::Vector<double> F = beamslider::testing::slider_weight_load(beam, scene, x_C);
+  dealii::Vector<double> xs(n);
   statics.solve(F, xs);
   std::array<double, 2> slope_error{}, w_error{};
   std::size_t i = 0;

@@ -17,6 +17,8 @@
 #include "reduced/rom_beam_system.h"
 
 #include <Eigen/Dense>
+#include "tests/fem_test_loads.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -348,15 +350,8 @@ TEST(FETransientSlider, RestingSliderStaysPutOnTheSaggingBeam)
   const FEBeam &beam = sys.beam();
   const unsigned int n = sys.n_dofs();
   FEStatics statics(beam, sys.modes(), 1);
-  dealii::Vector<double> F(n), xs(n);
-  const double weight = s.slider_mass() * s.contact.gravity, B = s.slider.window_width;
-  for (const double xp : {x_C - 0.5 * B, x_C + 0.5 * B})
-    {
-      const FEPointShape p = beam.point_shape(xp);
-      for (unsigned int a = 0; a < 4; ++a)
-        F[p.w_dofs[a]] -= 0.5 * weight * p.w_values[a];
-    }
-  beam.constraints().set_zero(F);
+  const dealii::Vector<double> F = beamslider::testing::slider_weight_load(beam, s, x_C);
+  dealii::Vector<double> xs(n);
   statics.solve(F, xs);
   BeamPointKinematics point;
   sys.evaluate(x_C, state.q, point);
