@@ -237,13 +237,14 @@ namespace beamslider
           c.distribute_local_to_global(cell_K, dofs, *K_t);
       }
 
-    // Support springs: ½ k_r θ² and ½ k_t u² at both ends (the clamp has
+    // Support springs: ½ k_r θ² and ½ (2 k_t) u² at both ends, so that the two
+    // axial springs in series are the clamping's total k_t (the clamp has
     // constrained these DoFs instead).
     if (!supports.ideal_clamp)
       for (unsigned int end = 0; end < 2; ++end)
         {
           const auto [u, w, theta] = end_dofs[end];
-          for (const auto &[dof, k] : {std::pair{theta, supports.rotational_stiffness}, std::pair{u, supports.axial_stiffness}})
+          for (const auto &[dof, k] : {std::pair{theta, supports.rotational_stiffness}, std::pair{u, supports.axial_spring_per_end()}})
             if (!c.is_constrained(dof))
               {
                 if (f)

@@ -3,7 +3,7 @@
 // relative to the moving base,
 //
 //   ε = u' + ½ w'²  (u' alone without geometric nonlinearity),   κ = w'' ,
-//   Π(u, w) = ∫ ½ EA ε² + ½ EI κ² dx + Σ_ends ½ k_r w'² + ½ k_t u² ,
+//   Π(u, w) = ∫ ½ EA ε² + ½ EI κ² dx + Σ_ends ½ k_r w'² + ½ (2 k_t) u² ,
 //   T       = ∫ ½ ρA (u̇² + ẇ²) dx ,       base load  -∫ ρA ẅ0 δw dx .
 //
 // Discretisation. The bending energy needs C¹ continuity of w, and deal.II
@@ -19,7 +19,8 @@
 // directly), and gives the classical O(h⁴) convergence of the frequencies.
 //
 // Supports: w = 0 at both ends by constraints; rotational springs k_r on θ
-// and axial springs k_t on u at both ends; the ideal clamp (k_r, k_t → ∞) is
+// and axial springs 2 k_t on u at both ends (k_t is the clamping's total
+// axial stiffness, as published: the two end springs in series); the ideal clamp (k_r, k_t → ∞) is
 // imposed exactly by the constraints θ = 0, u = 0 instead of the springs.
 //
 // Units: SI. The DoF vector holds u [m], w [m] and θ [rad].

@@ -2,7 +2,7 @@
 // the N lowest mass-normalised bending modes of the FE beam with
 //   γ_n = -ρA ∫ φ_n dx = rᵀ φ_n  (r the FE base-load vector),
 //   K'_jk = ∫ φ_j' φ_k' dx        (Gauss quadrature, exact for the Hermite cubics),
-//   k_ax  = (L/(EA) + 2/k_t)^-1 (springs at both ends; see SupportData),
+//   k_ax  = (L/(EA) + 1/k_t)^-1 (k_t the clamping's total axial stiffness; see SupportData),
 // and φ_n(x), φ_n'(x) evaluable at any x from per-element Hermite
 // coefficients, so the reduced model never needs deal.II or the analytic mode
 // formulas at run time.

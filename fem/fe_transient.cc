@@ -102,7 +102,7 @@ namespace beamslider
         {
           const auto [u, w, theta] = beam.support_dofs(end);
           springs_.emplace_back(theta, beam.support_data().rotational_stiffness);
-          springs_.emplace_back(u, beam.support_data().axial_stiffness);
+          springs_.emplace_back(u, beam.support_data().axial_spring_per_end());
         }
   }
 

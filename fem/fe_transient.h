@@ -209,7 +209,7 @@ namespace beamslider
       double JxW;
     };
     std::vector<QuadraturePointData> quadrature_;
-    std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or k_t)
+    std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too
     // Scratch.

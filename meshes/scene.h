@@ -41,23 +41,28 @@ namespace beamslider
 
   // Both ends carry w = 0, a rotational spring on w' and an axial spring on u.
   // "clamped" is the limit of infinite springs and is imposed by constraints.
+  //
+  // k_t is the TOTAL axial stiffness of the clamping, as Müller, Beck & Krack
+  // (2023) define it: the two supports together, in series with the beam.
+  // The symmetric FE model realises it with a spring 2 k_t at each end (two
+  // springs 2 k_t in series are k_t).
   struct SupportData
   {
     bool   ideal_clamp          = false;
-    double rotational_stiffness = 125.;   // k_r [N m/rad]
-    double axial_stiffness      = 1.93e7; // k_t [N/m]
+    double rotational_stiffness = 125.;   // k_r, at each end [N m/rad]
+    double axial_stiffness      = 1.93e7; // k_t, both ends together [N/m]
 
-    // Stiffness of the membrane in series with the axial springs: the axial
-    // force of a beam stretched by Δ is N = k_ax Δ with
-    //   k_ax = (L/(EA) + 2/k_t)^-1      (one spring k_t at each end),
+    // The axial spring the FE model puts at each end: 2 k_t [N/m].
+    double axial_spring_per_end() const { return 2. * axial_stiffness; }
+
+    // Stiffness of the membrane in series with the clamping: the axial force
+    // of a beam stretched by Δ is N = k_ax Δ with
+    //   k_ax = (L/(EA) + 1/k_t)^-1      (elastic supports, k_t in total),
     //   k_ax = EA/L                     (ideal clamp).
-    // DESIGN.md §1.2 writes (L/(EA) + 1/k_t)^-1, which is right for a spring at
-    // one end only; our supports (§1.1) have one at each end, and the FE model
-    // with them agrees with this formula (tests/test_fem_coefficients.cc).
     double membrane_stiffness(const BeamData &beam) const
     {
       const double beam_compliance = beam.length / beam.axial_stiffness();
-      return 1. / (beam_compliance + (ideal_clamp ? 0. : 2. / axial_stiffness));
+      return 1. / (beam_compliance + (ideal_clamp ? 0. : 1. / axial_stiffness));
     }
   };
 

@@ -48,10 +48,10 @@ namespace beamslider
 
       prm.enter_subsection("Supports");
       prm.declare_entry("Type", "elastic", Selection("elastic|clamped"),
-                        "elastic: w = 0 with rotational spring k_r and axial spring k_t at both ends; "
+                        "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
                         "clamped: the ideal clamp w = w' = u = 0 (the springs below are then ignored)");
       prm.declare_entry("Rotational stiffness", num(d.supports.rotational_stiffness), Double(0), "k_r, on w' at each end [N m/rad]");
-      prm.declare_entry("Axial stiffness", num(d.supports.axial_stiffness), Double(0), "k_t, on u at each end [N/m]");
+      prm.declare_entry("Axial stiffness", num(d.supports.axial_stiffness), Double(0), "k_t, the clamping's TOTAL axial stiffness as published (Mueller, Beck & Krack 2023): in series with the beam, k_ax = (L/(EA) + 1/k_t)^-1; the FE model puts 2 k_t at each end [N/m]");
       prm.leave_subsection();
 
       prm.enter_subsection("Slider");

@@ -112,13 +112,13 @@ TEST(CaseVerdict, FindsTheJumpAndTheTurnWhereTheyWerePut)
   RunResult done;
   const CaseVerdict v = case_verdict(periods(30, x, a), done);
   EXPECT_EQ(v.initial_direction, "toward the clamp");
-  EXPECT_TRUE(v.outcome.jumped);
-  EXPECT_GT(v.outcome.jump_time, 10.);         // not before the step ...
-  EXPECT_LE(v.outcome.jump_time, 10.1 + 0.01); // ... and within the 0.1 s envelope's rise
-  EXPECT_TRUE(v.outcome.turned);
-  EXPECT_NEAR(v.outcome.turn_position, 0.25, 0.001);
-  EXPECT_NEAR(v.outcome.final_position, 0.35, 1e-9);
-  EXPECT_NEAR(v.outcome.final_amplitude, 1.5, 1e-9);
+  EXPECT_TRUE(v.jumped);
+  EXPECT_GT(v.jump_time, 10.);         // not before the step ...
+  EXPECT_LE(v.jump_time, 10.1 + 0.01); // ... and within the 0.1 s envelope's rise
+  EXPECT_TRUE(v.turned);
+  EXPECT_NEAR(v.turn_position, 0.25, 0.001);
+  EXPECT_NEAR(v.final_position, 0.35, 1e-9);
+  EXPECT_NEAR(v.final_amplitude, 1.5, 1e-9);
   EXPECT_EQ(v.n_upward_jumps, 1u);
   EXPECT_FALSE(v.crosses_centre);
   EXPECT_EQ(disagreements(v, find_case("signature-move").expected), "");
@@ -135,8 +135,8 @@ TEST(CaseVerdict, TrivialAdaptionRecurrentJumpsAndCentreCrossing)
   const CaseVerdict trivial =
     case_verdict(periods(30, [](double t) { return 0.3 + 0.005 * t; }, [](double t) { return 0.1 + 0.03 * t; }), done);
   EXPECT_EQ(trivial.initial_direction, "toward the centre");
-  EXPECT_FALSE(trivial.outcome.jumped);
-  EXPECT_FALSE(trivial.outcome.turned);
+  EXPECT_FALSE(trivial.jumped);
+  EXPECT_FALSE(trivial.turned);
   EXPECT_EQ(disagreements(trivial, find_case("trivial-adaption").expected), "");
 
   const CaseVerdict bursts = case_verdict(

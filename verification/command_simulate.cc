@@ -365,7 +365,7 @@ namespace beamslider
 
     outcome.result       = result;
     outcome.wall_seconds = wall;
-    outcome.verdict      = case_verdict(periods, result);
+    outcome.verdict      = case_verdict(periods, result, trace_thresholds(scene));
     const CaseVerdict &verdict = outcome.verdict;
     std::ostringstream summary;
     summary << "# simulate: scene `" << scene.name << "`" << (the_case ? ", case `" + the_case->name + "`" : "") << "\n\n";

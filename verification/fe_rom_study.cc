@@ -138,63 +138,9 @@ namespace beamslider
     return {copy.drift_error, copy.envelope_error, copy.position_error};
   }
 
-  TraceOutcome trace_outcome(const std::vector<PeriodRecord> &periods)
+  TraceOutcome trace_outcome(const ModelRun &run, const TraceThresholds &thresholds)
   {
-    TraceOutcome o;
-    const std::size_t n = periods.size();
-    if (n < 20)
-      {
-        o.verdict = "too short to judge";
-        return o;
-      }
-    o.valid             = true;
-    o.end_time          = periods.back().t_end;
-    const double period = periods[0].t_end - periods[0].t_start;
-    const auto e        = envelope(periods, n, std::max<std::size_t>(1, std::lround(0.1 / period)));
-    o.max_envelope = *std::max_element(e.begin(), e.end());
-    // The first time the envelope reaches half its maximum; the low level is
-    // the median over the three quarters of the run before that. A crossing
-    // within the first 2 s is the build-up from rest (time constant
-    // 1/(D ω_1) ≈ 1 s), not a jump.
-    std::size_t k_half = 0;
-    while (k_half < n && e[k_half] < 0.5 * o.max_envelope)
-      ++k_half;
-    std::vector<double> before(e.begin() + k_half / 4, e.begin() + std::max<std::size_t>(k_half, k_half / 4 + 1));
-    std::nth_element(before.begin(), before.begin() + before.size() / 2, before.end());
-    o.low_level = before[before.size() / 2];
-    o.jumped    = periods[std::min(k_half, n - 1)].t_end >= 2.0 && o.max_envelope > 2 * o.low_level;
-    if (o.jumped)
-      o.jump_time = periods[k_half].t_end;
-    std::size_t k_turn = 0;
-    for (std::size_t k = 0; k < n; ++k)
-      if (std::abs(periods[k].slider_x_over_L - 0.5) > std::abs(periods[k_turn].slider_x_over_L - 0.5))
-        k_turn = k;
-    o.turn_position = periods[k_turn].slider_x_over_L;
-    o.turn_time     = 0.5 * (periods[k_turn].t_start + periods[k_turn].t_end);
-    const std::size_t tail = std::max<std::size_t>(1, std::min<std::size_t>(std::lround(1.0 / period), n / 10));
-    for (std::size_t k = n - tail; k < n; ++k)
-      {
-        o.final_position += periods[k].slider_x_over_L / tail;
-        o.final_amplitude += periods[k].amplitude_over_h / tail;
-      }
-    o.turned = std::abs(o.final_position - 0.5) <= std::abs(o.turn_position - 0.5) - 0.02;
-    const bool toward_support =
-      std::abs(o.turn_position - 0.5) > std::abs(periods[0].slider_x_over_L - 0.5) + 0.01; // moved out first
-    std::ostringstream v;
-    v << std::setprecision(3);
-    if (o.jumped)
-      v << "jump to " << o.max_envelope << " h at t = " << o.jump_time << " s";
-    else
-      v << "no jump (envelope ≤ " << o.max_envelope << " h)";
-    if (o.turned)
-      v << ", turned at x_C/L = " << o.turn_position << " (t = " << o.turn_time << " s) back toward the centre";
-    else
-      v << ", no turn-around (farthest from the centre: " << o.turn_position << ")";
-    v << ", ends at " << o.final_position << " with " << o.final_amplitude << " h";
-    if (o.jumped && o.turned && toward_support)
-      v << ": signature move";
-    o.verdict = v.str();
-    return o;
+    return analyse_trace(run.periods, run.result.status, thresholds);
   }
 
   std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs)

@@ -19,6 +19,7 @@
 #pragma once
 
 #include "contact/adaptation_run.h"
+#include "contact/trace_analysis.h"
 #include "meshes/scene.h"
 
 #include <functional>
@@ -73,31 +74,10 @@ namespace beamslider
   };
   RunDifference difference(const ModelRun &run, const ModelRun &other);
 
-  // The outcome of a long adaptation run, from its period records (what the
-  // signature move of DESIGN.md §1 consists of):
-  //   envelope       a trailing 0.1 s mean of the per-period amplitude ŵ(L/2)/h;
-  //   jump time      the first time the envelope reaches half its maximum;
-  //   low level      the envelope's median over the last three quarters of the
-  //                  run before that time;
-  //   jump           maximum > twice the low level, and the half-maximum
-  //                  reached after 2 s (earlier: the build-up from rest);
-  //   turn-around    the period mean x̄ farthest from the centre L/2, and when;
-  //                  "turned" if the final position is ≥ 0.02 L closer to the centre;
-  //   signature move jump + turn-around, the turn ≥ 0.01 L farther out than the start;
-  //   final          x̄ and amplitude averaged over the last 1 s (or last tenth).
-  struct TraceOutcome
-  {
-    bool valid = false; // enough periods (≥ 20) to say anything
-    double end_time = 0;
-    double low_level = 0, max_envelope = 0; // [h]
-    bool jumped = false;
-    double jump_time = -1; // [s], -1 without a jump
-    double turn_position = 0, turn_time = 0; // x_C/L, [s]
-    bool turned = false;
-    double final_position = 0, final_amplitude = 0; // x_C/L, [h]
-    std::string verdict; // one line: what the run did
-  };
-  TraceOutcome trace_outcome(const std::vector<PeriodRecord> &periods);
+  // The outcome of a long adaptation run: the one trace analysis
+  // (contact/trace_analysis.h) with the scene's thresholds.
+  using TraceOutcome = TraceAnalysis;
+  TraceOutcome trace_outcome(const ModelRun &run, const TraceThresholds &thresholds);
 
   // Fills amplitude_error and position_error of `run` against `reference`.
   void compare_with_reference(ModelRun &run, const ModelRun &reference);

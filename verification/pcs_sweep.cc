@@ -1,7 +1,9 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
 #include "verification/pcs_sweep.h"
+#include "verification/simulation_cases.h"
 
 #include "contact/output_file.h"
+#include "contact/trace_analysis.h"
 
 #include "contact/adaptation_run.h"
 #include "fem/fe_beam.h"
@@ -147,21 +149,19 @@ namespace beamslider
         study.free_run            = run.run();
         study.free_final_x_over_L = run.state().s[0] / L;
 
-        const std::size_t w = 10; // periods on each side
-        double best         = 2.;
-        for (std::size_t i = w; i + w <= records.size(); ++i)
+        // The free slider's jump by the one trace analysis; the amplitude
+        // after it is the envelope one second later (where the rule checks
+        // that it lasts).
+        const TraceAnalysis analysis = analyse_trace(records, study.free_run.status, trace_thresholds(scene));
+        if (analysis.jumped)
           {
-            double before = 0, after = 0;
-            for (std::size_t k = 0; k < w; ++k)
-              {
-                before += records[i - w + k].amplitude_over_h / w;
-                after += records[i + k].amplitude_over_h / w;
-              }
-            if (before > 0. && after / before > best)
-              {
-                best             = after / before;
-                study.free_jump = PcsStudy::FreeJump{records[i].t_start, records[i].slider_x_over_L, before, after};
-              }
+            std::size_t k = 0;
+            while (k + 1 < records.size() && records[k].t_end < analysis.jump_time)
+              ++k;
+            const std::size_t later = std::min(records.size() - 1, k + static_cast<std::size_t>(std::lround(
+                                                                         1. / (records[0].t_end - records[0].t_start))));
+            study.free_jump = PcsStudy::FreeJump{analysis.jump_time, records[k].slider_x_over_L,
+                                                 analysis.level_before_jump, analysis.envelope[later]};
           }
         if (study.free_run.status != RunStatus::completed)
           std::cout << "  free slider stopped early (" << to_string(study.free_run.status)
@@ -194,8 +194,8 @@ namespace beamslider
         if (study.free_jump)
           {
             s << " It jumped at t = " << fixed(study.free_jump->t, 2) << " s, x_C/L = " << fixed(study.free_jump->x_over_L, 3)
-              << " (amplitude " << fixed(study.free_jump->amplitude_before_over_h, 3) << " h → "
-              << fixed(study.free_jump->amplitude_after_over_h, 3) << " h over 10 periods)";
+              << " (envelope " << fixed(study.free_jump->amplitude_before_over_h, 3) << " h → "
+              << fixed(study.free_jump->amplitude_after_over_h, 3) << " h one second later)";
             for (const auto *jump : {&study.jump_up, &study.jump_down})
               if (*jump && (*jump)->amplitude_after_over_h > (*jump)->amplitude_before_over_h)
                 s << "; the prescribed-position branch jumps up between x_C/L = " << fixed((*jump)->x_before_over_L, 3)

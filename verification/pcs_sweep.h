@@ -44,9 +44,9 @@ namespace beamslider
     std::optional<AmplitudeJump> jump_up, jump_down;
     RunResult free_run;           // status of the free-slider run
     double free_final_x_over_L = 0; // where the free slider ended [-]
-    // The free slider's jump: the period at which the mean amplitude of the
-    // next 10 periods exceeds that of the previous 10 by the largest factor,
-    // if that factor is above 2 (time [s], x_C/L and the two means / h).
+    // The free slider's jump by the one trace analysis (contact/
+    // trace_analysis.h): time [s], x_C/L, the envelope before it and one
+    // second after it [h].
     struct FreeJump
     {
       double t = 0, x_over_L = 0, amplitude_before_over_h = 0, amplitude_after_over_h = 0;

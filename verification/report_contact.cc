@@ -105,7 +105,7 @@ namespace beamslider
             std::cout << " " << o.wall_seconds << " s: " << o.verdict.line << std::endl;
             md << "| `" << c.name << "` | " << c.description << " | " << c.published << " | " << o.verdict.line << " | "
                << (differs.empty() ? "—" : differs) << " | " << fixed(o.wall_seconds, 1) << " |\n";
-            const TraceOutcome &t = o.verdict.outcome;
+            const CaseVerdict &t = o.verdict;
             csv.row({c.name, CsvWriter::cell(o.scene.time_stepping.end_time), to_string(o.result.status),
                      o.verdict.initial_direction, t.jumped ? "1" : "0", CsvWriter::cell(t.jump_time),
                      t.turned ? "1" : "0", CsvWriter::cell(t.turn_position), CsvWriter::cell(t.final_position),

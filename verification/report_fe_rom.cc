@@ -8,6 +8,7 @@
 #include "verification/commands.h"
 #include "verification/csv_writer.h"
 #include "verification/fe_rom_study.h"
+#include "verification/simulation_cases.h"
 #include "verification/report.h"
 
 #include <algorithm>
@@ -371,6 +372,7 @@ namespace beamslider
                             "final_amplitude_over_h", "verdict"});
         std::vector<ModelRun> long_runs;
         std::vector<TraceOutcome> results;
+        const TraceThresholds thresholds = trace_thresholds(scene);
         for (const auto &s : long_settings)
           {
             const std::string label = s.label();
@@ -387,17 +389,17 @@ namespace beamslider
                           << elapsed(start) << std::endl;
             }));
             const ModelRun &r = long_runs.back();
-            results.push_back(trace_outcome(r.periods));
+            results.push_back(trace_outcome(r, thresholds));
             const TraceOutcome &o = results.back();
-            std::string verdict   = o.verdict;
+            std::string verdict   = o.line;
             std::replace(verdict.begin(), verdict.end(), ',', ';');
             outcomes.row({label, s.family, CsvWriter::cell(s.n_modes), s.coefficients, CsvWriter::cell(s.time_step),
                           CsvWriter::cell(s.slider_offset_over_L), CsvWriter::cell(r.wall_seconds, 4),
-                          r.ok ? "ok" : "failed", CsvWriter::cell(o.end_time, 6), CsvWriter::cell(o.low_level, 4),
+                          r.ok ? "ok" : "failed", CsvWriter::cell(o.end_time, 6), CsvWriter::cell(o.level_before_jump, 4),
                           CsvWriter::cell(o.max_envelope, 4), o.jumped ? "1" : "0", CsvWriter::cell(o.jump_time, 6),
                           CsvWriter::cell(o.turn_position, 5), CsvWriter::cell(o.turn_time, 5), o.turned ? "1" : "0",
                           CsvWriter::cell(o.final_position, 5), CsvWriter::cell(o.final_amplitude, 4), verdict});
-            std::cout << "[verify]   " << label << ": " << o.verdict << " (" << fixed(r.wall_seconds, 0) << " s wall)"
+            std::cout << "[verify]   " << label << ": " << o.line << " (" << fixed(r.wall_seconds, 0) << " s wall)"
                       << std::endl;
           }
         // Against the FE run (the first FE setting without offset).
@@ -409,10 +411,13 @@ namespace beamslider
                 << "The whole run of the scene (signature-move settings for mueller2023), the FE model on the default "
                    "mesh against reduced models, same contact code, Δt = "
                 << dt
-                << " s. Outcomes from the period records (verification/fe_rom_study.h, trace_outcome): the envelope is "
-                   "the 0.1 s mean of the per-period amplitude ŵ(L/2)/h; the jump time is when the envelope first reaches "
-                   "half its maximum (a jump if that is after the 2 s build-up and the maximum exceeds twice the low "
-                   "level before it); the turn-around is the period-mean position farthest from the centre; final values average the last "
+                << " s. Outcomes from the period records (contact/trace_analysis.h, the one trace analysis): the envelope is "
+                   "the 0.1 s mean of the per-period amplitude ŵ(L/2)/h; a jump is a rise of the envelope, after the 2 s "
+                   "build-up, to more than twice its lowest value over the second before, by at least a fifth of the "
+                   "run's largest envelope, lasting 1 s, and reaching the upper branch (where the scene's Eq. 4 backbone "
+                   "lies 5 % above f1: "
+                << fixed(thresholds.high_level_over_h, 2)
+                << " h); the turn-around is the period-mean position farthest from the centre; final values average the last "
                    "1 s. The runs marked x0+1e-9 start 1e-9 L away from their twin: their difference is what the "
                    "rattling makes of round-off, the yardstick for every FE–ROM difference in the table.\n\n"
                 << "| model | wall [s] | jump time [s] | envelope low → max [h] | turn-around x_C/L (t [s]) | final x_C/L | "
@@ -424,11 +429,11 @@ namespace beamslider
             const TraceOutcome &o = results[i];
             const RunDifference d = fe_run && &r != fe_run ? difference(r, *fe_run) : RunDifference{};
             long_md << "| " << r.setting.label() << " | " << fixed(r.wall_seconds, 0) << " | "
-                    << (o.jumped ? fixed(o.jump_time, 2) : std::string("no jump")) << " | " << fixed(o.low_level, 2)
+                    << (o.jumped ? fixed(o.jump_time, 2) : std::string("no jump")) << " | " << fixed(o.level_before_jump, 2)
                     << " → " << fixed(o.max_envelope, 2) << " | " << fixed(o.turn_position, 3) << " ("
                     << fixed(o.turn_time, 1) << ") | " << fixed(o.final_position, 3) << " | " << fixed(o.final_amplitude, 2)
                     << " | " << err(d.drift) << " | " << err(d.envelope) << " | "
-                    << (r.ok ? o.verdict : "stopped at t = " + fixed(r.result.t_end, 2) + " s: " + r.message) << " |\n";
+                    << (r.ok ? o.line : "stopped at t = " + fixed(r.result.t_end, 2) + " s: " + r.message) << " |\n";
           }
         // The FE–ROM differences in the outcomes next to the twins' spreads.
         auto twin_of = [&](const ModelRun &r) -> const TraceOutcome * {
@@ -444,7 +449,7 @@ namespace beamslider
           {
             const TraceOutcome &of = results[fe_run - long_runs.data()];
             const TraceOutcome *tf = twin_of(*fe_run);
-            long_md << "\nFE: " << of.verdict << ".";
+            long_md << "\nFE: " << of.line << ".";
             if (tf)
               long_md << " Its round-off twin: jump time differs by "
                       << (of.jumped && tf->jumped ? fixed(std::abs(of.jump_time - tf->jump_time), 2) + " s" : "–")
@@ -500,7 +505,7 @@ namespace beamslider
                   continue;
                 const TraceOutcome &o = results[i];
                 const double dx = o.final_position - of.final_position, da = o.final_amplitude - of.final_amplitude;
-                long_md << "\nFE at Δt = " << r.setting.time_step << " s: " << o.verdict
+                long_md << "\nFE at Δt = " << r.setting.time_step << " s: " << o.line
                         << ". Halving the FE time step moves the final position by " << judged(dx, s_final, 0.01, 3, " L")
                         << " and the final amplitude by " << judged(da, s_amp, 0.05, 2, " h") << ". "
                         << (std::abs(dx) > s_final + 0.01

@@ -1,5 +1,10 @@
 // The named adaptation cases, see simulation_cases.h.
 #include "verification/simulation_cases.h"
+#include "reduced/rom_operator.h"
+#include "reduced/harmonic_balance.h"
+#include "fem/fe_modes.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_beam.h"
 
 #include <algorithm>
 #include <cmath>
@@ -145,122 +150,30 @@ namespace beamslider
     return read_scene(scene_file, overrides);
   }
 
-  CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result)
+  CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result,
+                           const TraceThresholds &thresholds)
   {
-    CaseVerdict v;
-    v.outcome = trace_outcome(periods);
-    std::ostringstream line;
-    line << std::setprecision(3);
-    if (periods.size() < 2)
-      {
-        v.line = "too short to judge";
-        return v;
-      }
-
-    // Initial direction: over the first 5 s, or up to the jump if earlier.
-    const double window_end = v.outcome.jumped ? std::min(5., v.outcome.jump_time) : 5.;
-    std::size_t k            = 0;
-    while (k + 1 < periods.size() && periods[k + 1].t_end <= window_end)
-      ++k;
-    const double x0 = periods.front().slider_x_over_L, x1 = periods[k].slider_x_over_L;
-    v.initial_drift_over_L = x1 - x0;
-    const double outward   = std::abs(x1 - 0.5) - std::abs(x0 - 0.5); // > 0: toward the nearer clamp
-    v.initial_direction    = outward > 0.005 ? "toward the clamp" : outward < -0.005 ? "toward the centre" : "stays";
-
-    // The jump. trace_outcome's "half the maximum reached" also fires on a
-    // slow steady growth and on short bursts of the rattling slider, so a
-    // jump is asked to be sudden, large and lasting: the 0.1 s envelope e
-    // rises to more than twice its minimum b over the preceding second, by
-    // more than a fifth of the run's largest envelope, and stays above 2b for
-    // the next second. (After the jump the envelope may keep growing slowly:
-    // on mueller2023 it lands near 1 h and creeps to 1.7–2.4 h.) Recurrent
-    // jumps: further jumps of that kind after e has fallen back below the
-    // middle between b and the level jumped to.
-    if (v.outcome.valid)
-      {
-        const double period = periods[0].t_end - periods[0].t_start;
-        const std::size_t w = std::max<std::size_t>(1, std::lround(0.1 / period));
-        const std::size_t s = std::max<std::size_t>(1, std::lround(1.0 / period));
-        std::vector<double> e(periods.size());
-        double sum = 0;
-        for (std::size_t i = 0; i < periods.size(); ++i)
-          {
-            sum += periods[i].amplitude_over_h;
-            if (i >= w)
-              sum -= periods[i - w].amplitude_over_h;
-            e[i] = sum / std::min(i + 1, w);
-          }
-        auto jump_at = [&](const std::size_t i, double &b) {
-          b = *std::min_element(e.begin() + (i > s ? i - s : 0), e.begin() + i + 1);
-          if (!(e[i] > 2. * b && e[i] - b > 0.2 * v.outcome.max_envelope))
-            return false;
-          for (std::size_t j = i; j < std::min(e.size(), i + s); ++j)
-            if (e[j] < 2. * b)
-              return false;
-          return true;
-        };
-        v.outcome.jumped    = false;
-        v.outcome.jump_time = -1;
-        bool high           = false;
-        double fall_level   = 0;
-        for (std::size_t i = 0; i < e.size(); ++i)
-          {
-            double b = 0;
-            if (!high && periods[i].t_end >= 2. && jump_at(i, b))
-              {
-                high       = true;
-                fall_level = 0.5 * (b + e[i]);
-                ++v.n_upward_jumps;
-                if (!v.outcome.jumped)
-                  {
-                    v.outcome.jumped    = true;
-                    v.outcome.jump_time = periods[i].t_end;
-                  }
-              }
-            else if (high && e[i] < fall_level)
-              high = false;
-          }
-      }
-
-    for (const PeriodRecord &p : periods)
-      if ((p.slider_x_over_L - 0.5) * (x0 - 0.5) < 0.)
-        v.crosses_centre = true;
-
-    if (!v.outcome.valid)
-      {
-        line << v.initial_direction << " (x_C/L " << x0 << " → " << x1 << "); too short (" << periods.size()
-             << " periods) to judge jumps and turns";
-        if (result.status != RunStatus::completed)
-          line << "; stopped at t = " << result.t_end << " s (" << to_string(result.status) << ")";
-        v.line = line.str();
-        return v;
-      }
-
-    // A turn-around needs the slider to have moved out first: the farthest
-    // point from the centre being the start itself is no turn.
-    const TraceOutcome &o = v.outcome;
-    const bool turned     = o.turned && std::abs(o.turn_position - 0.5) > std::abs(x0 - 0.5) + 0.005;
-    v.outcome.turned      = turned;
-    line << v.initial_direction << " (x_C/L " << x0 << " → " << x1 << " by t = " << periods[k].t_end << " s); ";
-    if (o.jumped)
-      line << "jump to " << o.max_envelope << " h at t = " << o.jump_time << " s";
-    else
-      line << "no jump (envelope ≤ " << o.max_envelope << " h)";
-    if (turned)
-      line << "; turned at x_C/L = " << o.turn_position << " (t = " << o.turn_time << " s)";
-    else
-      line << "; no turn-around";
-    line << "; ends at x_C/L = " << o.final_position << " with " << o.final_amplitude << " h";
-    if (v.n_upward_jumps > 1)
-      line << "; " << v.n_upward_jumps << " upward jumps (recurrent)";
-    if (v.crosses_centre)
-      line << "; crosses the centre";
-    if (v.initial_direction == "toward the clamp" && o.jumped && turned)
-      line << ": signature move";
+    CaseVerdict v = analyse_trace(periods, result.status, thresholds);
     if (result.status != RunStatus::completed)
-      line << "; stopped at t = " << result.t_end << " s (" << to_string(result.status) << ")";
-    v.line = line.str();
+      {
+        std::ostringstream m;
+        m << std::setprecision(3) << "; stopped at t = " << result.t_end << " s (" << to_string(result.status) << ")";
+        v.line += m.str();
+      }
     return v;
+  }
+
+  TraceThresholds trace_thresholds(const Scene &scene)
+  {
+    if (!scene.discretisation.geometric_nonlinearity)
+      return TraceThresholds::for_backbone(0.);
+    const FEBeam beam(scene);
+    const FEModes modes     = compute_bending_modes(beam, 1);
+    const ReducedOrderModel rom(make_modal_basis(beam, modes, 1), 0.);
+    const double c = single_mode_backbone_coefficient(modes.omega[0], rom.analytic_cubic_terms()[0].value,
+                                                      beam.deflection(modes.shapes[0], 0.5 * scene.beam.length),
+                                                      scene.beam.thickness);
+    return TraceThresholds::for_backbone(c);
   }
 
   std::string disagreements(const CaseVerdict &v, const ExpectedFeatures &e)
@@ -272,8 +185,8 @@ namespace beamslider
                (expected ? " (published: yes)" : " (published: none)");
     };
     check(e.toward_clamp, v.initial_direction == "toward the clamp", "initial move toward the clamp");
-    check(e.jump, v.outcome.jumped, "jump");
-    check(e.turn, v.outcome.turned, "turn-around");
+    check(e.jump, v.jumped, "jump");
+    check(e.turn, v.turned, "turn-around");
     check(e.recurrent, v.n_upward_jumps > 1, "recurrent jumps");
     check(e.crosses_centre, v.crosses_centre, "slider crossing the centre");
     return out;

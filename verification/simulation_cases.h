@@ -12,6 +12,7 @@
 #pragma once
 
 #include "contact/adaptation_run.h"
+#include "contact/trace_analysis.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
 #include "verification/fe_rom_study.h"
@@ -56,22 +57,17 @@ namespace beamslider
   Scene read_case_scene(const std::string &scene_file, const SimulationCase &c,
                         const std::vector<std::string> &user_overrides, std::vector<std::string> *modified = nullptr);
 
-  // What a run did, from its period records: trace_outcome (fe_rom_study.h:
-  // turn-around, final state; its jump made stricter: sudden (×2 within
-  // 1 s), large (a fifth of the largest envelope) and lasting (1 s)) plus the initial direction of the slider
-  // (toward the nearer clamp or toward the centre, over the first 2 s or up to
-  // the jump) and the number of times the envelope crosses its mid level
-  // upward (recurrent jumps: a relaxation oscillation), as one line.
-  struct CaseVerdict
-  {
-    TraceOutcome outcome;
-    std::string initial_direction; // "toward the clamp", "toward the centre", "stays"
-    bool crosses_centre = false;   // x_C/L passed 0.5 during the run
-    double initial_drift_over_L = 0; // change of x_C/L over that window [-]
-    unsigned int n_upward_jumps = 0; // sudden, lasting rises of the envelope (the first is the jump)
-    std::string line;
-  };
-  CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result);
+  // What a run did: the one trace analysis (contact/trace_analysis.h) with
+  // the thresholds of the run's scene (trace_thresholds), or with the
+  // defaults (no upper-branch level) for constructed traces.
+  using CaseVerdict = TraceAnalysis;
+  CaseVerdict case_verdict(const std::vector<PeriodRecord> &periods, const RunResult &result,
+                           const TraceThresholds &thresholds = {});
+
+  // The thresholds for runs of `scene`: the upper-branch level from the
+  // scene's mode-1 backbone coefficient (seed Eq. 4 on the scene's FE mode;
+  // no level without geometric nonlinearity).
+  TraceThresholds trace_thresholds(const Scene &scene);
 
   // The features of a verdict that contradict the expected ones, in words
   // ("" when none do, or nothing is stated).
