@@ -82,10 +82,11 @@ namespace beamslider
     a.max_envelope = *std::max_element(e.begin(), e.end());
 
     // Jumps: sudden, large, lasting, and landing on the upper branch.
-    const std::size_t look = periods_in(th.lookback, period), hold = periods_in(th.hold_time, period);
     // After a jump the envelope first rises through the middle level (the
-    // trailing mean needs its window to fill), then may fall back below it:
-    // only that fall re-arms the detector.
+    // trailing mean needs its window to fill); it may beat around it while
+    // the slider settles. Only a fall below the middle that lasts
+    // `hold_time` re-arms the detector for a recurrent jump.
+    const std::size_t look = periods_in(th.lookback, period), hold = periods_in(th.hold_time, period);
     bool high = false, risen = false;
     double fall_level = 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -93,7 +94,8 @@ namespace beamslider
         if (high)
           {
             risen = risen || e[k] >= fall_level;
-            if (risen && e[k] < fall_level)
+            if (risen && e[k] < fall_level && k + hold <= n &&
+                std::all_of(e.begin() + k, e.begin() + k + hold, [&](const double x) { return x < fall_level; }))
               high = false;
             continue;
           }

@@ -17,8 +17,10 @@
 //                  mode-1 backbone (seed Eq. 4) lies 5 % above ω₁: a jump is
 //                  a landing on the stiffened upper branch of the resonance,
 //                  not a bump of the rattling near the linear level. Further
-//                  such rises after e has fallen below the middle between b
-//                  and the level jumped to count as recurrent jumps;
+//                  such rises after e has stayed below the middle between b
+//                  and the level jumped to for `hold_time` count as
+//                  recurrent jumps (the beating while the slider settles
+//                  after a jump does not);
 //   initial direction  change of x̄ over the first `direction_window` (or up
 //                  to the jump): away from the centre by more than
 //                  `direction_threshold` = toward the clamp, toward the

@@ -9,6 +9,7 @@
 //   beamslider simulate SCENE --model rom|fe|auto   free-slider adaptation run
 //   beamslider sweep SCENE                          prescribed slider position sweeps
 //   beamslider animate SCENE --model fe|rom         ParaView time series (.pvd)
+//   beamslider ensemble SCENE --model rom|fe        K perturbed runs: outcome statistics, --against DIR
 //   beamslider verify [SCENE] [--full]              the verification report
 //   beamslider scene-template                       every parameter with unit and range
 //
@@ -136,6 +137,17 @@ int run_command_line(int argc, char **argv)
   animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
   animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(finite_positive());
 
+  EnsembleOptions ensemble;
+  auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
+  add_common(ensemble_cmd);
+  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see README)");
+  ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
+  ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
+  ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
+
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
@@ -185,6 +197,8 @@ int run_command_line(int argc, char **argv)
         return run_sweep(common, sweep);
       if (*animate_cmd)
         return run_animate(common, animate);
+      if (*ensemble_cmd)
+        return run_ensemble_command(common, ensemble);
       if (*verify_cmd)
         return run_verify(common, verify);
       if (*template_cmd)

@@ -88,6 +88,17 @@ namespace beamslider
   };
   int run_animate(const CommonOptions &common, const AnimateOptions &options);
 
+  struct EnsembleOptions
+  {
+    std::string model = "rom";      // rom | fe
+    std::string case_name;          // a published case or ablation
+    unsigned int members = 8;       // K
+    double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
+    std::optional<double> end_time; // [s]
+    std::string against;            // another ensemble's folder to compare with
+  };
+  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
+
   // The scene of a command that simulates: the scene file, or with a case
   // name the file with the case's parameters (simulation_cases.h); the
   // user's overrides last. `modified` lists the case's own parameters the

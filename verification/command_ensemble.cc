@@ -1,0 +1,217 @@
+// `beamslider ensemble [SCENE] --model rom|fe [--case NAME] [--members K]
+// [--perturbation EPS] [--end-time S] [--against DIR]`: K runs that differ
+// only by the start x_C/L + m·EPS (verification/ensemble.h), in parallel.
+//
+// Writes into the output folder:
+//   members.csv        member,perturbation,status,jump_time_s,turn_x_over_L,
+//                      final_x_over_L,final_amplitude_over_h,wall_s,outcome
+//                      (an empty field where the event did not happen)
+//   member_periods.csv member,t_s,x_over_L,amplitude_over_h: every member's
+//                      period records, for the fan chart
+//   statistics.csv     outcome,n,median,q1,q3,min,max
+//   comparison.csv     with --against DIR: each outcome of this ensemble
+//                      against DIR's members.csv (compare_samples)
+//   ensemble.png       fan chart: every member's x_C/L and amplitude envelope
+//   summary.md         settings, outcome definitions, statistics, classes
+#include "contact/interruption.h"
+#include "contact/output_file.h"
+#include "meshes/scene.h"
+#include "verification/commands.h"
+#include "verification/csv_writer.h"
+#include "verification/ensemble.h"
+#include "verification/simulation_cases.h"
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string cell_or_empty(const bool happened, const double value)
+    {
+      return happened ? CsvWriter::cell(value) : std::string();
+    }
+
+    // Outcome samples from another ensemble's members.csv (columns as
+    // written below; empty cells are events that did not happen).
+    OutcomeSamples read_members_csv(const std::string &path)
+    {
+      std::ifstream in(path);
+      if (!in)
+        throw InputError("--against: no members.csv at '" + path + "'");
+      std::string line;
+      std::getline(in, line);
+      if (line.rfind("member,perturbation,status,jump_time_s,turn_x_over_L,final_x_over_L,final_amplitude_over_h", 0) != 0)
+        throw InputError("--against: '" + path + "' is not an ensemble's members.csv");
+      OutcomeSamples s;
+      while (std::getline(in, line))
+        {
+          std::vector<std::string> cells;
+          std::stringstream row(line);
+          std::string cell;
+          while (std::getline(row, cell, ','))
+            cells.push_back(cell);
+          if (cells.size() < 7)
+            continue;
+          if (!cells[3].empty())
+            s.jump_time.push_back(std::stod(cells[3]));
+          if (!cells[4].empty())
+            s.turn_position.push_back(std::stod(cells[4]));
+          if (!cells[5].empty())
+            s.final_position.push_back(std::stod(cells[5]));
+          if (!cells[6].empty())
+            s.final_amplitude.push_back(std::stod(cells[6]));
+        }
+      return s;
+    }
+
+    std::string fixed(const double x, const int digits)
+    {
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(digits) << x;
+      return s.str();
+    }
+  } // namespace
+
+  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options)
+  {
+    if (options.model != "rom" && options.model != "fe")
+      throw InputError("--model '" + options.model + "' is not one of rom, fe");
+    Scene scene = read_command_scene(common, options.case_name);
+    if (options.end_time)
+      {
+        scene.time_stepping.end_time = *options.end_time;
+        validate_scene(scene);
+      }
+    const double x_last = scene.initial.slider_position_over_L + (options.members - 1) * options.perturbation;
+    if (!(x_last <= 1.))
+      throw InputError("--perturbation " + std::to_string(options.perturbation) +
+                       " moves the last member's start beyond the beam");
+    const std::string dir =
+      prepare_output_dir(common, scene.name, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
+
+    EnsembleSettings settings;
+    settings.model.family    = options.model;
+    settings.model.n_modes   = scene.discretisation.n_modes;
+    settings.model.n_elements = scene.discretisation.n_elements;
+    settings.model.time_step = scene.time_stepping.time_step;
+    settings.n_members       = options.members;
+    settings.perturbation    = options.perturbation;
+    std::cout << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
+              << settings.n_members << " members of " << settings.model.label() << ", "
+              << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
+              << ", into " << dir << std::endl;
+
+    const auto start = std::chrono::steady_clock::now();
+    unsigned int done = 0;
+    const std::vector<EnsembleMember> members = run_ensemble(scene, settings, [&](const EnsembleMember &m) {
+      std::cout << "  member " << m.index << " (" << ++done << "/" << settings.n_members << ", "
+                << fixed(m.wall_seconds, 1) << " s): " << m.analysis.line << std::endl;
+    });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (interruption_requested())
+      std::cerr << "ensemble: interrupted; the files hold what the members computed until then" << std::endl;
+
+    {
+      CsvWriter csv(dir + "/members.csv", {"member", "perturbation", "status", "jump_time_s", "turn_x_over_L",
+                                           "final_x_over_L", "final_amplitude_over_h", "wall_s", "outcome"});
+      for (const auto &m : members)
+        {
+          const TraceAnalysis &a = m.analysis;
+          csv.row({CsvWriter::cell(m.index), CsvWriter::cell(m.perturbation, 6), to_string(m.result.status),
+                   cell_or_empty(a.jumped, a.jump_time), cell_or_empty(a.turned, a.turn_position),
+                   cell_or_empty(a.valid, a.final_position), cell_or_empty(a.valid, a.final_amplitude),
+                   CsvWriter::cell(m.wall_seconds, 4), to_string(a.outcome)});
+        }
+    }
+    {
+      OutputFile file(dir + "/member_periods.csv");
+      file.stream() << "member,t_s,x_over_L,amplitude_over_h\n" << std::setprecision(8);
+      for (const auto &m : members)
+        for (const auto &p : m.periods)
+          file.stream() << m.index << ',' << p.t_end << ',' << p.slider_x_over_L << ',' << p.amplitude_over_h << '\n';
+      file.close();
+    }
+
+    const OutcomeSamples samples = outcome_samples(members);
+    const std::vector<std::pair<std::string, const std::vector<double> *>> outcomes = {
+      {"jump_time_s", &samples.jump_time},
+      {"turn_x_over_L", &samples.turn_position},
+      {"final_x_over_L", &samples.final_position},
+      {"final_amplitude_over_h", &samples.final_amplitude}};
+    std::ostringstream md;
+    md << "# Ensemble: scene `" << scene.name << "`" << (options.case_name.empty() ? "" : ", case `" + options.case_name + "`")
+       << "\n\n- Model: " << settings.model.label() << "; " << settings.n_members << " members, member m starts at x_C/L = "
+       << scene.initial.slider_position_over_L << " + m × " << settings.perturbation << "; " << scene.time_stepping.end_time
+       << " s simulated each.\n- Wall time: " << fixed(wall, 1) << " s in all, "
+       << fixed(wall / settings.n_members, 2) << " s per member (parallel threads).\n"
+       << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
+          "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
+          "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("
+       << fixed(trace_thresholds(scene).high_level_over_h, 2)
+       << " h, where Eq. 4 lies 5 % above f1); the turn is the period-mean position farthest from the centre when the "
+          "end lies 0.02 L back from it; the final state is the mean over the last 1 s.\n\n"
+       << "| outcome | members with it | median | quartiles | min … max |\n|---|---|---|---|---|\n";
+    {
+      CsvWriter csv(dir + "/statistics.csv", {"outcome", "n", "median", "q1", "q3", "min", "max"});
+      for (const auto &[name, sample] : outcomes)
+        {
+          const OutcomeStatistics s = statistics(name, *sample);
+          csv.row({name, std::to_string(s.n), CsvWriter::cell(s.median), CsvWriter::cell(s.q1), CsvWriter::cell(s.q3),
+                   CsvWriter::cell(s.min), CsvWriter::cell(s.max)});
+          md << "| " << name << " | " << s.n << " | " << fixed(s.median, 4) << " | " << fixed(s.q1, 4) << " … "
+             << fixed(s.q3, 4) << " | " << fixed(s.min, 4) << " … " << fixed(s.max, 4) << " |\n";
+        }
+    }
+    std::map<std::string, unsigned int> classes;
+    for (const auto &m : members)
+      ++classes[to_string(m.analysis.outcome)];
+    md << "\nOutcome classes:";
+    for (const auto &[name, count] : classes)
+      md << " " << name << " × " << count << ";";
+    md << "\n";
+
+    if (!options.against.empty())
+      {
+        const OutcomeSamples other = read_members_csv(options.against + "/members.csv");
+        const std::vector<const std::vector<double> *> theirs = {&other.jump_time, &other.turn_position,
+                                                                 &other.final_position, &other.final_amplitude};
+        CsvWriter csv(dir + "/comparison.csv", {"outcome", "n_this", "n_other", "median_shift", "wasserstein",
+                                                "wasserstein_low", "wasserstein_high", "ks", "own_spread",
+                                                "distinguishable"});
+        md << "\n## Against `" << options.against
+           << "`\n\nWasserstein-1 distance W between the outcome distributions (the mean distance the members must "
+              "move), a 90 % bootstrap interval, Kolmogorov–Smirnov D, and the larger W between the halves of either "
+              "ensemble (their own scatter at this size). Distinguishable when the interval's lower end exceeds that "
+              "scatter.\n\n| outcome | median shift (other − this) | W [90 % interval] | KS D | own scatter | verdict |\n"
+              "|---|---|---|---|---|---|\n";
+        for (std::size_t i = 0; i < outcomes.size(); ++i)
+          {
+            const SampleComparison c = compare_samples(*outcomes[i].second, *theirs[i]);
+            csv.row({outcomes[i].first, std::to_string(c.n_a), std::to_string(c.n_b), CsvWriter::cell(c.shift),
+                     CsvWriter::cell(c.wasserstein), CsvWriter::cell(c.interval_low), CsvWriter::cell(c.interval_high),
+                     CsvWriter::cell(c.ks), CsvWriter::cell(c.spread), c.distinguishable ? "1" : "0"});
+            md << "| " << outcomes[i].first << " | " << fixed(c.shift, 4) << " | " << fixed(c.wasserstein, 4) << " ["
+               << fixed(c.interval_low, 4) << ", " << fixed(c.interval_high, 4) << "] | " << fixed(c.ks, 2) << " | "
+               << fixed(c.spread, 4) << " | "
+               << (c.n_a == 0 || c.n_b == 0 ? "no sample"
+                   : c.distinguishable     ? "distinguishable"
+                                           : "indistinguishable at this ensemble size")
+               << " |\n";
+          }
+      }
+    write_text_file(dir + "/summary.md", md.str());
+    run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
+                                                " (" + settings.model.label() + ")"});
+    std::cout << md.str();
+    for (const auto &m : members)
+      if (m.result.status == RunStatus::interrupted)
+        return interruption_exit_code();
+    return 0;
+  }
+} // namespace beamslider
