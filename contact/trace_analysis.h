@@ -62,7 +62,7 @@ namespace beamslider
     double turn_margin         = 0.02;  // [x/L]
     double final_window        = 1.0;   // [s]
     double high_end_share      = 0.5;   // [-]
-    double damped_share        = 0.1;   // [-]
+    double damped_share        = 0.2;   // [-]
 
     // The thresholds for a scene whose mode-1 backbone is (ω/ω₁)² = 1 + c (ŵ/h)²
     // (seed Eq. 4): the upper-branch level is where ω/ω₁ = 1.05. c = 0 (a
