@@ -55,8 +55,11 @@ namespace beamslider
     virtual void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
                                Eigen::VectorXd &u_free) = 0;
 
-    // X = S⁻¹ B for the iteration matrix of the last free_velocity call.
-    virtual void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const = 0;
+    // X = S⁻¹ B for the iteration matrix of the last free_velocity call. X
+    // has B's size on entry (the caller's preallocated storage: blocks of
+    // fixed buffers, so that a time step allocates nothing).
+    virtual void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                        Eigen::Ref<Eigen::MatrixXd> X) const = 0;
 
     // Largest time step the scheme can take (infinity for unconditionally
     // stable schemes). The stepper refuses larger steps with a clear message.

@@ -85,6 +85,13 @@ namespace beamslider
       }
     for (auto &p : warm_)
       p.setZero();
+    const Eigen::Index n = beam_.n_dofs();
+    for (Eigen::VectorXd *v : {&q_M_, &u_free_, &u_E_, &u_mean_, &q_next_})
+      v->setZero(n);
+    W_b_.setZero(n, max_unknowns);
+    X_b_.setZero(n, max_unknowns);
+    corner_.beam_normal.setZero(n);
+    corner_.beam_tangent.setZero(n);
     set_state(resting_state(0.5 * beam_.length()));
   }
 
@@ -195,12 +202,11 @@ namespace beamslider
     const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
     const double clearance = slider_.window_height - beam_.thickness();
 
-    // Active set and force directions at the midpoint.
+    // Active set and force directions at the midpoint. All storage below is
+    // sized once for the four corners (constructor); a step works on its
+    // leading blocks and allocates nothing.
     std::array<unsigned int, n_slider_corners> active{};
     unsigned int m = 0;
-    W_b_.resize(n, 2 * n_slider_corners);
-    W_s_.resize(3, 2 * n_slider_corners);
-    imposed_.resize(2 * n_slider_corners);
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
         geometry_.evaluate(k, t_M, beam_, base_, q_M_, s_M, corner_);
@@ -234,37 +240,43 @@ namespace beamslider
       }
     report_.n_active = m;
 
-    Eigen::VectorXd u_E;
     Eigen::Vector3d v_E;
     std::array<Eigen::Vector2d, n_slider_corners> new_warm;
     for (auto &p : new_warm)
       p.setZero();
 
+    u_E_ = u_free_;
     if (m == 0)
-      {
-        u_E = u_free_;
-        v_E = v_free;
-      }
+      v_E = v_free;
     else
       {
-        const auto Wb  = W_b_.leftCols(2 * m);
-        const auto Ws  = W_s_.leftCols(2 * m);
-        const auto imp = imposed_.head(2 * m);
-        beam_.solve_iteration_matrix(Wb, X_b_);
-        G_ = Wb.transpose() * X_b_ + Ws.transpose() * inv_mass.asDiagonal() * Ws;
+        const Eigen::Index m2 = 2 * m;
+        const auto Wb  = W_b_.leftCols(m2);
+        const auto Ws  = W_s_.leftCols(m2);
+        const auto imp = imposed_.head(m2);
+        auto X         = X_b_.leftCols(m2);
+        auto G         = G_.topLeftCorner(m2, m2);
+        auto c         = c_.head(m2);
+        auto P         = P_.head(m2);
+        auto gamma     = gamma_B_.head(m2);
+        beam_.solve_iteration_matrix(Wb, X);
+        G.noalias() = Wb.transpose() * X;
+        G.noalias() += Ws.transpose() * inv_mass.asDiagonal() * Ws;
 
-        gamma_B_ = Wb.transpose() * state_.u + Ws.transpose() * v_B + imp;
-        c_       = Wb.transpose() * u_free_ + Ws.transpose() * v_free + imp;
-        P_.resize(2 * m);
-        mu_.resize(m);
+        gamma.noalias() = Wb.transpose() * state_.u;
+        gamma.noalias() += Ws.transpose() * v_B;
+        gamma += imp;
+        c.noalias() = Wb.transpose() * u_free_;
+        c.noalias() += Ws.transpose() * v_free;
+        c += imp;
         for (unsigned int i = 0; i < m; ++i)
           {
-            c_[2 * i] += law_.restitution * gamma_B_[2 * i];
-            P_.segment<2>(2 * i) = warm_[active[i]];
-            mu_[i]               = law_.friction_coefficient;
+            c[2 * i] += law_.restitution * gamma[2 * i];
+            P.segment<2>(2 * i) = warm_[active[i]];
+            mu_[i]              = law_.friction_coefficient;
           }
 
-        const ProxSolverResult result = solver_.solve(G_, c_, mu_, P_);
+        const ProxSolverResult result = solver_.solve(G, c, mu_.head(m), P);
         report_.iterations            = result.iterations;
         report_.residual              = result.residual;
         if (!result.converged)
@@ -275,31 +287,34 @@ namespace beamslider
             throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
           }
 
-        u_E = u_free_ + X_b_ * P_;
-        report_.slider_impulse = Ws * P_;
-        v_E                    = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
+        u_E_.noalias() += X * P;
+        report_.slider_impulse.noalias() = Ws * P;
+        v_E = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
         for (unsigned int i = 0; i < m; ++i)
-          new_warm[active[i]] = P_.segment<2>(2 * i);
+          new_warm[active[i]] = P.segment<2>(2 * i);
 
         // Contact work: impulse × mean relative velocity, per direction.
-        const Eigen::VectorXd u_mean = 0.5 * (state_.u + u_E);
+        u_mean_ = state_.u;
+        u_mean_ += u_E_;
+        u_mean_ *= 0.5;
         const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
-        const Eigen::VectorXd gamma_mean = Wb.transpose() * u_mean + Ws.transpose() * v_mean + imp;
+        auto gamma_mean              = gamma_mean_.head(m2);
+        gamma_mean.noalias()         = Wb.transpose() * u_mean_;
+        gamma_mean.noalias() += Ws.transpose() * v_mean;
+        gamma_mean += imp;
         for (unsigned int i = 0; i < m; ++i)
           {
-            report_.work_impact += P_[2 * i] * gamma_mean[2 * i];
-            report_.work_friction += P_[2 * i + 1] * gamma_mean[2 * i + 1];
+            report_.work_impact += P[2 * i] * gamma_mean[2 * i];
+            report_.work_friction += P[2 * i + 1] * gamma_mean[2 * i + 1];
           }
-        report_.work_base_contact = -P_.dot(imp);
+        report_.work_base_contact = -P.dot(imp);
       }
 
-    SystemState next;
-    next.t = t_origin_ + (steps_taken_ + 1) * dt_;
-    next.u = std::move(u_E);
-    next.q = q_M_ + 0.5 * dt_ * next.u;
-    next.v = v_E;
-    next.s = s_M + 0.5 * dt_ * v_E;
-    if (!next.q.allFinite() || !next.u.allFinite() || !next.s.allFinite() || !next.v.allFinite())
+    // The end state, checked before it replaces the old one.
+    q_next_ = q_M_;
+    q_next_.noalias() += (0.5 * dt_) * u_E_;
+    const Eigen::Vector3d s_E = s_M + 0.5 * dt_ * v_E;
+    if (!q_next_.allFinite() || !u_E_.allFinite() || !s_E.allFinite() || !v_E.allFinite())
       {
         std::ostringstream msg;
         msg << "non-finite state after the step from t = " << t_B << " s (x_C = " << state_.s[0]
@@ -307,11 +322,16 @@ namespace beamslider
         throw NonFiniteState(msg.str());
       }
 
-    report_.work_gravity = -slider_.mass * slider_.gravity * (next.s[1] - state_.s[1]);
-    beam_.step_work(next.u, report_.work_damping, report_.work_excitation);
+    report_.work_gravity = -slider_.mass * slider_.gravity * (s_E[1] - state_.s[1]);
+    beam_.step_work(u_E_, report_.work_damping, report_.work_excitation);
 
-    state_ = std::move(next);
-    warm_  = new_warm;
+    // Swapping hands the buffers over without copying or allocating.
+    state_.t = t_origin_ + (steps_taken_ + 1) * dt_;
+    state_.q.swap(q_next_);
+    state_.u.swap(u_E_);
+    state_.s = s_E;
+    state_.v = v_E;
+    warm_    = new_warm;
     ++steps_taken_;
     return report_;
   }

@@ -176,11 +176,16 @@ namespace beamslider
     StepReport report_;
     std::array<Eigen::Vector2d, n_slider_corners> warm_;
 
-    // Scratch reused every step.
-    Eigen::VectorXd q_M_, u_free_, u_E_, c_, P_, mu_, gamma_B_;
-    Eigen::MatrixXd W_b_, X_b_, G_;
-    Eigen::Matrix<double, 3, Eigen::Dynamic> W_s_;
-    Eigen::VectorXd imposed_;
+    // Storage reused every step, sized once in the constructor for the four
+    // corners (2 unknowns each) and the beam's n coordinates: a step works on
+    // leading blocks and allocates nothing (tests/test_rom_step_allocations.cc).
+    static constexpr int max_unknowns = 2 * n_slider_corners;
+    Eigen::VectorXd q_M_, u_free_, u_E_, u_mean_, q_next_;              // n
+    Eigen::MatrixXd W_b_, X_b_;                                         // n × 8
+    Eigen::Matrix<double, 3, max_unknowns> W_s_;
+    Eigen::Matrix<double, max_unknowns, max_unknowns> G_;
+    Eigen::Matrix<double, max_unknowns, 1> c_, P_, gamma_B_, gamma_mean_, imposed_;
+    Eigen::Matrix<double, n_slider_corners, 1> mu_;
     CornerKinematics corner_;
   };
 } // namespace beamslider

@@ -27,8 +27,9 @@ namespace beamslider
       }
   }
 
-  ProxSolverResult ProxSolver::solve(const Eigen::MatrixXd &G, const Eigen::VectorXd &c, const Eigen::VectorXd &mu,
-                                     Eigen::VectorXd &P) const
+  ProxSolverResult ProxSolver::solve(const Eigen::Ref<const Eigen::MatrixXd> &G,
+                                     const Eigen::Ref<const Eigen::VectorXd> &c,
+                                     const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const
   {
     const Eigen::Index n = c.size();
     if (G.rows() != n || G.cols() != n || P.size() != n || 2 * mu.size() != n)
@@ -43,7 +44,13 @@ namespace beamslider
 
     // Step sizes from the diagonal of G. A zero diagonal would mean a contact
     // that no mass can move; refuse it rather than divide by zero.
-    Eigen::VectorXd r(n);
+    if (r_.size() < n)
+      {
+        r_.resize(n);
+        P_old_.resize(n);
+        dxi_.resize(n);
+      }
+    auto r = r_.head(n), P_old = P_old_.head(n), dxi = dxi_.head(n);
     for (Eigen::Index i = 0; i < n; ++i)
       {
         if (!(G(i, i) > 0.))
@@ -60,7 +67,6 @@ namespace beamslider
     // not on P itself: with redundant contacts (two corners on a rigid beam
     // share one tangent direction) the split of P is not unique and
     // Gauss–Seidel creeps along that null space while ξ is already converged.
-    Eigen::VectorXd P_old(n), dxi(n);
     for (unsigned int it = 1; it <= settings_.max_iterations; ++it)
       {
         P_old = P;
@@ -75,7 +81,8 @@ namespace beamslider
             const double bound = mu[i] * P_N;
             P[iT]              = std::clamp(P[iT] - r[iT] * xi_T, -bound, bound);
           }
-        dxi.noalias() = G * (P - P_old);
+        P_old         = P - P_old; // the sweep's change ΔP, in place (no temporary)
+        dxi.noalias() = G * P_old;
         // Velocity scale: the free relative velocities and what the impulses do.
         double scale = c.cwiseAbs().maxCoeff();
         for (Eigen::Index i = 0; i < n; ++i)

@@ -43,12 +43,15 @@ namespace beamslider
 
     // Solves for P (size 2 n_contacts, layout (N0, T0, N1, T1, ...)); P holds
     // the warm start on entry. mu has one entry per contact.
-    ProxSolverResult solve(const Eigen::MatrixXd &G, const Eigen::VectorXd &c, const Eigen::VectorXd &mu,
-                           Eigen::VectorXd &P) const;
+    // Blocks of preallocated storage bind without copies; the solver's own
+    // scratch grows to the largest problem seen and is reused after that.
+    ProxSolverResult solve(const Eigen::Ref<const Eigen::MatrixXd> &G, const Eigen::Ref<const Eigen::VectorXd> &c,
+                           const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const;
 
     const ProxSolverSettings &settings() const { return settings_; }
 
   private:
     ProxSolverSettings settings_;
+    mutable Eigen::VectorXd r_, P_old_, dxi_; // scratch, at least 2 n_contacts
   };
 } // namespace beamslider

@@ -384,13 +384,17 @@ namespace beamslider
     ++stats_.steps;
   }
 
-  void FETransientBeam::solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const
+  void FETransientBeam::solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                               Eigen::Ref<Eigen::MatrixXd> X) const
   {
     if (!factorised_)
       throw std::logic_error("FE transient: solve_iteration_matrix called before free_velocity");
     const unsigned int n = n_dofs();
-    X.resize(n, B.cols());
-    dealii::Vector<double> b(n), x(n);
+    if (X.rows() != B.rows() || X.cols() != B.cols())
+      throw std::logic_error("FE transient: solve_iteration_matrix needs X of B's size");
+    dealii::Vector<double> &b = tmp_a_, &x = tmp_b_; // scratch of size n (mutable)
+    b.reinit(n, true);
+    x.reinit(n, true);
     for (Eigen::Index j = 0; j < B.cols(); ++j)
       {
         for (unsigned int i = 0; i < n; ++i)

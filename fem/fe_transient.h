@@ -136,7 +136,8 @@ namespace beamslider
     // Throws TransientNewtonFailure (t_M, iteration, residual).
     void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
                        Eigen::VectorXd &u_free) override;
-    void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const override;
+    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                Eigen::Ref<Eigen::MatrixXd> X) const override;
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;

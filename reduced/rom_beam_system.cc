@@ -30,6 +30,8 @@ namespace beamslider
       }
     if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
       throw std::invalid_argument("reduced model: ω must be positive and γ must have one entry per mode");
+    for (Eigen::VectorXd *v : {&h_, &scratch_, &last_u_B_, &last_damping_force_, &last_excitation_force_, &u_mean_})
+      v->resize(rom_.n_modes());
   }
 
   RomBeamSystem RomBeamSystem::from_scene(const Scene &scene, ModalBasis basis)
@@ -69,12 +71,18 @@ namespace beamslider
           << rom_.basis().omega.maxCoeff() << " rad/s of the highest kept mode";
         throw std::invalid_argument(m.str());
       }
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_dofs());
-    last_damping_force_        = -rom_.linear_force(zero, u_B);
-    last_excitation_force_     = rom_.basis().gamma * excitation_.acceleration(t_M);
-    const Eigen::VectorXd h =
-      last_damping_force_ - rom_.linear_force(q_M, zero) - rom_.nonlinear_force(q_M) + last_excitation_force_;
-    u_free    = u_B + dt * h;
+    // In place, into storage sized once: the step allocates nothing. The
+    // operations and their order are those of the plain formula
+    //   h = (−2Dω∘u_B − ω²∘q_M) − f_nl(q_M) + γ ẅ0,
+    // so that the results stay the same to the bit.
+    const auto w = rom_.basis().omega.array(); // an expression, not a copy
+    last_damping_force_.array() = -(2. * rom_.damping_ratio() * w * u_B.array());
+    last_excitation_force_      = rom_.basis().gamma * excitation_.acceleration(t_M);
+    h_.array()                  = last_damping_force_.array() - w * w * q_M.array();
+    rom_.add_nonlinear_force(q_M, -1., h_, scratch_);
+    h_ += last_excitation_force_;
+    u_free = u_B;
+    u_free.noalias() += dt * h_;
     last_dt_  = dt;
     last_u_B_ = u_B;
   }
@@ -87,8 +95,8 @@ namespace beamslider
 
   void RomBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
   {
-    const Eigen::VectorXd u_mean = 0.5 * (last_u_B_ + u_E);
-    damping_work                 = last_dt_ * last_damping_force_.dot(u_mean);
-    excitation_work              = last_dt_ * last_excitation_force_.dot(u_mean);
+    u_mean_         = 0.5 * (last_u_B_ + u_E); // into storage sized once
+    damping_work    = last_dt_ * last_damping_force_.dot(u_mean_);
+    excitation_work = last_dt_ * last_excitation_force_.dot(u_mean_);
   }
 } // namespace beamslider

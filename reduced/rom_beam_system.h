@@ -43,7 +43,11 @@ namespace beamslider
     // Throws std::invalid_argument for dt above max_stable_time_step().
     void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
                        Eigen::VectorXd &u_free) override;
-    void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const override { X = B; }
+    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                Eigen::Ref<Eigen::MatrixXd> X) const override
+    {
+      X = B;
+    }
 
     // 2/ω_max [s].
     double max_stable_time_step() const override;
@@ -63,5 +67,7 @@ namespace beamslider
     // Kept from the last free_velocity call, for step_work.
     double last_dt_ = 0;
     Eigen::VectorXd last_u_B_, last_damping_force_, last_excitation_force_;
+    Eigen::VectorXd h_, scratch_; // smooth force and K'q of free_velocity
+    mutable Eigen::VectorXd u_mean_; // (u_B + u_E)/2 of step_work
   };
 } // namespace beamslider

@@ -18,18 +18,25 @@ namespace beamslider
 
   Eigen::VectorXd ReducedOrderModel::nonlinear_force(const Eigen::VectorXd &q) const
   {
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(n_modes());
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(n_modes()), scratch(n_modes());
+    add_nonlinear_force(q, 1., f, scratch);
+    return f;
+  }
+
+  void ReducedOrderModel::add_nonlinear_force(const Eigen::VectorXd &q, const double scale, Eigen::VectorXd &f,
+                                              Eigen::VectorXd &scratch) const
+  {
     if (!nonlinear_)
-      return f;
+      return;
     if (terms_)
       {
         for (const auto &t : *terms_)
-          f[t.n] += t.value * q[t.j] * q[t.k] * q[t.l];
-        return f;
+          f[t.n] += scale * t.value * q[t.j] * q[t.k] * q[t.l];
+        return;
       }
     // Uniform membrane force: N = k_ax · ½ qᵀK'q, then f = N K'q.
-    const Eigen::VectorXd Kq = basis_.stretch * q;
-    return 0.5 * basis_.membrane_stiffness * q.dot(Kq) * Kq;
+    scratch.noalias() = basis_.stretch * q;
+    f += (scale * 0.5 * basis_.membrane_stiffness * q.dot(scratch)) * scratch;
   }
 
   Eigen::MatrixXd ReducedOrderModel::nonlinear_tangent(const Eigen::VectorXd &q) const

@@ -42,6 +42,9 @@ namespace beamslider
 
     // Nonlinear part f(q) of the modal restoring force [N kg^-1/2 = m kg^1/2/s²].
     Eigen::VectorXd nonlinear_force(const Eigen::VectorXd &q) const;
+    // f += scale · f(q) without allocating (scratch: a vector of N entries).
+    void add_nonlinear_force(const Eigen::VectorXd &q, double scale, Eigen::VectorXd &f,
+                             Eigen::VectorXd &scratch) const;
     // ∂f/∂q.
     Eigen::MatrixXd nonlinear_tangent(const Eigen::VectorXd &q) const;
     // Linear part: ω_n² q_n + 2 D ω_n v_n.

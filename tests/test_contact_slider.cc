@@ -45,7 +45,11 @@ namespace
     {
       u_free = u_B;
     }
-    void solve_iteration_matrix(const Eigen::MatrixXd &B, Eigen::MatrixXd &X) const override { X = B; }
+    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                Eigen::Ref<Eigen::MatrixXd> X) const override
+    {
+      X = B;
+    }
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
     double energy(const Eigen::VectorXd &, const Eigen::VectorXd &) const override { return 0.; }
     void step_work(const Eigen::VectorXd &, double &d, double &e) const override { d = e = 0.; }

@@ -84,7 +84,7 @@ TEST(FETransient, IterationMatrixIsTheNewtonJacobian)
   dealii::Vector<double> zero(n);
   sys.beam().assemble_internal_force(zero, nullptr, &K, sys.beam().constraints());
   K.vmult(Kb, bd);
-  Eigen::MatrixXd Sb(n, 1), X;
+  Eigen::MatrixXd Sb(n, 1), X(n, 1);
   for (unsigned int i = 0; i < n; ++i)
     Sb(i, 0) = sys.beam().constraints().is_constrained(i) ? 0. : Mb[i] + 0.5 * dt * Cb[i] + 0.25 * dt * dt * Kb[i];
   sys.solve_iteration_matrix(Sb, X);
