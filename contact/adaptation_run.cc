@@ -41,6 +41,8 @@ namespace beamslider
     RunOptions o;
     o.end_time    = scene.time_stepping.end_time;
     o.output_rate = scene.time_stepping.output_rate;
+    o.solver.method = scene.contact.solver == "exact-local" ? ProxSolverSettings::Method::exact_local
+                                                            : ProxSolverSettings::Method::projected;
     return o;
   }
 

@@ -27,6 +27,56 @@ namespace beamslider
       }
   }
 
+  // The local problem of contact i with the other impulses held: ξ_i = A P_i
+  // + b, A the 2×2 diagonal block of G. Its solution is one of: open (P = 0,
+  // if b_N ≥ 0), sticking (A P = −b inside the cone |P_T| ≤ μ P_N), or
+  // sliding in direction s = ±1 (P_T = s μ P_N, ξ_N = 0, and the sliding
+  // velocity ξ_T opposing the friction impulse: s ξ_T ≤ 0). The first that
+  // holds is taken; false if none does (round-off at a case boundary), and
+  // the caller falls back to the projected update.
+  bool ProxSolver::solve_contact_exactly(const Eigen::Ref<const Eigen::MatrixXd> &G,
+                                         const Eigen::Ref<const Eigen::VectorXd> &c, const double mu,
+                                         const Eigen::Index i, Eigen::Ref<Eigen::VectorXd> P)
+  {
+    const Eigen::Index iN = 2 * i, iT = 2 * i + 1;
+    const double a_nn = G(iN, iN), a_nt = G(iN, iT), a_tn = G(iT, iN), a_tt = G(iT, iT);
+    // b = c_i + Σ_{j≠i} G_ij P_j
+    const double b_N = G.row(iN).dot(P) + c[iN] - a_nn * P[iN] - a_nt * P[iT];
+    const double b_T = G.row(iT).dot(P) + c[iT] - a_tn * P[iN] - a_tt * P[iT];
+    if (b_N >= 0.)
+      {
+        P[iN] = P[iT] = 0.;
+        return true;
+      }
+    const double det = a_nn * a_tt - a_nt * a_tn;
+    if (det > 0.)
+      {
+        const double p_N = (-b_N * a_tt + b_T * a_nt) / det;
+        const double p_T = (-b_T * a_nn + b_N * a_tn) / det;
+        if (p_N >= 0. && std::abs(p_T) <= mu * p_N)
+          {
+            P[iN] = p_N;
+            P[iT] = p_T;
+            return true;
+          }
+      }
+    for (const double s : {1., -1.})
+      {
+        const double a = a_nn + s * mu * a_nt;
+        if (!(a > 0.))
+          continue;
+        const double p_N  = -b_N / a;
+        const double xi_T = (a_tn + s * mu * a_tt) * p_N + b_T;
+        if (p_N >= 0. && s * xi_T <= 0.)
+          {
+            P[iN] = p_N;
+            P[iT] = s * mu * p_N;
+            return true;
+          }
+      }
+    return false;
+  }
+
   ProxSolverResult ProxSolver::solve(const Eigen::Ref<const Eigen::MatrixXd> &G,
                                      const Eigen::Ref<const Eigen::VectorXd> &c,
                                      const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const
@@ -73,6 +123,9 @@ namespace beamslider
         for (Eigen::Index i = 0; i < n / 2; ++i)
           {
             const Eigen::Index iN = 2 * i, iT = 2 * i + 1;
+            if (settings_.method == ProxSolverSettings::Method::exact_local &&
+                solve_contact_exactly(G, c, mu[i], i, P))
+              continue;
             const double xi_N     = G.row(iN).dot(P) + c[iN];
             const double P_N      = std::max(0., P[iN] - r[iN] * xi_N);
             P[iN]                 = P_N;

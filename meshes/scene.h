@@ -81,6 +81,9 @@ namespace beamslider
     double friction_coefficient = 0.2;  // mu [-]
     double restitution          = 0.5;  // e_N [-]
     double gravity              = 9.81; // g [m/s^2], acts on the slider in -z
+    // Contact solver: "projected" (Gauss–Seidel projections, as the authors'
+    // code) or "exact-local" (each contact's 2×2 problem solved exactly).
+    std::string solver = "projected";
   };
 
   struct ExcitationData

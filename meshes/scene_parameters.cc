@@ -67,6 +67,9 @@ namespace beamslider
       prm.declare_entry("Friction coefficient", num(d.contact.friction_coefficient), Double(0), "mu, Coulomb [-]");
       prm.declare_entry("Restitution", num(d.contact.restitution), Double(0, 1), "e_N, Newton's normal restitution [-] in [0, 1]");
       prm.declare_entry("Gravity", num(d.contact.gravity), Double(0), "g, acting on the slider in -z [m/s^2]");
+      prm.declare_entry("Solver", d.contact.solver, Selection("projected|exact-local"),
+                        "contact impulses per step: projected Gauss-Seidel (as the authors' code) or exact-local "
+                        "(each contact's 2x2 problem solved exactly, block Gauss-Seidel; same solution, fewer sweeps)");
       prm.leave_subsection();
 
       prm.enter_subsection("Damping");
@@ -127,6 +130,7 @@ namespace beamslider
       s.contact.friction_coefficient = prm.get_double("Friction coefficient");
       s.contact.restitution          = prm.get_double("Restitution");
       s.contact.gravity              = prm.get_double("Gravity");
+      s.contact.solver               = prm.get("Solver");
       prm.leave_subsection();
 
       prm.enter_subsection("Damping");
