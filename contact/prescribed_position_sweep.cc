@@ -1,6 +1,8 @@
 // Prescribed-slider-position sweeps, see prescribed_position_sweep.h.
 #include "contact/prescribed_position_sweep.h"
 
+#include "contact/batch_means.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -140,6 +142,7 @@ namespace beamslider
         p.amplitude_std_over_h = standard_deviation(amplitudes);
         p.mean_fx              = mean(forces);
         p.mean_fx_std          = standard_deviation(forces);
+        p.mean_fx_ci95         = batch_means_interval(forces).half_width;
         p.n_periods            = amplitudes.size();
         p.t_end                = run.state().t;
         branch.points.push_back(p);
@@ -174,10 +177,9 @@ namespace beamslider
             else
               c.x_over_L = p[previous].x_over_L + f0 / (f0 - f1) * (p[i].x_over_L - p[previous].x_over_L);
             c.stable = f1 < f0; // F̄_x decreasing in x: a displaced slider is pushed back
-            auto standard_error = [](const PcsPoint &q) {
-              return q.n_periods > 1 ? q.mean_fx_std / std::sqrt(static_cast<double>(q.n_periods)) : 0.;
-            };
-            c.resolved = std::abs(f0) > standard_error(p[previous]) && std::abs(f1) > standard_error(p[i]);
+            // Resolved when both neighbours' 95 % intervals (batch means: the
+            // periods of a rattling slider are correlated) exclude zero.
+            c.resolved = std::abs(f0) > p[previous].mean_fx_ci95 && std::abs(f1) > p[i].mean_fx_ci95;
             crossings.push_back(c);
           }
         previous = i;

@@ -62,6 +62,7 @@ namespace beamslider
     SweepDirection direction = SweepDirection::up;
     double amplitude_over_h = 0, amplitude_std_over_h = 0; // [-]
     double mean_fx = 0, mean_fx_std = 0;                   // F̄_x and its spread over periods [N]
+    double mean_fx_ci95 = 0; // half width of F̄_x's 95 % interval by batch means (contact/batch_means.h) [N]
     unsigned int n_periods = 0;                            // periods averaged
     double t_end = 0;                                      // simulated time at the end of this position [s]
   };

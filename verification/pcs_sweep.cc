@@ -95,7 +95,7 @@ namespace beamslider
       }
 
     CsvWriter pcs(dir + "/pcs.csv", {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "amplitude_std_over_h",
-                                     "mean_fx_std_N", "n_periods", "t_end_s"});
+                                     "mean_fx_std_N", "n_periods", "t_end_s", "mean_fx_ci95_N"});
     const long n_positions =
       static_cast<long>(std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L +
                                    1e-9)) + 1;
@@ -106,7 +106,7 @@ namespace beamslider
         auto on_point                    = [&](const PcsPoint &p) {
           pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
                    CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
-                   std::to_string(p.n_periods), CsvWriter::cell(p.t_end)});
+                   std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
           ++done;
           if (settings.verbose && (done % 10 == 0 || done == n_positions))
             std::cout << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
