@@ -349,6 +349,21 @@ namespace beamslider
             "must be < L/20 = " + num(s.beam.length / 20.) + " m for Euler-Bernoulli theory to hold");
     require(s.beam.youngs_modulus > 0, "Beam/Young's modulus", s.beam.youngs_modulus, "must be > 0 Pa");
     require(s.beam.density > 0, "Beam/Density", s.beam.density, "must be > 0 kg/m^3");
+    {
+      // Width and thickness have no upper or lower bound of their own, but
+      // the section's stiffnesses and mass per length must be doubles of
+      // normal size: h^3 underflows to 0 for h below ~1e-103 m (the beam
+      // would have no bending stiffness: a singular stiffness matrix, PETSc's
+      // "zero pivot"), E b overflows for b near 1e308 m.
+      const BeamData &b = s.beam;
+      for (const auto &[name, value] : {std::pair<const char *, double>{"bending stiffness EI = E b h^3/12", b.bending_stiffness()},
+                                        {"axial stiffness EA = E b h", b.axial_stiffness()},
+                                        {"mass per length rho b h", b.mass_per_length()}})
+        if (!std::isnormal(value))
+          throw InputError("Parameters 'Beam/Width' = " + num(b.width) + " and 'Beam/Thickness' = " + num(b.thickness) +
+                           " are not allowed: they give the " + name + " = " + num(value) +
+                           ", outside the doubles of normal size [2.2e-308, 1.8e308]");
+    }
     require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
             "R/h must be > 1: the slider's window must be taller than the beam is thick");
     require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");

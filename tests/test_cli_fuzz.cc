@@ -364,6 +364,8 @@ namespace
       }
     EXPECT_EQ(run.err.find("Sanitizer"), std::string::npos) << run.err;
     EXPECT_EQ(run.err.find("runtime error:"), std::string::npos) << run.err;
+    // Not a deal.II exception banner with its stack trace.
+    EXPECT_EQ(run.err.find("Stacktrace"), std::string::npos) << run.err;
     if (run.exit_code == 2)
       {
         EXPECT_FALSE(run.err.empty()) << "an input error without a message";

@@ -175,3 +175,16 @@ TEST(SceneErrors, BaseDisplacementThatOverflowsIsRefused)
   expect_contains(m, "'Excitation/Frequency' = 0.1");
   expect_contains(m, "base displacement amplitude");
 }
+
+// Found by tests/test_cli_fuzz.cc: a thickness whose cube underflows gave the
+// beam no bending stiffness (PETSc "zero pivot" dump from the eigensolver,
+// exit 1), a width near the largest double an infinite one.
+TEST(SceneErrors, SectionPropertiesOutsideTheNormalDoublesAreRefused)
+{
+  std::string m = error_for("Beam/Thickness=3.1340791372151129e-286");
+  expect_contains(m, "'Beam/Thickness' = 3.134079137e-286");
+  expect_contains(m, "bending stiffness EI");
+  m = error_for("Beam/Width=1e308");
+  expect_contains(m, "'Beam/Width' = 1e+308");
+  expect_contains(m, "stiffness EI = E b h^3/12 = inf");
+}
