@@ -8,7 +8,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -100,50 +102,73 @@ namespace beamslider
       prm.leave_subsection();
     }
 
+    // ParameterHandler::get_double refuses a value that underflows (a
+    // magnitude below the smallest normal double, 2.2e-308, e.g. 1e-320 or
+    // 1e-400) although its Double pattern accepts it; such a value is an
+    // input error like any other, not a failure of the program.
+    double get_double(const ParameterHandler &prm, const std::string &section, const std::string &name)
+    {
+      try
+        {
+          return prm.get_double(name);
+        }
+      catch (const dealii::ExceptionBase &)
+        {
+          const std::string value = prm.get(name);
+          errno                   = 0;
+          std::strtod(value.c_str(), nullptr);
+          const bool underflow = errno == ERANGE;
+          throw InputError("Parameter '" + section + "/" + name + "' = '" + value + "' is not allowed: " +
+                           (underflow ? "its magnitude is below the smallest normal double (2.2e-308), where a "
+                                        "double underflows; give 0 or a value of normal size"
+                                      : "it cannot be read as a number"));
+        }
+    }
+
     Scene parse(ParameterHandler &prm)
     {
       Scene s;
       prm.enter_subsection("Beam");
-      s.beam.length         = prm.get_double("Length");
-      s.beam.width          = prm.get_double("Width");
-      s.beam.thickness      = prm.get_double("Thickness");
-      s.beam.youngs_modulus = prm.get_double("Young's modulus");
-      s.beam.density        = prm.get_double("Density");
+      s.beam.length         = get_double(prm, "Beam", "Length");
+      s.beam.width          = get_double(prm, "Beam", "Width");
+      s.beam.thickness      = get_double(prm, "Beam", "Thickness");
+      s.beam.youngs_modulus = get_double(prm, "Beam", "Young's modulus");
+      s.beam.density        = get_double(prm, "Beam", "Density");
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
       s.supports.ideal_clamp          = prm.get("Type") == "clamped";
-      s.supports.rotational_stiffness = prm.get_double("Rotational stiffness");
-      s.supports.axial_stiffness      = prm.get_double("Axial stiffness");
+      s.supports.rotational_stiffness = get_double(prm, "Supports", "Rotational stiffness");
+      s.supports.axial_stiffness      = get_double(prm, "Supports", "Axial stiffness");
       prm.leave_subsection();
 
       prm.enter_subsection("Slider");
-      s.slider.mass                = prm.get_double("Mass");
-      s.slider.inertia             = prm.get_double("Rotary inertia");
-      s.slider.window_width        = prm.get_double("Window width");
-      s.slider.window_height_ratio = prm.get_double("Window height ratio");
-      s.slider.com_offset          = prm.get_double("Centre of mass offset");
-      s.slider.mass_factor         = prm.get_double("Mass factor");
+      s.slider.mass                = get_double(prm, "Slider", "Mass");
+      s.slider.inertia             = get_double(prm, "Slider", "Rotary inertia");
+      s.slider.window_width        = get_double(prm, "Slider", "Window width");
+      s.slider.window_height_ratio = get_double(prm, "Slider", "Window height ratio");
+      s.slider.com_offset          = get_double(prm, "Slider", "Centre of mass offset");
+      s.slider.mass_factor         = get_double(prm, "Slider", "Mass factor");
       prm.leave_subsection();
 
       prm.enter_subsection("Contact");
-      s.contact.friction_coefficient = prm.get_double("Friction coefficient");
-      s.contact.restitution          = prm.get_double("Restitution");
-      s.contact.gravity              = prm.get_double("Gravity");
+      s.contact.friction_coefficient = get_double(prm, "Contact", "Friction coefficient");
+      s.contact.restitution          = get_double(prm, "Contact", "Restitution");
+      s.contact.gravity              = get_double(prm, "Contact", "Gravity");
       s.contact.solver               = prm.get("Solver");
       prm.leave_subsection();
 
       prm.enter_subsection("Damping");
-      s.damping_ratio = prm.get_double("Modal damping ratio");
+      s.damping_ratio = get_double(prm, "Damping", "Modal damping ratio");
       prm.leave_subsection();
 
       prm.enter_subsection("Excitation");
-      s.excitation.frequency_hz           = prm.get_double("Frequency");
-      s.excitation.acceleration_amplitude = prm.get_double("Acceleration amplitude");
+      s.excitation.frequency_hz           = get_double(prm, "Excitation", "Frequency");
+      s.excitation.acceleration_amplitude = get_double(prm, "Excitation", "Acceleration amplitude");
       prm.leave_subsection();
 
       prm.enter_subsection("Initial state");
-      s.initial.slider_position_over_L = prm.get_double("Slider position");
+      s.initial.slider_position_over_L = get_double(prm, "Initial state", "Slider position");
       prm.leave_subsection();
 
       prm.enter_subsection("Discretisation");
@@ -154,9 +179,9 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Time stepping");
-      s.time_stepping.time_step   = prm.get_double("Time step");
-      s.time_stepping.end_time    = prm.get_double("End time");
-      s.time_stepping.output_rate = prm.get_double("Output rate");
+      s.time_stepping.time_step   = get_double(prm, "Time stepping", "Time step");
+      s.time_stepping.end_time    = get_double(prm, "Time stepping", "End time");
+      s.time_stepping.output_rate = get_double(prm, "Time stepping", "Output rate");
       prm.leave_subsection();
       return s;
     }
@@ -328,6 +353,21 @@ namespace beamslider
             "must be < L/20 = " + num(s.beam.length / 20.) + " m for Euler-Bernoulli theory to hold");
     require(s.beam.youngs_modulus > 0, "Beam/Young's modulus", s.beam.youngs_modulus, "must be > 0 Pa");
     require(s.beam.density > 0, "Beam/Density", s.beam.density, "must be > 0 kg/m^3");
+    {
+      // Width and thickness have no upper or lower bound of their own, but
+      // the section's stiffnesses and mass per length must be doubles of
+      // normal size: h^3 underflows to 0 for h below ~1e-103 m (the beam
+      // would have no bending stiffness: a singular stiffness matrix, PETSc's
+      // "zero pivot"), E b overflows for b near 1e308 m.
+      const BeamData &b = s.beam;
+      for (const auto &[name, value] : {std::pair<const char *, double>{"bending stiffness EI = E b h^3/12", b.bending_stiffness()},
+                                        {"axial stiffness EA = E b h", b.axial_stiffness()},
+                                        {"mass per length rho b h", b.mass_per_length()}})
+        if (!std::isnormal(value))
+          throw InputError("Parameters 'Beam/Width' = " + num(b.width) + " and 'Beam/Thickness' = " + num(b.thickness) +
+                           " are not allowed: they give the " + name + " = " + num(value) +
+                           ", outside the doubles of normal size [2.2e-308, 1.8e308]");
+    }
     require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
             "R/h must be > 1: the slider's window must be taller than the beam is thick");
     require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
@@ -342,6 +382,17 @@ namespace beamslider
               "] so that the slider's window is on the beam");
     require(s.damping_ratio >= 0 && s.damping_ratio < 1, "Damping/Modal damping ratio", s.damping_ratio, "must be in [0, 1)");
     require(s.excitation.frequency_hz > 0, "Excitation/Frequency", s.excitation.frequency_hz, "must be > 0 Hz");
+    {
+      // The slider's coordinates are absolute, the beam's relative to the
+      // base (contact/base_excitation.h): the base displacement amplitude
+      // a/Omega^2 enters every gap, from t = 0 on. A frequency so low that it
+      // overflows (e.g. 1e-182 Hz at 14 m/s^2) gives an infinite initial state.
+      const double omega = 2. * M_PI * s.excitation.frequency_hz;
+      const double base_amplitude = s.excitation.acceleration_amplitude / (omega * omega);
+      require(std::isfinite(base_amplitude), "Excitation/Frequency", s.excitation.frequency_hz,
+              "the base displacement amplitude a/(2 pi f)^2 = " + num(base_amplitude) + " m (a = " +
+                num(s.excitation.acceleration_amplitude) + " m/s^2) must be finite");
+    }
     require(std::isfinite(s.time_stepping.time_step) && s.time_stepping.time_step > 0, "Time stepping/Time step",
             s.time_stepping.time_step, "must be > 0 s");
     {

@@ -5,6 +5,7 @@
 // test that would hang fails instead).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -56,7 +57,10 @@ namespace beamslider::testing
 
   inline CliRun run_beamslider(const std::vector<std::string> &args, const CliLimits &limits = {})
   {
-    const auto scratch  = fresh_folder("cli_io");
+    // One scratch folder per call, so that several runs may go at once
+    // (from threads of one test).
+    static std::atomic<unsigned int> n_runs{0};
+    const auto scratch  = fresh_folder("cli_io_" + std::to_string(n_runs++));
     const auto out_file = scratch / "stdout", err_file = scratch / "stderr";
     std::vector<std::string> argv = {BEAMSLIDER_EXECUTABLE};
     argv.insert(argv.end(), args.begin(), args.end());

@@ -14,11 +14,15 @@ namespace
   const std::string scene_dir = BEAMSLIDER_SOURCE_DIR "/meshes/";
 
   // Runs read_scene with one override and returns the error message ("" if none).
-  std::string error_for(const std::string &assignment, const std::string &file = "mueller2023.prm")
+  std::string error_for(const std::string &assignment, const std::string &file = "mueller2023.prm",
+                        const std::string &second = "")
   {
     try
       {
-        read_scene(scene_dir + file, {assignment});
+        std::vector<std::string> overrides = {assignment};
+        if (!second.empty())
+          overrides.push_back(second);
+        read_scene(scene_dir + file, overrides);
       }
     catch (const InputError &e)
       {
@@ -145,4 +149,42 @@ TEST(SceneErrors, MissingFile)
     }
   expect_contains(m, "no-such-scene.prm");
   expect_contains(m, "does not exist");
+}
+
+// Found by tests/test_cli_fuzz.cc: a value below the smallest normal double
+// (2.2e-308) passes deal.II's Double pattern, but ParameterHandler::get_double
+// refuses it with its own exception (the program exited 1 with a deal.II
+// banner). It is an input error like any other.
+TEST(SceneErrors, UnderflowingValueIsAnInputErrorNamingTheParameter)
+{
+  for (const std::string value : {"1e-320", "4.9e-324", "1e-400"})
+    {
+      const std::string m = error_for("Contact/Restitution=" + value);
+      expect_contains(m, "'Contact/Restitution' = '" + value + "'");
+      expect_contains(m, "smallest normal double");
+    }
+}
+
+// Found by tests/test_cli_fuzz.cc: when the base displacement amplitude
+// a/Omega^2 overflows (then at 1e-182 Hz; within the frequency range at the
+// largest accelerations), the slider starts at z = inf and trace.csv
+// received a row with "inf".
+TEST(SceneErrors, BaseDisplacementThatOverflowsIsRefused)
+{
+  const std::string m = error_for("Excitation/Acceleration amplitude=1e308", "mueller2023.prm", "Excitation/Frequency=0.1");
+  expect_contains(m, "'Excitation/Frequency' = 0.1");
+  expect_contains(m, "base displacement amplitude");
+}
+
+// Found by tests/test_cli_fuzz.cc: a thickness whose cube underflows gave the
+// beam no bending stiffness (PETSc "zero pivot" dump from the eigensolver,
+// exit 1), a width near the largest double an infinite one.
+TEST(SceneErrors, SectionPropertiesOutsideTheNormalDoublesAreRefused)
+{
+  std::string m = error_for("Beam/Thickness=3.1340791372151129e-286");
+  expect_contains(m, "'Beam/Thickness' = 3.134079137e-286");
+  expect_contains(m, "bending stiffness EI");
+  m = error_for("Beam/Width=1e308");
+  expect_contains(m, "'Beam/Width' = 1e+308");
+  expect_contains(m, "stiffness EI = E b h^3/12 = inf");
 }
