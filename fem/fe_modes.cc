@@ -1,5 +1,7 @@
 #include "fem/fe_modes.h"
 
+#include "fem/petsc_session.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
@@ -7,6 +9,8 @@
 #include <deal.II/lac/slepc_spectral_transformation.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_matrix.h>
+
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -32,9 +36,138 @@ namespace beamslider
           P.set(i, it->column(), it->value());
       P.compress(VectorOperation::insert);
     }
+
+    // The dense route needs homogeneous constraints that pin DoFs to zero
+    // (the supports' w and every u): then the free DoFs carry the whole
+    // problem and M restricted to them is positive definite.
+    bool pins_to_zero(const AffineConstraints<double> &constraints)
+    {
+      for (const auto &line : constraints.get_lines())
+        if (!line.entries.empty() || line.inhomogeneity != 0.)
+          return false;
+      return true;
+    }
+
+    bool use_dense_solver(const EigenSolverMethod method, const AffineConstraints<double> &constraints,
+                          const unsigned int n_free)
+    {
+      switch (method)
+        {
+          case EigenSolverMethod::dense:
+            AssertThrow(pins_to_zero(constraints),
+                        ExcMessage("the dense eigensolver needs constraints that pin DoFs to zero"));
+            return true;
+          case EigenSolverMethod::slepc:
+            return false;
+          case EigenSolverMethod::automatic:
+            break;
+        }
+      return n_free <= max_dense_eigenproblem_size && pins_to_zero(constraints);
+    }
+
+    // All eigenpairs of the free DoFs' problem at once with Eigen's
+    // generalised self-adjoint solver (a Cholesky factor, then a symmetric QR
+    // iteration), posed inverted: M φ = μ K φ, μ = 1/ω². A dense solver's
+    // error is relative to the largest eigenvalue; inverted, that is the
+    // lowest mode's (the dense analogue of shift-invert about 0): ω_1 within
+    // 1e-12 instead of ε λ_max/λ_1 ≈ 5e-11 on the default mesh
+    // (tests/test_fem_beam.cc against an 80-bit reference).
+    // The lowest n_modes are returned as full DoF vectors, zero on the
+    // constrained DoFs.
+    void solve_dense(const SparseMatrix<double> &K, const SparseMatrix<double> &M,
+                     const AffineConstraints<double> &constraints, const unsigned int n_modes,
+                     std::vector<double> &eigenvalues, std::vector<Vector<double>> &vectors)
+    {
+      std::vector<int> free_index(K.m(), -1);
+      std::vector<unsigned int> free_dofs;
+      for (unsigned int i = 0; i < K.m(); ++i)
+        if (!constraints.is_constrained(i))
+          {
+            free_index[i] = free_dofs.size();
+            free_dofs.push_back(i);
+          }
+      const Eigen::Index n = free_dofs.size();
+      Eigen::MatrixXd K_free = Eigen::MatrixXd::Zero(n, n), M_free = Eigen::MatrixXd::Zero(n, n);
+      for (Eigen::Index a = 0; a < n; ++a)
+        {
+          for (auto it = K.begin(free_dofs[a]); it != K.end(free_dofs[a]); ++it)
+            if (free_index[it->column()] >= 0)
+              K_free(a, free_index[it->column()]) = it->value();
+          for (auto it = M.begin(free_dofs[a]); it != M.end(free_dofs[a]); ++it)
+            if (free_index[it->column()] >= 0)
+              M_free(a, free_index[it->column()]) = it->value();
+        }
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(M_free, K_free);
+      AssertThrow(solver.info() == Eigen::Success,
+                  ExcMessage("dense eigensolver failed: the stiffness matrix is not positive definite (is the beam "
+                             "supported against rigid motion?)"));
+      for (unsigned int k = 0; k < n_modes; ++k) // μ ascending: the lowest modes are the last
+        {
+          const Eigen::Index i = n - 1 - k;
+          eigenvalues.push_back(1. / solver.eigenvalues()[i]);
+          Vector<double> phi(K.m());
+          for (Eigen::Index a = 0; a < n; ++a)
+            phi[free_dofs[a]] = solver.eigenvectors()(a, i);
+          vectors.push_back(std::move(phi));
+        }
+    }
+
+    // Shift-invert about 0 with SLEPc's Krylov-Schur and its default solver
+    // for the spectral transformation (direct LU: MUMPS through the wrapper
+    // crashes in deal.II 9.4.1). Starts MPI/PETSc/SLEPc on first use.
+    unsigned int solve_with_slepc(const FEBeam &beam, const SparseMatrix<double> &K, SparseMatrix<double> &M,
+                                  const unsigned int n_modes, std::vector<double> &eigenvalues,
+                                  std::vector<Vector<double>> &vectors)
+    {
+      require_petsc();
+      // A constrained DoF gets a zero mass: its eigenvalue moves to infinity,
+      // far from the shift, instead of polluting the low spectrum.
+      const auto &constraints = beam.bending_constraints();
+      for (unsigned int i = 0; i < beam.n_dofs(); ++i)
+        if (constraints.is_constrained(i))
+          M.set(i, i, 0.);
+
+      PETScWrappers::SparseMatrix K_petsc, M_petsc;
+      copy_to_petsc(K, K_petsc);
+      copy_to_petsc(M, M_petsc);
+
+      std::vector<PETScWrappers::MPI::Vector> petsc_vectors(n_modes + 2);
+      for (auto &v : petsc_vectors)
+        v.reinit(MPI_COMM_SELF, beam.n_dofs(), beam.n_dofs());
+
+      SolverControl control(1000, 1e-12, false, false);
+      SLEPcWrappers::SolverKrylovSchur solver(control, MPI_COMM_SELF);
+      SLEPcWrappers::TransformationShiftInvert shift_invert(MPI_COMM_SELF,
+                                                            SLEPcWrappers::TransformationShiftInvert::AdditionalData(0.));
+      solver.set_transformation(shift_invert);
+      solver.set_problem_type(EPS_GHEP);
+      solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
+      solver.set_target_eigenvalue(0.);
+      try
+        {
+          solver.solve(K_petsc, M_petsc, eigenvalues, petsc_vectors, n_modes);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream info;
+          e.print_info(info);
+          throw std::runtime_error("SLEPc eigensolver failed for the " + std::to_string(n_modes) +
+                                   " lowest bending modes (" + std::to_string(beam.n_elements()) +
+                                   " elements): " + info.str());
+        }
+      for (unsigned int i = 0; i < eigenvalues.size(); ++i)
+        {
+          Vector<double> phi(beam.n_dofs());
+          for (unsigned int j = 0; j < beam.n_dofs(); ++j)
+            phi[j] = petsc_vectors[i][j];
+          vectors.push_back(std::move(phi));
+        }
+      return control.last_step();
+    }
   } // namespace
 
-  FEModes compute_bending_modes(const FEBeam &beam, const unsigned int n_modes, const std::optional<BondedBody> &body)
+  FEModes compute_bending_modes(const FEBeam &beam, const unsigned int n_modes, const std::optional<BondedBody> &body,
+                                const EigenSolverMethod method)
   {
     const auto &constraints = beam.bending_constraints();
 
@@ -44,56 +177,25 @@ namespace beamslider
     if (body)
       beam.add_point_inertia(body->x, body->mass, body->inertia, M);
 
-    // A constrained DoF gets a zero mass: its eigenvalue moves to infinity,
-    // far from the shift, instead of polluting the low spectrum.
-    for (unsigned int i = 0; i < beam.n_dofs(); ++i)
-      if (constraints.is_constrained(i))
-        M.set(i, i, 0.);
-
     const unsigned int n_free = beam.n_dofs() - constraints.n_constraints();
     AssertThrow(n_modes <= n_free,
                 ExcMessage("Requested " + std::to_string(n_modes) + " modes but the mesh has only " +
                            std::to_string(n_free) + " bending DoFs: refine the mesh"));
 
-    PETScWrappers::SparseMatrix K_petsc, M_petsc;
-    copy_to_petsc(K, K_petsc);
-    copy_to_petsc(M, M_petsc);
-
-    std::vector<PETScWrappers::MPI::Vector> vectors(n_modes + 2);
-    for (auto &v : vectors)
-      v.reinit(MPI_COMM_SELF, beam.n_dofs(), beam.n_dofs());
     std::vector<double> eigenvalues;
-
-    // Shift-invert about 0 with SLEPc's default solver for the spectral
-    // transformation (direct LU: DESIGN.md §5 notes that MUMPS through the
-    // wrapper crashes in 9.4.1).
-    SolverControl control(1000, 1e-12, false, false);
-    SLEPcWrappers::SolverKrylovSchur solver(control, MPI_COMM_SELF);
-    SLEPcWrappers::TransformationShiftInvert shift_invert(MPI_COMM_SELF,
-                                                          SLEPcWrappers::TransformationShiftInvert::AdditionalData(0.));
-    solver.set_transformation(shift_invert);
-    solver.set_problem_type(EPS_GHEP);
-    solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
-    solver.set_target_eigenvalue(0.);
-    try
-      {
-        solver.solve(K_petsc, M_petsc, eigenvalues, vectors, n_modes);
-      }
-    catch (const ExceptionBase &e)
-      {
-        std::ostringstream info;
-        e.print_info(info);
-        throw std::runtime_error("SLEPc eigensolver failed for the " + std::to_string(n_modes) +
-                                 " lowest bending modes (" + std::to_string(beam.n_elements()) +
-                                 " elements): " + info.str());
-      }
+    std::vector<Vector<double>> vectors;
+    unsigned int iterations = 0;
+    if (use_dense_solver(method, constraints, n_free))
+      solve_dense(K, M, constraints, n_modes, eigenvalues, vectors);
+    else
+      iterations = solve_with_slepc(beam, K, M, n_modes, eigenvalues, vectors);
 
     std::vector<unsigned int> order(eigenvalues.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return eigenvalues[a] < eigenvalues[b]; });
 
     FEModes modes;
-    modes.eigensolver_iterations = control.last_step();
+    modes.eigensolver_iterations = iterations;
     const double L               = beam.length();
     for (unsigned int k = 0; k < n_modes; ++k)
       {

@@ -1,7 +1,15 @@
 // Linear bending modes of the FE beam: the generalized eigenproblem
 //   K φ = ω² M φ
-// on the flat, undeformed beam, solved with SLEPc (Krylov–Schur with
-// shift-invert about σ = 0, through deal.II's wrappers). On the flat beam the
+// on the flat, undeformed beam. Small problems (up to
+// max_dense_eigenproblem_size free DoFs: every mesh a scene of this system
+// needs; 62 on the default mesh) are solved densely and exactly, all
+// eigenpairs at once (Eigen's generalised self-adjoint solver, about a
+// millisecond); larger ones with SLEPc (Krylov–Schur with shift-invert about
+// σ = 0, through deal.II's wrappers). The dense route keeps MPI, PETSc and
+// SLEPc out of every command that needs no large eigenproblem: starting them
+// costs about 0.6 s (Open MPI's singleton start-up), more than a whole ROM
+// run's set-up. Both routes agree with an 80-bit reference to 1e-11 in ω
+// (tests/test_fem_beam.cc). On the flat beam the
 // linear problem decouples into bending and axial motion; we constrain u = 0
 // to keep the bending modes only (the first axial mode of the default scene
 // lies near 18 kHz, above the 7th bending mode anyway). Optionally a rigid
@@ -36,8 +44,17 @@ namespace beamslider
     unsigned int eigensolver_iterations = 0;
   };
 
-  // The `n_modes` lowest bending modes. Throws with the SLEPc message if the
-  // eigensolver does not converge.
+  enum class EigenSolverMethod
+  {
+    automatic, // dense up to max_dense_eigenproblem_size free DoFs, SLEPc above
+    dense,     // Eigen's dense generalised solver, whatever the size
+    slepc      // SLEPc shift-invert Krylov–Schur, whatever the size
+  };
+  constexpr unsigned int max_dense_eigenproblem_size = 600; // free DoFs; ~0.2 s dense
+
+  // The `n_modes` lowest bending modes. Throws with the solver's message if
+  // the eigensolver fails.
   FEModes compute_bending_modes(const FEBeam &beam, unsigned int n_modes,
-                                const std::optional<BondedBody> &body = std::nullopt);
+                                const std::optional<BondedBody> &body = std::nullopt,
+                                EigenSolverMethod method              = EigenSolverMethod::automatic);
 } // namespace beamslider

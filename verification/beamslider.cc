@@ -24,7 +24,7 @@
 #include "verification/commands.h"
 
 #include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <CLI/CLI.hpp>
 
@@ -39,8 +39,10 @@ namespace
 
 int main(int argc, char **argv)
 {
-  // PETSc/SLEPc (the eigensolver) need MPI initialised; one process.
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // MPI, PETSc and SLEPc are started only if a large eigenproblem needs
+  // them (fem/petsc_session.h): Open MPI's start-up alone is ~0.6 s. deal.II's
+  // own task parallelism stays on one thread (runs parallelise by process).
+  dealii::MultithreadInfo::set_thread_limit(1);
   install_interruption_handlers();
   int status = run_command_line(argc, argv);
   if (status == 0 && !output_failures().empty())
