@@ -28,6 +28,10 @@ namespace beamslider
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);
     std::signal(SIGXFSZ, SIG_IGN);
+    // A chart process that died early must not kill the run when the run
+    // writes its arguments to it (verification/child_process.h): the write
+    // fails with EPIPE instead, and the failure is reported.
+    std::signal(SIGPIPE, SIG_IGN);
   }
 
   bool interruption_requested() { return received_signal.load(std::memory_order_relaxed) != 0; }

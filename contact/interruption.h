@@ -11,7 +11,8 @@
 //
 // It also ignores SIGXFSZ, so that a file-size limit makes a write fail (and
 // OutputFile report it) instead of killing the process with a half-written
-// row.
+// row, and SIGPIPE, so that writing to a chart process that died makes the
+// write fail rather than the run.
 #pragma once
 
 namespace beamslider

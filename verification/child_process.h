@@ -24,4 +24,32 @@ namespace beamslider
   // Runs argv[0] (an absolute path, or a name looked up in PATH) with the
   // arguments argv[1...], waits for it, and says how it ended.
   ChildResult run_child(const std::vector<std::string> &argv);
+
+  // A child started before its input exists, so that its own start-up (for
+  // the charts: Python importing matplotlib, ~0.35 s) overlaps the work
+  // that produces the input. It waits on its standard input; finish() sends
+  // it the rest of its arguments (NUL-separated, so that any character in a
+  // path or a title is safe), closes the pipe and waits for it. Destroyed
+  // without finish(), it gets an empty input and is expected to exit at
+  // once without doing anything. The child runs in its own process group,
+  // so that a Ctrl-C meant for the run does not kill it midway; the run
+  // decides whether it draws.
+  class EarlyChild
+  {
+  public:
+    explicit EarlyChild(const std::vector<std::string> &argv);
+    ~EarlyChild();
+    EarlyChild(const EarlyChild &)            = delete;
+    EarlyChild &operator=(const EarlyChild &) = delete;
+
+    // Sends `arguments`, closes the input, waits. Call at most once.
+    ChildResult finish(const std::vector<std::string> &arguments);
+
+  private:
+    ChildResult wait();
+    std::string program_;
+    int input_ = -1; // write end of the child's standard input
+    int pid_   = -1;
+    ChildResult start_; // started / why not
+  };
 } // namespace beamslider

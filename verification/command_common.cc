@@ -83,4 +83,18 @@ namespace beamslider
                           "); the CSV files beside it are complete");
     return result.succeeded();
   }
+
+  EarlyPlot::EarlyPlot(const std::string &script)
+    : script_(script)
+    , child_({BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script, "--arguments-from-stdin"})
+  {}
+
+  bool EarlyPlot::draw(const std::vector<std::string> &arguments)
+  {
+    const ChildResult result = child_.finish(arguments);
+    if (!result.succeeded())
+      note_output_failure("the chart of " + script_ + " was not drawn (" + result.error +
+                          "); the CSV files beside it are complete");
+    return result.succeeded();
+  }
 } // namespace beamslider

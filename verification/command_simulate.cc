@@ -191,6 +191,9 @@ namespace beamslider
       }
     const std::string dir = outcome.dir =
       prepare_output_dir(common, scene.name, the_case ? "simulate/" + the_case->name : std::string("simulate"));
+    // The chart's Python starts now and loads matplotlib while the run
+    // computes; it draws once the CSV files are complete.
+    EarlyPlot chart("plot_trace.py");
 
     // The model: as asked, or the cheapest that the speed–accuracy study says
     // meets the tolerance on this scene.
@@ -406,7 +409,7 @@ namespace beamslider
       {
         std::ostringstream title;
         title << scene.name << (the_case ? " / " + the_case->name : std::string()) << " (" << setting.label() << ")";
-        run_plot_script("plot_trace.py", {dir, title.str(), std::to_string(scene.beam.thickness)});
+        chart.draw({dir, title.str(), std::to_string(scene.beam.thickness)});
       }
 
     if (verbose)

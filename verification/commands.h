@@ -3,6 +3,8 @@
 // the process exit code. User errors are thrown as InputError.
 #pragma once
 
+#include "verification/child_process.h"
+
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -123,6 +125,23 @@ namespace beamslider
   // not be drawn is a result not written: it is recorded (note_output_failure)
   // and the command exits with status 1 at its end; returns whether it worked.
   bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments);
+
+  // The same script started before its data exist, so that Python and
+  // matplotlib load (~0.35 s) while the run computes: the script is started
+  // with --arguments-from-stdin and waits; draw() hands it the arguments and
+  // waits for the chart, with run_plot_script's failure handling. Destroyed
+  // without draw() (a failed or interrupted run), the script exits without
+  // drawing.
+  class EarlyPlot
+  {
+  public:
+    explicit EarlyPlot(const std::string &script);
+    bool draw(const std::vector<std::string> &arguments);
+
+  private:
+    std::string script_;
+    EarlyChild child_;
+  };
 
   // A result that could not be written but need not stop the command (a
   // chart): printed on stderr at once and remembered; main() exits with 1.

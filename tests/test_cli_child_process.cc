@@ -1,0 +1,79 @@
+// Child processes started with an argument vector (verification/
+// child_process.h), in particular the early-started chart process: its
+// arguments arrive intact whatever they hold, a child left without
+// arguments gets an empty input, and a child that died before its input is
+// written costs the parent neither a SIGPIPE nor a hang, only a reported
+// failure.
+#include "contact/interruption.h"
+#include "verification/child_process.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace beamslider;
+namespace fs = std::filesystem;
+
+namespace
+{
+  fs::path scratch(const std::string &name)
+  {
+    const fs::path dir = fs::temp_directory_path() / ("beamslider_child_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir / name;
+  }
+
+  std::string contents(const fs::path &file)
+  {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+} // namespace
+
+TEST(EarlyChild, ArgumentsArriveByteForByte)
+{
+  const fs::path out = scratch("arguments");
+  // The test's own child is a fixed shell script; what it copies are the
+  // arguments, which never pass through a shell.
+  EarlyChild child({"/bin/sh", "-c", "cat > \"$0\"", out.string()});
+  const std::vector<std::string> arguments = {"/tmp/a folder/x", "o';touch PWNED;'", "$(id)", "line\nbreak", "ü"};
+  const ChildResult result = child.finish(arguments);
+  EXPECT_TRUE(result.succeeded()) << result.error;
+  std::string expected;
+  for (const auto &a : arguments)
+    expected += a + '\0';
+  EXPECT_EQ(contents(out), expected);
+}
+
+TEST(EarlyChild, WithoutFinishTheChildSeesAnEmptyInput)
+{
+  const fs::path out = scratch("empty");
+  {
+    EarlyChild child({"/bin/sh", "-c", "wc -c > \"$0\"", out.string()});
+  } // destroyed: input closed unread, child waited for
+  EXPECT_EQ(std::stoi(contents(out)), 0);
+}
+
+TEST(EarlyChild, AChildThatDiedFirstIsAReportedFailureNotASignal)
+{
+  install_interruption_handlers(); // as beamslider's main(): SIGPIPE ignored
+  EarlyChild child({"/bin/sh", "-c", "exit 3"});
+  // More than a pipe buffer, so that the write must meet the closed end.
+  const ChildResult result = child.finish({std::string(1 << 20, 'x')});
+  EXPECT_TRUE(result.started);
+  EXPECT_FALSE(result.succeeded());
+  EXPECT_EQ(result.exit_code, 3);
+  EXPECT_NE(result.error.find("status 3"), std::string::npos) << result.error;
+}
+
+TEST(EarlyChild, AMissingProgramIsNamed)
+{
+  EarlyChild child({"/nonexistent/python3", "script.py"});
+  const ChildResult result = child.finish({"a"});
+  EXPECT_FALSE(result.started);
+  EXPECT_NE(result.error.find("/nonexistent/python3"), std::string::npos) << result.error;
+}
