@@ -173,9 +173,10 @@ namespace beamslider
     if (prescribed_x_)
       v_B[0] = 0.;
     const Eigen::Vector3d s_M = state_.s + 0.5 * dt_ * v_B;
+    const SliderFrame frame   = SliderGeometry::frame(t_M, base_, s_M[2]);
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
-        const double x = geometry_.corner_x(k, s_M);
+        const double x = s_M[0] + geometry_.corner_offset(k, frame)[0];
         if (!(x >= 0. && x <= L))
           {
             // A physical arrival overshoots by |v_x| Δt/2, micrometres; a
@@ -209,7 +210,7 @@ namespace beamslider
     unsigned int m = 0;
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
-        geometry_.evaluate(k, t_M, beam_, base_, q_M_, s_M, corner_);
+        geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, false);
         if (corner_.gap < -clearance)
           {
             std::ostringstream msg;

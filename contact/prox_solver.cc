@@ -2,6 +2,7 @@
 #include "contact/prox_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -77,6 +78,146 @@ namespace beamslider
     return false;
   }
 
+  // Each contact's conditions in a given mode are linear:
+  //   open:    P = 0                       (check: ξ_N ≥ 0)
+  //   stick:   ξ_N = 0, ξ_T = 0            (check: P_N ≥ 0, |P_T| ≤ μ P_N)
+  //   slide s: ξ_N = 0, P_T = s μ P_N      (check: P_N ≥ 0, s ξ_T ≤ 0)
+  // so a mode set gives k ≤ 2 n_contacts linear equations A z = −E c for the
+  // unknown impulses z. A may be singular: two corners on one face of the
+  // (locally rigid) beam share their directions, and only the sum of their
+  // impulses is determined; a full-pivoting LU gives one solution, the
+  // residual check below confirms it solves the equations, and the mode
+  // checks decide. A failed check moves that contact to the mode it points
+  // to (open → stick, stick → open or slide, slide → open or stick) for the
+  // next trial. Tolerances: round-off relative to the problem's velocity
+  // scale.
+  bool ProxSolver::solve_by_modes(const Eigen::Ref<const Eigen::MatrixXd> &G, const Eigen::Ref<const Eigen::VectorXd> &c,
+                                  const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const
+  {
+    constexpr int max_n = 8; // four corners, the slider's most
+    const Eigen::Index n = c.size(), m = n / 2;
+    if (n > max_n)
+      return false;
+    using Small       = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_n, max_n>;
+    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_n, 1>;
+
+    std::array<Mode, max_n / 2> mode;
+    for (Eigen::Index i = 0; i < m; ++i)
+      {
+        const double p_N = P[2 * i], p_T = P[2 * i + 1];
+        if (!(p_N > 0.))
+          mode[i] = Mode::open;
+        else if (std::abs(p_T) >= mu[i] * p_N * (1. - 1e-12) && mu[i] > 0.)
+          mode[i] = p_T > 0. ? Mode::slide_positive : Mode::slide_negative;
+        else
+          mode[i] = Mode::stick;
+      }
+
+    const double c_scale = c.cwiseAbs().maxCoeff();
+    Small A;
+    SmallVector b, z, xi(n);
+    Eigen::Matrix<double, max_n, 1> trial;
+    std::array<Eigen::Index, max_n> equation, unknown; // ξ row of each equation, P entry of each unknown
+    std::array<double, max_n> slope;                    // P_T = slope · P_N for a sliding contact's unknown
+    for (unsigned int attempt = 0; attempt < settings_.mode_trials; ++attempt)
+      {
+        // Unknowns and equations of this mode set.
+        Eigen::Index k = 0;
+        for (Eigen::Index i = 0; i < m; ++i)
+          switch (mode[i])
+            {
+              case Mode::open:
+                break;
+              case Mode::stick:
+                equation[k] = 2 * i, unknown[k] = 2 * i, slope[k] = 0., ++k;
+                equation[k] = 2 * i + 1, unknown[k] = 2 * i + 1, slope[k] = 0., ++k;
+                break;
+              case Mode::slide_positive:
+              case Mode::slide_negative:
+                equation[k] = 2 * i, unknown[k] = 2 * i;
+                slope[k]    = (mode[i] == Mode::slide_positive ? 1. : -1.) * mu[i];
+                ++k;
+                break;
+            }
+        trial.head(n).setZero();
+        if (k > 0)
+          {
+            A.resize(k, k);
+            b.resize(k);
+            for (Eigen::Index r = 0; r < k; ++r)
+              {
+                b[r] = -c[equation[r]];
+                for (Eigen::Index j = 0; j < k; ++j)
+                  {
+                    // A sliding contact's unknown P_N also moves its P_T = slope · P_N.
+                    A(r, j) = G(equation[r], unknown[j]);
+                    if (slope[j] != 0.)
+                      A(r, j) += slope[j] * G(equation[r], unknown[j] + 1);
+                  }
+              }
+            const Eigen::FullPivLU<Small> lu(A);
+            z = lu.solve(b);
+            if (!z.allFinite() || (A * z - b).cwiseAbs().maxCoeff() > 1e-9 * std::max(c_scale, 1e-300))
+              return false; // inconsistent equations: no solution in this mode set
+            for (Eigen::Index j = 0; j < k; ++j)
+              {
+                trial[unknown[j]] = z[j];
+                if (slope[j] != 0.)
+                  trial[unknown[j] + 1] = slope[j] * z[j];
+              }
+          }
+
+        // The conditions each mode leaves to be checked.
+        xi.noalias() = G * trial.head(n); // into storage of fixed capacity: no heap
+        xi += c;
+        double scale = c_scale;
+        for (Eigen::Index i = 0; i < n; ++i)
+          scale = std::max(scale, G(i, i) * std::abs(trial[i]));
+        const double tol = 1e-12 * scale;
+        bool all_hold    = true;
+        for (Eigen::Index i = 0; i < m; ++i)
+          {
+            const double p_N = trial[2 * i], p_T = trial[2 * i + 1];
+            const double gN = G(2 * i, 2 * i), gT = G(2 * i + 1, 2 * i + 1);
+            switch (mode[i])
+              {
+                case Mode::open:
+                  if (xi[2 * i] < -tol)
+                    mode[i] = Mode::stick, all_hold = false;
+                  break;
+                case Mode::stick:
+                  if (gN * p_N < -tol)
+                    mode[i] = Mode::open, all_hold = false;
+                  else if (gT * std::abs(p_T) > gT * mu[i] * p_N + tol)
+                    mode[i] = p_T > 0. ? Mode::slide_positive : Mode::slide_negative, all_hold = false;
+                  break;
+                case Mode::slide_positive:
+                case Mode::slide_negative:
+                  {
+                    const double s = mode[i] == Mode::slide_positive ? 1. : -1.;
+                    if (gN * p_N < -tol)
+                      mode[i] = Mode::open, all_hold = false;
+                    else if (s * xi[2 * i + 1] > tol)
+                      mode[i] = Mode::stick, all_hold = false;
+                    break;
+                  }
+              }
+          }
+        if (all_hold)
+          {
+            // Round-off below the tolerance moved back inside the cones.
+            for (Eigen::Index i = 0; i < m; ++i)
+              {
+                const double p_N = std::max(0., trial[2 * i]);
+                P[2 * i]         = p_N;
+                P[2 * i + 1]     = std::clamp(trial[2 * i + 1], -mu[i] * p_N, mu[i] * p_N);
+              }
+            return true;
+          }
+      }
+    return false;
+  }
+
   ProxSolverResult ProxSolver::solve(const Eigen::Ref<const Eigen::MatrixXd> &G,
                                      const Eigen::Ref<const Eigen::VectorXd> &c,
                                      const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const
@@ -111,6 +252,13 @@ namespace beamslider
             throw std::runtime_error(m.str());
           }
         r[i] = settings_.relaxation / G(i, i);
+      }
+
+    if (settings_.guess_modes && solve_by_modes(G, c, mu, P))
+      {
+        result.converged = true;
+        result.by_modes  = true;
+        return result;
       }
 
     // Convergence is judged on the relative velocities, G ΔP over one sweep,

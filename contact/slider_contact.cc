@@ -48,12 +48,31 @@ namespace beamslider
     slider_.validate(beam_thickness);
   }
 
+  SliderFrame SliderGeometry::frame(const double t, const BaseExcitation &base, const double beta)
+  {
+    SliderFrame f;
+    f.beta              = beta;
+    f.cos_beta          = std::cos(beta);
+    f.sin_beta          = std::sin(beta);
+    f.base_displacement = base.displacement(t);
+    f.base_velocity     = base.velocity(t);
+    return f;
+  }
+
   Eigen::Vector2d SliderGeometry::corner_offset(const unsigned int k, const double beta) const
+  {
+    SliderFrame f;
+    f.cos_beta = std::cos(beta);
+    f.sin_beta = std::sin(beta);
+    return corner_offset(k, f);
+  }
+
+  Eigen::Vector2d SliderGeometry::corner_offset(const unsigned int k, const SliderFrame &f) const
   {
     // Corner in the slider frame, measured from the centre of mass C = S − (0, d).
     const double px = corner_side(k) * 0.5 * slider_.window_width;
     const double pz = corner_zeta(k) * 0.5 * slider_.window_height + slider_.com_offset;
-    const double cb = std::cos(beta), sb = std::sin(beta);
+    const double cb = f.cos_beta, sb = f.sin_beta;
     return {cb * px - sb * pz, sb * px + cb * pz};
   }
 
@@ -61,22 +80,31 @@ namespace beamslider
                                 const BaseExcitation &base, const Eigen::VectorXd &q, const Eigen::Vector3d &s,
                                 CornerKinematics &out) const
   {
+    evaluate(k, frame(t, base, s[2]), beam, q, s, out);
+  }
+
+  void SliderGeometry::evaluate(const unsigned int k, const SliderFrame &f, const BeamSystem &beam,
+                                const Eigen::VectorXd &q, const Eigen::Vector3d &s, CornerKinematics &out,
+                                const bool directions_if_open) const
+  {
     const double zeta        = corner_zeta(k);
-    const Eigen::Vector2d r  = corner_offset(k, s[2]);
+    const Eigen::Vector2d r  = corner_offset(k, f);
     const double x_P         = s[0] + r[0];
     const double z_P         = s[1] + r[1];
     beam.evaluate(x_P, q, point_);
 
     const double w = point_.w, dw = point_.dw;
     const double c  = 1. / std::sqrt(1. + dw * dw); // cos α
-    const double dz = z_P - base.displacement(t) - w;
+    const double dz = z_P - f.base_displacement - w;
+
+    out.x   = x_P;
+    out.gap = zeta * c * dz - 0.5 * thickness_ / c;
+    if (!directions_if_open && out.gap > 0.)
+      return;
 
     // n = ζ c (−w', 1), t = ζ c (−1, −w')
     const double n_x = -zeta * c * dw, n_z = zeta * c;
     const double t_x = -zeta * c, t_z = -zeta * c * dw;
-
-    out.x   = x_P;
-    out.gap = zeta * c * dz - 0.5 * thickness_ / c;
 
     // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
     const double dg_dw  = -zeta * c;
@@ -89,9 +117,8 @@ namespace beamslider
     out.slider_normal  = Eigen::Vector3d(n_x, n_z, -r[1] * n_x + r[0] * n_z);
     out.slider_tangent = Eigen::Vector3d(t_x, t_z, -r[1] * t_x + r[0] * t_z);
 
-    const double base_velocity = base.velocity(t);
-    out.imposed_normal         = -n_z * base_velocity;
-    out.imposed_tangent        = -t_z * base_velocity;
+    out.imposed_normal  = -n_z * f.base_velocity;
+    out.imposed_tangent = -t_z * f.base_velocity;
   }
 
   Eigen::Vector3d SliderGeometry::resting_position(const double x_C, const double t, const BeamSystem &beam,

@@ -79,6 +79,16 @@ namespace beamslider
     double imposed_tangent = 0; // tangential relative velocity due to ẇ0 [m/s]
   };
 
+  // What the four corners share at one configuration and time: the
+  // rotation's cosine and sine and the base motion, computed once per step
+  // rather than once per corner (the transcendental functions were a tenth
+  // of a reduced-order step).
+  struct SliderFrame
+  {
+    double beta = 0, cos_beta = 1, sin_beta = 0; // [rad], [-], [-]
+    double base_displacement = 0, base_velocity = 0; // w0 [m], ẇ0 [m/s]
+  };
+
   class SliderGeometry
   {
   public:
@@ -87,13 +97,22 @@ namespace beamslider
     // Position of corner k relative to the centre of mass, in absolute axes,
     // for rotation β [m].
     Eigen::Vector2d corner_offset(unsigned int k, double beta) const;
+    Eigen::Vector2d corner_offset(unsigned int k, const SliderFrame &frame) const;
     // Absolute x of corner k [m]; used to keep beam evaluations inside [0, L].
     double corner_x(unsigned int k, const Eigen::Vector3d &s) const { return s[0] + corner_offset(k, s[2])[0]; }
+
+    // The shared part of the corners' kinematics at time t, rotation β.
+    static SliderFrame frame(double t, const BaseExcitation &base, double beta);
 
     // Gap and force directions of corner k at time t for beam coordinates q
     // and slider coordinates s. The caller guarantees x_P ∈ [0, L].
     void evaluate(unsigned int k, double t, const BeamSystem &beam, const BaseExcitation &base,
                   const Eigen::VectorXd &q, const Eigen::Vector3d &s, CornerKinematics &out) const;
+    // The same with the frame of (t, s[2]) computed by the caller; with
+    // directions_if_open = false an open corner (g_N > 0) gets only x and
+    // gap, which is all the Moreau step asks of it.
+    void evaluate(unsigned int k, const SliderFrame &frame, const BeamSystem &beam, const Eigen::VectorXd &q,
+                  const Eigen::Vector3d &s, CornerKinematics &out, bool directions_if_open = true) const;
 
     // Slider coordinates with the window's upper edge resting on the beam at
     // x_C (β from the local slope, both upper gaps ≥ 0 and the smaller one 0).

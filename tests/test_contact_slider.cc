@@ -134,6 +134,7 @@ TEST(ProxSolver, IterationCapIsReportedAsFailure)
   Eigen::VectorXd P = Eigen::VectorXd::Zero(4);
   ProxSolverSettings settings;
   settings.max_iterations = 3;
+  settings.guess_modes    = false; // the sweeps' own cap (a mode guess solves this at once)
   const auto result = ProxSolver(settings).solve(G4, Eigen::Vector4d(-1., 0., -1., 0.), Eigen::Vector2d(0.2, 0.2), P);
   EXPECT_FALSE(result.converged);
   EXPECT_EQ(result.iterations, 3u);
@@ -259,6 +260,7 @@ TEST(MoreauStepper, SolverIterationCapThrowsWithTimeAndContacts)
   RigidBeam beam(scene.beam.length, scene.beam.thickness);
   ProxSolverSettings settings;
   settings.max_iterations = 1; // two coupled corners need more than one sweep
+  settings.guess_modes    = false; // (a mode guess would solve them without sweeping)
   MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{},
                         scene.time_stepping.time_step, settings);
   const SystemState start = stepper.resting_state(0.05);
