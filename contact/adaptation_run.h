@@ -1,6 +1,6 @@
 // The free-slider ("self-adaptive") simulation of a scene on any BeamSystem,
 // and the prescribed-position variant for the sweeps of seed §4.2–4.3
-// (DESIGN.md §1.5): steps the MoreauStepper from the current state to an end
+// (doc/physics.md §10): steps the MoreauStepper from the current state to an end
 // time and reports, without ever holding the whole history in memory,
 //   - trace rows, decimated to the scene's output rate (trace.csv columns
 //     t_s, slider_x_over_L, slider_z_m, slider_beta_rad, w_center_m,

@@ -1,4 +1,4 @@
-// Harmonic base excitation of the beam's supports (DESIGN.md §1):
+// Harmonic base excitation of the beam's supports (doc/physics.md §1):
 //
 //   w0(t) = (â/Ω²) cos Ωt ,   ẇ0(t) = −(â/Ω) sin Ωt ,   ẅ0(t) = −â cos Ωt ,
 //

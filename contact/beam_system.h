@@ -1,4 +1,4 @@
-// The beam as the contact code sees it (DESIGN.md §3): a second-order system
+// The beam as the contact code sees it (doc/architecture.md): a second-order system
 // in coordinates q (modal for the reduced model, nodal for the FE model) that
 // provides one Moreau–Jean step without contact and the kinematics of the
 // beam at any point. The slider, the gaps, the force directions W, the
@@ -76,7 +76,7 @@ namespace beamslider
     // h is its impulse times the mean velocity.
     // Why this is in the interface: free_velocity lumps all smooth forces into
     // u_free, and only the beam model knows which part is damping and which is
-    // the base load; the energy balance of the adaptation runs (DESIGN §4)
+    // the base load; the energy balance of the adaptation runs (doc/verification.md)
     // needs them separately. A model that cannot split them may return NaN.
     virtual void step_work(const Eigen::VectorXd & /*u_E*/, double &damping_work, double &excitation_work) const
     {

@@ -1,5 +1,5 @@
 // Moreau midpoint time stepping of beam + rigid slider with unilateral,
-// frictional contact and Newton impact (DESIGN.md §1.4; Moreau 1988;
+// frictional contact and Newton impact (doc/physics.md §7–8; Moreau 1988;
 // Studer 2009; Krack et al. 2017), written once for any BeamSystem.
 //
 // One step from (t_B, q_B, u_B, s_B, v_B), Δt:
@@ -11,7 +11,7 @@
 //   P from the prox solver (prox_solver.h), warm-started per corner
 //   u_E = u_free + S⁻¹ W_b P,  v_E = v_free + M_s⁻¹ W_s P
 //   q_E = q_M + Δt/2 u_E,  s_E = s_M + Δt/2 v_E
-// ε = diag(e_N, 0). The active-set test uses g_N ≤ 0 (DESIGN writes < 0) so
+// ε = diag(e_N, 0). The active-set test uses g_N ≤ 0 (the design notes wrote < 0) so
 // that a corner resting with exactly zero gap, as in the initial state, is
 // held from the first step instead of falling freely for one step.
 //

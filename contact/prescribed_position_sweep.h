@@ -1,4 +1,4 @@
-// Prescribed-slider-position (PCS) sweeps, seed §4.2–4.3 and DESIGN.md §1.5.
+// Prescribed-slider-position (PCS) sweeps, seed §4.2–4.3 and doc/physics.md §10.
 //
 // The slider's horizontal position x_C is held (its height z_C and tilt β stay
 // free, the four corner contacts stay active) and stepped along the beam by
@@ -90,8 +90,9 @@ namespace beamslider
   {
     double x_over_L = 0;
     bool stable     = false; // ∂F̄_x/∂x < 0
-    // Both neighbouring means differ from zero by more than their standard
-    // error (spread/√periods): a crossing of the mean, not of the noise.
+    // Both neighbouring means lie outside zero by more than their 95 %
+    // batch-means interval (contact/batch_means.h): a crossing of the mean,
+    // not of the rattling noise.
     bool resolved = true;
   };
   std::vector<ForceZeroCrossing> force_zero_crossings(const std::vector<PcsPoint> &branch);

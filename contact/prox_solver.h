@@ -1,5 +1,5 @@
 // Augmented-Lagrangian Gauss–Seidel solver for the contact impulses of one
-// Moreau step (DESIGN.md §1.4; Studer, "Numerics of Unilateral Contacts and
+// Moreau step (doc/physics.md §7–8; Studer, "Numerics of Unilateral Contacts and
 // Friction", 2009, §5; Leine & Nijmeijer 2004).
 //
 // Numerics only (Siconos' split): the solver knows a Delassus matrix G, a

@@ -1,5 +1,5 @@
 // Slider corners, gaps and force directions: see slider_contact.h for the
-// model (DESIGN.md §1.3).
+// model (doc/physics.md §4).
 #include "contact/slider_contact.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The rigid slider and its four contact corners (seed §2.3, DESIGN.md §1.3;
+// The rigid slider and its four contact corners (seed §2.3, doc/physics.md §4;
 // Krack et al. 2017; Müller et al. 2023).
 //
 // Slider coordinates s = (x_C, z_C, β): centre of mass in absolute
@@ -17,7 +17,7 @@
 // ∂g_N/∂t = −n_z ẇ0 (the imposed velocity). The tangential direction has no
 // gap function; W_T is the tangential relative velocity of the two material
 // points, t·(v_P − v_B), where the beam's surface point moves with
-// (−ζ(h/2) ẇ', ẇ0 + ẇ) (axial inertia neglected, DESIGN §1.2).
+// (−ζ(h/2) ẇ', ẇ0 + ẇ) (axial inertia neglected, doc/physics.md §5).
 // The slider part of W_N neglects ∂w'/∂x_P (the beam's curvature times
 // ∂g/∂w' ≈ −w' c h): BeamPointKinematics carries no w''; the term is of order
 // h w'' relative to the kept w' term, below 1e-3 for the beams here.

@@ -1,4 +1,4 @@
-// The finite-element model of the beam (DESIGN.md §1.1): a von Kármán beam
+// The finite-element model of the beam (doc/physics.md §2–3): a von Kármán beam
 // in 1D with axial displacement u(x) and transverse displacement w(x)
 // relative to the moving base,
 //

@@ -1,4 +1,4 @@
-// The reduced model's modal basis taken from the FE model (DESIGN.md §1.2):
+// The reduced model's modal basis taken from the FE model (doc/physics.md §5):
 // the N lowest mass-normalised bending modes of the FE beam with
 //   γ_n = -ρA ∫ φ_n dx = rᵀ φ_n  (r the FE base-load vector),
 //   K'_jk = ∫ φ_j' φ_k' dx        (Gauss quadrature, exact for the Hermite cubics),
@@ -26,6 +26,6 @@ namespace beamslider
   Eigen::VectorXd max_abs_deflection(const FEBeam &beam, const FEModes &modes, unsigned int n_modes);
 
   // ∫ φ' ^4 dx for a mode (Gauss, exact): enters plain STEP's over-prediction
-  // factor L ∫φ'⁴ / (∫φ'²)² (DESIGN.md §1.2).
+  // factor L ∫φ'⁴ / (∫φ'²)² (doc/physics.md §5).
   double integral_slope_fourth_power(const FEBeam &beam, const dealii::Vector<double> &phi);
 } // namespace beamslider

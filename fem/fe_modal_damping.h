@@ -1,4 +1,4 @@
-// Modal damping for the FE model (DESIGN.md §1.1): the damping matrix
+// Modal damping for the FE model (doc/physics.md §2–3): the damping matrix
 //   C = Σ_{n ≤ N} 2 D ω_n (M φ_n)(M φ_n)ᵀ
 // gives every one of the N kept (mass-normalised) modes exactly the ratio D,
 // as in the reduced model, and leaves every other mode, bending or axial,

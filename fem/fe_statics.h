@@ -1,5 +1,5 @@
 // Nonlinear statics of the FE beam, and the three ways the reduced model's
-// cubic coefficients are obtained from it (DESIGN.md §1.2):
+// cubic coefficients are obtained from it (doc/physics.md §5):
 //
 //  - plain STEP: prescribe w = Φ q with the axial DoFs held at zero and
 //    return Φᵀ f(Φ q). The membrane cannot relax, so the axial strain is

@@ -109,7 +109,7 @@ namespace beamslider
   void FETransientBeam::cached_internal_force(const dealii::Vector<double> &q, dealii::Vector<double> &f) const
   {
     // f = ∫ N δε + M δκ dx with N = EA ε, M = EI κ, δε = δu' + w' δw'
-    // (DESIGN.md §1.1; FEBeam::assemble_internal_force), plus the springs.
+    // (doc/physics.md §2–3; FEBeam::assemble_internal_force), plus the springs.
     if (f.size() != q.size())
       f.reinit(q.size());
     else

@@ -1,6 +1,6 @@
 // The FE beam as a BeamSystem (contact/beam_system.h): the implicit
 // Moreau–Jean θ-scheme, θ = 1/2, on the von Kármán beam of fem/fe_beam.h
-// (DESIGN.md §1.1, §1.4; Jean 1999; Acary & Brogliato 2008, ch. 10).
+// (doc/physics.md §2–3, §7–8; Jean 1999; Acary & Brogliato 2008, ch. 10).
 //
 // Smooth equations of motion, in the FE DoFs q = (u, w, θ) relative to the base:
 //   M q̈ + C q̇ + f(q) = r ẅ0(t) (+ contact forces),

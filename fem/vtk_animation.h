@@ -73,7 +73,7 @@ namespace beamslider
   // Any BeamSystem (e.g. the ROM): w, w' from evaluate at n_samples points,
   // w'' by central differences of w', u = 0 and the uniform axial force of
   // the reduced model, N = k_ax · ½∫w'² dx (axial inertia neglected,
-  // DESIGN.md §1.2; k_ax = membrane_stiffness, 0 without geometric nonlinearity).
+  // doc/physics.md §5; k_ax = membrane_stiffness, 0 without geometric nonlinearity).
   BeamFrameGeometry sample_beam_system(const BeamSystem &beam, const Eigen::VectorXd &q, unsigned int n_samples,
                                        double membrane_stiffness);
   // Dispatches: the FE fields for an FETransientBeam, else the generic ones.

@@ -6,7 +6,7 @@
 // deal.II headers. All quantities are SI (m, kg, s, N, rad) unless a name says
 // otherwise (e.g. `_hz`, `_over_L`).
 //
-// Physics: DESIGN.md §1 (beam on elastic supports, von Kármán kinematics,
+// Physics: doc/physics.md §1 (beam on elastic supports, von Kármán kinematics,
 // rigid slider with clearance, base excitation w0 = (a/Ω²) cos Ωt).
 #pragma once
 

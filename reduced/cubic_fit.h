@@ -1,5 +1,5 @@
 // Identification of the cubic (and quadratic) modal stiffness coefficients of
-// a geometrically nonlinear structure from a black-box model (DESIGN.md §1.2):
+// a geometrically nonlinear structure from a black-box model (doc/physics.md §5):
 //
 //   f_n(q) = Σ_{j≤k} a^(n)_jk q_j q_k + Σ_{j≤k≤l} c^(n)_jkl q_j q_k q_l ,
 //
@@ -18,7 +18,7 @@
 //   combinations ±a_j e_j, ±a_j e_j ± a_k e_k, ±(a_j e_j + a_k e_k + a_l e_l),
 //   evaluate the modal force, and separate the coefficients exactly by the
 //   even/odd parts of these evaluations. "Plain" STEP prescribes transverse
-//   displacements only (the membrane cannot relax: over-predicts, DESIGN §1.2);
+//   displacements only (the membrane cannot relax: over-predicts, doc/physics.md §5);
 //   "condensed" STEP solves for the in-plane DOFs at given w in the callback.
 //   The algorithm is the same; the callback decides which one it is.
 // - ICE, implicit condensation (Hollkamp & Gordon, J. Sound Vib. 318, 2008):

@@ -1,5 +1,5 @@
 // The modal basis of the reduced-order model: the N lowest mass-normalised
-// bending modes of the beam, and the integrals of DESIGN.md §1.2 built from
+// bending modes of the beam, and the integrals of doc/physics.md §5 built from
 // them. It is filled from the FE model (fem/fe_modal_basis) or, in tests, from
 // analytic mode shapes; the reduced model never needs the analytic formulas.
 //

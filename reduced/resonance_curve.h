@@ -11,7 +11,7 @@
 //
 // which has no real root (no resonance at any amplitude) where the slider's
 // added inertia already puts ω̃₁(0, x_C) above Ω (stiffening only raises it).
-// m is the slider mass, J its rotary inertia (DESIGN.md §1.2; the window's
+// m is the slider mass, J its rotary inertia (doc/physics.md §5; the window's
 // offset d is not part of Eq. 5).
 #pragma once
 

@@ -1,8 +1,8 @@
-// The reduced-order model (seed Eqs. 1–3, DESIGN.md §1.2) as a BeamSystem, so
+// The reduced-order model (seed Eqs. 1–3, doc/physics.md §5) as a BeamSystem, so
 // that the contact code of contact/ runs on it unchanged.
 //
 // Mass-normalised modes give M = I. One explicit Moreau midpoint step
-// (DESIGN §1.4) of the smooth part:
+// (doc/physics.md §7–8) of the smooth part:
 //
 //   h(t_M, q_M, u_B) = −(2 D ω ∘ u_B + ω² ∘ q_M + f_nl(q_M)) + γ ẅ0(t_M)
 //   u_free = u_B + Δt h,     S = I

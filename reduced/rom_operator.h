@@ -1,4 +1,4 @@
-// The reduced-order model (seed Eqs. 1–3, DESIGN.md §1.2): the second
+// The reduced-order model (seed Eqs. 1–3, doc/physics.md §5): the second
 // implementation of the beam's second-order system, the FE model being the
 // first. In modal coordinates q (mass-normalised modes)
 //

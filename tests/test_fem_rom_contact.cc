@@ -1,4 +1,4 @@
-// FE against a many-mode ROM on a contact run (DESIGN.md §4, "adaptation
+// FE against a many-mode ROM on a contact run (doc/verification.md, "adaptation
 // traces: ROM against FE on the same scene, same contact code"): the
 // mueller2023 signature-move settings (124 Hz, 14 m/s², x_C/L = 0.3, the
 // scene file as it is), first 0.1 s, Δt = 1e-5 s on both models:

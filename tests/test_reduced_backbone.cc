@@ -3,7 +3,7 @@
 // clamp (analytic clamped–clamped modes, tests/test_reduced_clamped_beam.h):
 //
 // - seed Eq. 4, ω² = ω₁² + ¾ b₁₁₁ q̂², is the exact single-mode, single-harmonic
-//   HB solution; written as (ω/ω₁)² = 1 + c (ŵ_{L/2}/h)², DESIGN §4 quotes
+//   HB solution; written as (ω/ω₁)² = 1 + c (ŵ_{L/2}/h)², doc/verification.md quotes
 //   c ≈ 0.5395 for this beam;
 // - a single mode with many harmonics is the undamped Duffing oscillator
 //   q̈ + ω₀² q + b q³ = 0, whose exact frequency at turning-point amplitude A is
@@ -84,9 +84,9 @@ TEST(SingleModeBackboneLaw, CoefficientOfTheIdealClampMuellerBeamIs0p5395)
 {
   const RomSetup s(1);
   const double c = single_mode_backbone_coefficient(s.omega_1(), s.b_111(), s.output[0], s.beam.h);
-  std::cout << "  c = " << c << " (DESIGN: 0.5395); (ω/ω₁)² at ŵ/h = 2.5: " << 1 + c * 6.25 << '\n';
+  std::cout << "  c = " << c << " (doc/physics.md: 0.5395); (ω/ω₁)² at ŵ/h = 2.5: " << 1 + c * 6.25 << '\n';
   EXPECT_NEAR(c, 0.5395, 5e-4);
-  // The seed's "doubles": sqrt(1 + 6.25 c) ≈ 2.09 at ŵ/h = 2.5 is about ω; DESIGN says ×2.09.
+  // The seed's "doubles": sqrt(1 + 6.25 c) ≈ 2.09 at ŵ/h = 2.5 is about ω; doc/physics.md says ×2.09 on ω.
   EXPECT_NEAR(1 + c * 6.25, 4.37, 0.01);
 }
 

@@ -1,6 +1,6 @@
 // Test fixture shared by the test_reduced_* tests: the analytic modes of a
 // clamped–clamped Euler–Bernoulli beam, mass-normalised, built independently of
-// any FE code, and the ModalBasis of DESIGN.md §1.2 computed from them by
+// any FE code, and the ModalBasis of doc/physics.md §5 computed from them by
 // quadrature.
 //
 //   φ_n(x) = C_n [cosh βx − cos βx − σ_n (sinh βx − sin βx)],

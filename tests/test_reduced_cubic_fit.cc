@@ -7,7 +7,7 @@
 //   summed over permutations, to round-off, and zero quadratic terms;
 // - STEP on a model whose membrane cannot relax (u ≡ 0: axial strain ½w'²
 //   varies along x, f_n = ∫ EA ½ w'² w' φ_n' dx) over-predicts b₁₁₁ by the
-//   factor L ∫φ₁'⁴ dx / (∫φ₁'² dx)² (DESIGN §1.2), computed here by an
+//   factor L ∫φ₁'⁴ dx / (∫φ₁'² dx)² (doc/physics.md §5), computed here by an
 //   independent Simpson quadrature;
 // - ICE with an exact static solve (Newton on ω²q + f(q) = f̂) recovers the
 //   same tensor by least squares; with a non-cubic (quintic) term the

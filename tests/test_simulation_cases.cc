@@ -1,5 +1,5 @@
 // The named adaptation cases (verification/simulation_cases): each applies
-// the parameters DESIGN.md §2 gives for it; an unknown name is an error that
+// the parameters doc/scenes.md gives for it; an unknown name is an error that
 // lists the valid ones; the verdict finds a jump, a turn and recurrent jumps
 // in constructed period records where we put them; a beam model whose solver
 // fails stops the run cleanly with time and place.
@@ -42,7 +42,7 @@ namespace
   }
 } // namespace
 
-// DESIGN.md §2: frequency [Hz], base acceleration [m/s²], start x_C/L.
+// doc/scenes.md: frequency [Hz], base acceleration [m/s²], start x_C/L.
 TEST(SimulationCases, ApplyThePublishedParameters)
 {
   struct Expected
@@ -61,7 +61,7 @@ TEST(SimulationCases, ApplyThePublishedParameters)
       EXPECT_DOUBLE_EQ(s.excitation.frequency_hz, e.f) << e.name;
       EXPECT_DOUBLE_EQ(s.excitation.acceleration_amplitude, e.a) << e.name;
       EXPECT_DOUBLE_EQ(s.initial.slider_position_over_L, e.x) << e.name;
-      EXPECT_GE(s.time_stepping.end_time, 60.) << e.name; // DESIGN: 60–120 s
+      EXPECT_GE(s.time_stepping.end_time, 60.) << e.name; // the published runs: 60–120 s
       EXPECT_TRUE(s.discretisation.geometric_nonlinearity);
       EXPECT_DOUBLE_EQ(s.contact.friction_coefficient, 0.2);
       EXPECT_DOUBLE_EQ(s.slider.window_height_ratio, 1.05);

@@ -1,5 +1,5 @@
-// The four sources of the reduced model's cubic coefficients (DESIGN.md
-// §1.2), run on one FE beam and its modes:
+// The four sources of the reduced model's cubic coefficients (doc/physics.md
+// §5), run on one FE beam and its modes:
 //   analytic        seed Eq. 3 with k_ax, integrals on the FE mode shapes
 //   step            STEP, transverse displacements only (axial DoFs at zero)
 //   step-condensed  STEP with the axial DoFs solved for at each prescribed w

@@ -1,5 +1,5 @@
 // `beamslider sweep SCENE`: prescribed-slider-position sweeps (seed §4.2–4.3,
-// DESIGN.md §1.5), both directions, with the Eq. 5 resonance curve and the
+// doc/physics.md §10), both directions, with the Eq. 5 resonance curve and the
 // free-slider run overlaid; files and columns in verification/pcs_sweep.h.
 #include "contact/output_file.h"
 #include "meshes/scene.h"

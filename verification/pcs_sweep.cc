@@ -53,7 +53,7 @@ namespace beamslider
       if (s.empty())
         s = "none resolved";
       if (n_noise > 0)
-        s += " (and " + std::to_string(n_noise) + " within the noise: |F̄_x| below its standard error next to them)";
+        s += " (and " + std::to_string(n_noise) + " within the noise: |F̄_x| inside its 95 % batch-means interval next to them)";
       return s;
     }
 

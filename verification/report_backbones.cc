@@ -1,4 +1,4 @@
-// Verification section "Backbone curves" (DESIGN.md §4, seed Fig. 3): the
+// Verification section "Backbone curves" (doc/verification.md, seed Fig. 3): the
 // mode-1 backbone of the ROM (N = 1, 3, 5, 7 modes, H = 10 harmonics) against
 // the full FE model's backbone and seed Eq. 4; the frequency difference at
 // given amplitudes; the harmonic truncation; where the single-mode law breaks
@@ -263,7 +263,7 @@ namespace beamslider
           "where there are any, appear only as H grows.\n\n"
        << "![Harmonic truncation](backbone_harmonics.png)\n\n";
 
-    // 3.4 The ideal clamp: the DESIGN's single-mode law and the 3:1 interaction.
+    // 3.4 The ideal clamp: the single-mode law of doc/physics.md §5 and the 3:1 interaction.
     std::cout << "[verify] backbones: ideal clamp ..." << std::endl;
     {
       Scene ideal               = scene;
@@ -294,7 +294,7 @@ namespace beamslider
                      CsvWriter::cell(iw1 * std::sqrt(1 + ic * 0.0004 * i * i) / (2 * pi)), "0", "backbone"});
 
       md << "### 3.3 Ideal clamp: single-mode law and the 3:1 interaction\n\n"
-         << "The same beam with ideal clamps (k_r, k_t → ∞; scene `mueller2023-ideal`), where DESIGN §4 quotes "
+         << "The same beam with ideal clamps (k_r, k_t → ∞; scene `mueller2023-ideal`), where doc/verification.md quotes "
             "(ω/ω₁)² = 1 + 0.5395 (ŵ/h)²: here c = "
          << fixed(ic, 4) << " on the FE modes of a mesh of " << n_ideal << " elements (ROM and FE), f₁ = "
          << fixed(iw1 / (2 * pi), 3)
@@ -311,7 +311,7 @@ namespace beamslider
              << " | " << sci(b.seconds, 2) << " |\n";
         }
       const auto w25 = omega_at(ib["FE"], 2.5, h);
-      md << "\nEq. 4 at ŵ/h = 2.5: ω/ω₁ = " << fixed(std::sqrt(1 + 6.25 * ic), 4) << " (the DESIGN's ×2.09)"
+      md << "\nEq. 4 at ŵ/h = 2.5: ω/ω₁ = " << fixed(std::sqrt(1 + 6.25 * ic), 4) << " (doc/physics.md: ×2.09 on ω)"
          << (w25 ? ", FE " + fixed(*w25 / iw1, 4) : std::string("")) << ". ";
       if (!ib["FE"].gaps.empty())
         {

@@ -30,7 +30,7 @@ namespace beamslider
     std::cout << "[verify] cubic coefficients ..." << std::endl;
     md << "## 2. Cubic modal coefficients\n\n"
        << "Seed Eq. 3 with the membrane stiffness k_ax of the supports, against the three ways of extracting the cubic "
-          "modal stiffness from the FE model (DESIGN.md §1.2). All on the scene's FE mesh and its mass-normalised modes. "
+          "modal stiffness from the FE model (doc/physics.md §5). All on the scene's FE mesh and its mass-normalised modes. "
           "Coefficients c^(n)_jkl are stored once per sorted j ≤ k ≤ l (the sum over the permutations), "
           "f_n = Σ c^(n)_jkl q_j q_k q_l, in 1/(s² m² kg).\n\n";
 

@@ -64,7 +64,7 @@ namespace beamslider
     std::cout << "[verify] contact dynamics: published cases and ablations ..." << std::endl;
     const auto start = std::chrono::steady_clock::now();
     md << "## 4. Slider contact dynamics on the reduced model\n\n"
-       << "The published cases of `mueller2023` (DESIGN.md §2) and the seed's ablations applied to the signature move, run "
+       << "The published cases of `mueller2023` (doc/scenes.md) and the seed's ablations applied to the signature move, run "
           "as `beamslider simulate <scene> --case <name>` runs them: ROM with N = "
        << scene.discretisation.n_modes
        << " modes of the FE basis, analytic coefficients, Δt = " << scene.time_stepping.time_step
@@ -72,9 +72,9 @@ namespace beamslider
        << (full ? "Every case runs to its end time."
                 : "Quick mode: the signature move runs to its end time, every other case to 20 s only (`verify --full` "
                   "runs all to their end time); a verdict on a shortened run says what happened in that window.")
-       << " The descriptions of the mueller2023 cases are what their names in DESIGN.md say (the 2023 paper is not in "
+       << " The descriptions of the mueller2023 cases are what their names say (doc/scenes.md; the 2023 paper is not in "
           "the seed); those of the ablations are what the seed reports on its System 1, which need not carry over "
-          "to mueller2023 (DESIGN.md §2). The verdict is measured from the per-period records (jump: the amplitude "
+          "to mueller2023 (doc/scenes.md). The verdict is measured from the per-period records (jump: the amplitude "
           "envelope exceeds twice its earlier level after the first 2 s; turn: the slider ends ≥ 0.02 L nearer the "
           "centre than its farthest point, having moved out first).\n\n"
        << "| case | change | published | ours | disagrees on | wall [s] |\n|---|---|---|---|---|---|\n";

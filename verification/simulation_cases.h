@@ -4,7 +4,7 @@
 // user's own --set, so validate_scene checks the combination and the user can
 // still change anything.
 //
-// The six mueller2023 cases are those of DESIGN.md §2 (Müller, Beck & Krack,
+// The six mueller2023 cases are those of doc/scenes.md (Müller, Beck & Krack,
 // MSSP 2023; start x_C/L = 0.3 unless noted). The five ablations are applied
 // to signature-move; what the seed reports for them (on its System 1, seed
 // §3.3 and §4.1) is kept with each case as `published`, to be compared with
