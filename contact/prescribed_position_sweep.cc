@@ -39,6 +39,21 @@ namespace beamslider
     }
   } // namespace
 
+  std::vector<double> PcsSweepSettings::positions(const SweepDirection direction) const
+  {
+    // The grid low + k Δ (up) or high − k Δ (down); the far end is included
+    // when the range is not a whole number of steps.
+    std::vector<double> positions;
+    const double span = high_over_L - low_over_L;
+    const long n      = static_cast<long>(std::floor(span / step_over_L + 1e-9));
+    for (long k = 0; k <= n; ++k)
+      positions.push_back(direction == SweepDirection::up ? low_over_L + k * step_over_L : high_over_L - k * step_over_L);
+    const double far_end = direction == SweepDirection::up ? high_over_L : low_over_L;
+    if (std::abs(positions.back() - far_end) > 1e-9)
+      positions.push_back(far_end);
+    return positions;
+  }
+
   std::string to_string(const SweepDirection direction) { return direction == SweepDirection::up ? "up" : "down"; }
 
   void PcsSweepSettings::validate(const Scene &scene) const
@@ -90,17 +105,7 @@ namespace beamslider
     const auto start = std::chrono::steady_clock::now();
     const double L   = beam.length();
 
-    // Positions on the grid low + k Δ (up) or high − k Δ (down); the far end
-    // is included when the range is not a whole number of steps.
-    std::vector<double> positions;
-    const double span = settings.high_over_L - settings.low_over_L;
-    const long n      = static_cast<long>(std::floor(span / settings.step_over_L + 1e-9));
-    for (long k = 0; k <= n; ++k)
-      positions.push_back(direction == SweepDirection::up ? settings.low_over_L + k * settings.step_over_L
-                                                          : settings.high_over_L - k * settings.step_over_L);
-    const double far_end = direction == SweepDirection::up ? settings.high_over_L : settings.low_over_L;
-    if (std::abs(positions.back() - far_end) > 1e-9)
-      positions.push_back(far_end);
+    const std::vector<double> positions = settings.positions(direction);
 
     Scene start_scene                          = scene;
     start_scene.initial.slider_position_over_L = positions.front();
@@ -177,6 +182,20 @@ namespace beamslider
             else
               c.x_over_L = p[previous].x_over_L + f0 / (f0 - f1) * (p[i].x_over_L - p[previous].x_over_L);
             c.stable = f1 < f0; // F̄_x decreasing in x: a displaced slider is pushed back
+            // The interval: where each band F̄_x ± ci95 crosses zero between
+            // the two positions, or the bracket's edge if it does not.
+            const double x0 = p[previous].x_over_L, x1 = p[i].x_over_L;
+            auto band_zero  = [&](const double sign) {
+              const double b0 = f0 + sign * p[previous].mean_fx_ci95, b1 = f1 + sign * p[i].mean_fx_ci95;
+              if ((b0 > 0.) == (b1 > 0.) || b0 == b1)
+                // No sign change: the band stays on one side over the whole
+                // bracket; the crossing can lie anywhere toward that side.
+                return (b0 > 0.) == (f0 > 0.) ? x1 : x0;
+              return x0 + b0 / (b0 - b1) * (x1 - x0);
+            };
+            const double xa = band_zero(+1.), xb = band_zero(-1.);
+            c.x_low_over_L  = std::min({xa, xb, c.x_over_L});
+            c.x_high_over_L = std::max({xa, xb, c.x_over_L});
             // Resolved when both neighbours' 95 % intervals (batch means: the
             // periods of a rattling slider are correlated) exclude zero.
             c.resolved = std::abs(f0) > p[previous].mean_fx_ci95 && std::abs(f1) > p[i].mean_fx_ci95;

@@ -31,6 +31,14 @@
 
 namespace beamslider
 {
+  // Direction of a branch: x_C increasing ("up") or decreasing ("down").
+  enum class SweepDirection
+  {
+    up,
+    down
+  };
+  std::string to_string(SweepDirection direction);
+
   struct PcsSweepSettings
   {
     double low_over_L   = 0.05;  // smallest x_C/L of both branches [-]
@@ -46,15 +54,9 @@ namespace beamslider
     // scene's initial slider position, from the centre to 0.05 L (0.95 L) or
     // as close to the support as the slider's window allows.
     static PcsSweepSettings for_scene(const Scene &scene);
+    // The positions x_C/L of one branch, in the order it visits them.
+    std::vector<double> positions(SweepDirection direction) const;
   };
-
-  // Direction of a branch: x_C increasing ("up") or decreasing ("down").
-  enum class SweepDirection
-  {
-    up,
-    down
-  };
-  std::string to_string(SweepDirection direction);
 
   struct PcsPoint
   {
@@ -89,6 +91,12 @@ namespace beamslider
   struct ForceZeroCrossing
   {
     double x_over_L = 0;
+    // Where the crossing may lie given F̄_x's 95 % intervals at the two
+    // bracketing positions: the zero crossings of the bands F̄_x ± ci95,
+    // each linearly interpolated like the mean; a band that does not change
+    // sign between the two positions leaves that end at the bracket's edge
+    // (and the crossing unresolved).
+    double x_low_over_L = 0, x_high_over_L = 0;
     bool stable     = false; // ∂F̄_x/∂x < 0
     // Both neighbouring means lie outside zero by more than their 95 %
     // batch-means interval (contact/batch_means.h): a crossing of the mean,

@@ -112,6 +112,52 @@ TEST(Commands, SweepWritesTheDocumentedColumns)
   fs::remove_all(dir);
 }
 
+// sweep --against: a ROM sweep compared with a second, identical ROM sweep
+// (deterministic) must find no difference (amplitude difference at the
+// 10-digit precision pcs.csv is read back with, overlapping F̄_x intervals, the same crossings); against a
+// sweep over other positions it is an input error (exit 2) that names the
+// mismatch, before any simulation.
+TEST(Commands, SweepAgainstAnIdenticalSweepFindsNoDifference)
+{
+  const fs::path dir = fresh_folder("cmd_sweep_against");
+  const std::vector<std::string> sweep = {"sweep", "--from", "0.30", "--to", "0.34", "--step", "0.01", "--settle-time",
+                                          "0.1", "--average-time", "0.2", "--free-time", "0"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = sweep;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  CliRun run = run_beamslider(with({"--output", (dir / "a").string()}));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  run = run_beamslider(with({"--output", (dir / "b").string(), "--against", (dir / "a").string()}));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(first_line(dir / "b" / "comparison.csv"),
+            "direction,x_over_L,amplitude_over_h,other_amplitude_over_h,amplitude_relative_difference,mean_fx_N,"
+            "mean_fx_ci95_N,other_mean_fx_N,other_mean_fx_ci95_N,fx_intervals_overlap");
+  const auto rows = numeric_rows(dir / "b" / "comparison.csv");
+  ASSERT_EQ(rows.size(), 10u); // 5 positions, two directions
+  for (const auto &r : rows)
+    {
+      EXPECT_EQ(r[2], r[3]);  // amplitudes
+      EXPECT_LT(r[4], 1e-9);  // their relative difference: the other side is read back at pcs.csv's 10 digits
+      EXPECT_EQ(r[5], r[7]);  // F̄_x
+      EXPECT_GT(r[6], 0.);    // a real interval
+      EXPECT_EQ(r[9], 1.);    // overlapping
+    }
+  const std::string crossings = read_file(dir / "b" / "crossings.csv");
+  EXPECT_TRUE(starts_with(crossings, "sweep,direction,x_over_L,x_low_over_L,x_high_over_L,stable,resolved")) << crossings;
+
+  std::vector<std::string> shifted = sweep;
+  shifted[2] = "0.305";
+  shifted[4] = "0.345";
+  shifted.insert(shifted.end(), {"--output", (dir / "c").string(), "--against", (dir / "a").string()});
+  run = run_beamslider(shifted);
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("x_C/L = 0.305"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "c" / "pcs.csv")) << "refused before simulating";
+  fs::remove_all(dir);
+}
+
 TEST(Commands, AnimateTakesACaseAndWritesOneDataSetPerPartAndFrame)
 {
   const fs::path dir = fresh_folder("cmd_animate");

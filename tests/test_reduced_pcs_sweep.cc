@@ -183,3 +183,42 @@ TEST(PcsSweep, MirroredBranchesAgree)
       EXPECT_GT(a.amplitude_over_h, 0.01); // the beam does vibrate
     }
 }
+
+// The crossing's interval on a constructed linear force with a constant 95 %
+// half width c: F̄_x = −k (x − x*), so the bands F̄_x ± c cross zero at
+// x* ± c/k exactly (linear interpolation is exact on linear data). When the
+// half width exceeds |F̄_x| at a neighbour, that band does not change sign
+// within the bracket: the interval reaches the bracket's edge and the
+// crossing is unresolved.
+TEST(PcsAnalysis, ZeroCrossingIntervalFromTheForceBands)
+{
+  const double k = 2.0, x_star = 0.3237;
+  for (const double c : {0.002, 0.015})
+    {
+      std::vector<PcsPoint> branch;
+      for (int i = 0; i <= 20; ++i)
+        {
+          const double x = 0.25 + 0.01 * i;
+          PcsPoint p      = point(x, 0.5, -k * (x - x_star));
+          p.mean_fx_ci95  = c;
+          branch.push_back(p);
+        }
+      const std::vector<ForceZeroCrossing> crossings = force_zero_crossings(branch);
+      ASSERT_EQ(crossings.size(), 1u);
+      const ForceZeroCrossing &z = crossings[0];
+      EXPECT_NEAR(z.x_over_L, x_star, 1e-12);
+      EXPECT_TRUE(z.stable);
+      if (c / k < 0.0037) // inside the bracket [0.32, 0.33] on both sides
+        {
+          EXPECT_TRUE(z.resolved);
+          EXPECT_NEAR(z.x_low_over_L, x_star - c / k, 1e-12);
+          EXPECT_NEAR(z.x_high_over_L, x_star + c / k, 1e-12);
+        }
+      else
+        {
+          EXPECT_FALSE(z.resolved);
+          EXPECT_NEAR(z.x_low_over_L, 0.32, 1e-12);
+          EXPECT_NEAR(z.x_high_over_L, 0.33, 1e-12);
+        }
+    }
+}

@@ -128,6 +128,9 @@ int run_command_line(int argc, char **argv)
   sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
   sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
     ->check(finite_non_negative());
+  sweep_cmd->add_option("--against", sweep.against,
+                        "another sweep's folder (same positions, e.g. the other model) to compare with: "
+                        "comparison.csv, crossings.csv, pcs_compare.png");
 
   AnimateOptions animate;
   auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");

@@ -4,6 +4,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/commands.h"
+#include "verification/pcs_comparison.h"
 #include "verification/pcs_sweep.h"
 
 #include <cmath>
@@ -28,6 +29,31 @@ namespace beamslider
     settings.free_time          = options.free_time.value_or(scene.time_stepping.end_time);
     settings.sweep.validate(scene);
 
+    // The sweep to compare with is read before this one runs: a wrong
+    // folder is an input error now, not after minutes of simulation.
+    std::vector<PcsPoint> other;
+    std::string other_label;
+    if (!options.against.empty())
+      {
+        other = read_pcs_csv(options.against + "/pcs.csv");
+        std::vector<PcsPoint> planned;
+        for (const SweepDirection d : {SweepDirection::up, SweepDirection::down})
+          for (const double x : settings.sweep.positions(d))
+            {
+              PcsPoint p;
+              p.x_over_L  = x;
+              p.direction = d;
+              planned.push_back(p);
+            }
+        require_same_positions(planned, other);
+        // The other sweep's model, from its summary's title line.
+        std::ifstream summary(options.against + "/summary.md");
+        std::string title;
+        std::getline(summary, title);
+        const auto at = title.rfind(", model ");
+        other_label   = (at == std::string::npos ? std::string() : title.substr(at + 8) + " ") + "'" + options.against + "'";
+      }
+
     const std::string dir = prepare_output_dir(common, scene.name, "sweep");
     const double n_positions =
       std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L + 1e-9) + 1;
@@ -40,7 +66,18 @@ namespace beamslider
               << std::endl;
 
     const PcsStudy study = run_pcs_sweep(scene, settings, dir);
-    const std::string text = describe(study, scene);
+    std::string text = describe(study, scene);
+    if (!options.against.empty())
+      {
+        std::vector<PcsPoint> points = study.up.points;
+        points.insert(points.end(), study.down.points.begin(), study.down.points.end());
+        const PcsComparison comparison = compare_sweeps(points, other);
+        write_pcs_comparison(comparison, dir);
+        const std::string label = "this sweep (" + settings.model + ")";
+        text += "\n## Against " + other_label + "\n\n" + describe(comparison, label, other_label) +
+                "\nFiles: comparison.csv, crossings.csv, pcs_compare.png.\n";
+        run_plot_script("plot_pcs_compare.py", {dir, options.against, settings.model, other_label});
+      }
     write_text_file(dir + "/summary.md",
                     "# PCS sweep: scene `" + scene.name + "`, model " + settings.model + "\n\n" + text);
     std::cout << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;

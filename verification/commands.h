@@ -76,6 +76,7 @@ namespace beamslider
     double average_time = 0.2;           // [s] averaged per position
     std::optional<double> free_time;     // [s] free-slider run overlaid; default the scene's end time
     std::string case_name;               // a published case or ablation ("" = the scene as it is)
+    std::string against;                 // another sweep's folder (same positions) to compare with
   };
   int run_sweep(const CommonOptions &common, const SweepOptions &options);
 
