@@ -3,6 +3,8 @@
 // outcome class from a trace built to be of that class.
 #include "contact/trace_analysis.h"
 
+#include "tests/synthetic_periods.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,25 +14,6 @@ using namespace beamslider;
 
 namespace
 {
-  // Period records at 124 Hz from 0 to t_end with x_C/L and amplitude/h as
-  // functions of time.
-  std::vector<PeriodRecord> trace(const double t_end, const std::function<double(double)> &x,
-                                  const std::function<double(double)> &amplitude)
-  {
-    const double T = 1. / 124.;
-    std::vector<PeriodRecord> p;
-    for (unsigned int k = 0; (k + 1) * T <= t_end; ++k)
-      {
-        PeriodRecord r;
-        r.index            = k;
-        r.t_start          = k * T;
-        r.t_end            = (k + 1) * T;
-        r.slider_x_over_L  = x(r.t_start);
-        r.amplitude_over_h = amplitude(r.t_start);
-        p.push_back(r);
-      }
-    return p;
-  }
 
   // A scene whose backbone is 5 % stiffer at 0.6 h (c ≈ 0.285, like mueller2023).
   const TraceThresholds scene_like = TraceThresholds::for_backbone((1.05 * 1.05 - 1.) / (0.6 * 0.6));
@@ -49,7 +32,7 @@ TEST(TraceThresholds, UpperBranchLevelIsWhereTheBackboneIsFivePercentStiffer)
 
 TEST(TraceAnalysis, SignatureMoveIsFoundWithItsJumpTurnAndEndState)
 {
-  const TraceAnalysis a = analyse_trace(trace(30, signature_x, signature_a), RunStatus::completed, scene_like);
+  const TraceAnalysis a = analyse_trace(synthetic_periods(30, signature_x, signature_a), RunStatus::completed, scene_like);
   EXPECT_EQ(a.outcome, AdaptationClass::signature_move) << a.line;
   EXPECT_EQ(a.initial_direction, "toward the clamp");
   ASSERT_TRUE(a.jumped);
@@ -69,10 +52,10 @@ TEST(TraceAnalysis, SignatureMoveIsFoundWithItsJumpTurnAndEndState)
 TEST(TraceAnalysis, BumpBelowTheUpperBranchIsNoJump)
 {
   auto a_bump = [](double t) { return t > 10 && t < 15 ? 0.16 : 0.03; };
-  const TraceAnalysis a = analyse_trace(trace(30, [](double) { return 0.3; }, a_bump), RunStatus::completed, scene_like);
+  const TraceAnalysis a = analyse_trace(synthetic_periods(30, [](double) { return 0.3; }, a_bump), RunStatus::completed, scene_like);
   EXPECT_FALSE(a.jumped) << a.line;
   // Without the scene's level the same bump passes every relative rule.
-  const TraceAnalysis relative = analyse_trace(trace(30, [](double) { return 0.3; }, a_bump), RunStatus::completed, {});
+  const TraceAnalysis relative = analyse_trace(synthetic_periods(30, [](double) { return 0.3; }, a_bump), RunStatus::completed, {});
   EXPECT_TRUE(relative.jumped);
 }
 
@@ -80,12 +63,12 @@ TEST(TraceAnalysis, RiseDuringTheBuildUpOrTooBriefIsNoJump)
 {
   // From rest to 1.5 h within the first second: the build-up, not a jump.
   const TraceAnalysis build_up =
-    analyse_trace(trace(20, [](double) { return 0.3; }, [](double t) { return std::min(1.5, 0.01 + 3 * t); }),
+    analyse_trace(synthetic_periods(20, [](double) { return 0.3; }, [](double t) { return std::min(1.5, 0.01 + 3 * t); }),
                   RunStatus::completed, scene_like);
   EXPECT_FALSE(build_up.jumped) << build_up.line;
   // A 0.5 s burst to the upper branch: not lasting.
   const TraceAnalysis burst = analyse_trace(
-    trace(20, [](double) { return 0.3; }, [](double t) { return t > 8 && t < 8.5 ? 1.5 : 0.1; }), RunStatus::completed,
+    synthetic_periods(20, [](double) { return 0.3; }, [](double t) { return t > 8 && t < 8.5 ? 1.5 : 0.1; }), RunStatus::completed,
     scene_like);
   EXPECT_FALSE(burst.jumped) << burst.line;
 }
@@ -96,7 +79,7 @@ TEST(TraceAnalysis, RecurrentJumpsAreARelaxationOscillation)
 {
   auto x = [](double t) { return 0.3 - 0.002 * std::min(t, 10.) + 0.004 * std::max(0., t - 10); };
   auto a = [](double t) { return (t > 5 && t < 10) || (t > 15 && t < 20) || (t > 25 && t < 30) ? 1.5 : 0.05; };
-  const TraceAnalysis r = analyse_trace(trace(40, x, a), RunStatus::completed, scene_like);
+  const TraceAnalysis r = analyse_trace(synthetic_periods(40, x, a), RunStatus::completed, scene_like);
   EXPECT_EQ(r.n_upward_jumps, 3u) << r.line;
   EXPECT_EQ(r.outcome, AdaptationClass::relaxation_oscillation);
 }
@@ -104,7 +87,7 @@ TEST(TraceAnalysis, RecurrentJumpsAreARelaxationOscillation)
 TEST(TraceAnalysis, VibrationDyingOffResonanceIsSelfDamping)
 {
   const TraceAnalysis d = analyse_trace(
-    trace(30, [](double t) { return 0.3 - 0.006 * t; }, [](double t) { return 0.2 * std::exp(-t / 5.); }),
+    synthetic_periods(30, [](double t) { return 0.3 - 0.006 * t; }, [](double t) { return 0.2 * std::exp(-t / 5.); }),
     RunStatus::completed, scene_like);
   EXPECT_EQ(d.outcome, AdaptationClass::self_damping) << d.line;
 }
@@ -112,38 +95,38 @@ TEST(TraceAnalysis, VibrationDyingOffResonanceIsSelfDamping)
 TEST(TraceAnalysis, SteadyGrowthTowardTheCentreIsTrivialAdaption)
 {
   const TraceAnalysis t = analyse_trace(
-    trace(30, [](double t) { return 0.3 + 0.002 * t; }, [](double t) { return 0.1 + 0.035 * t; }),
+    synthetic_periods(30, [](double t) { return 0.3 + 0.002 * t; }, [](double t) { return 0.1 + 0.035 * t; }),
     RunStatus::completed, scene_like);
   EXPECT_FALSE(t.jumped);
   EXPECT_EQ(t.initial_direction, "toward the centre");
   EXPECT_EQ(t.outcome, AdaptationClass::trivial_adaption) << t.line;
   // The same drift at a level that never reaches the upper branch.
   const TraceAnalysis low = analyse_trace(
-    trace(30, [](double t) { return 0.3 + 0.002 * t; }, [](double t) { return 0.05 + 0.002 * t; }),
+    synthetic_periods(30, [](double t) { return 0.3 + 0.002 * t; }, [](double t) { return 0.05 + 0.002 * t; }),
     RunStatus::completed, scene_like);
   EXPECT_EQ(low.outcome, AdaptationClass::no_adaptation) << low.line;
 }
 
 TEST(TraceAnalysis, StatusDecidesSupportAndFailure)
 {
-  const auto p = trace(30, signature_x, signature_a);
+  const auto p = synthetic_periods(30, signature_x, signature_a);
   EXPECT_EQ(analyse_trace(p, RunStatus::slider_at_support, scene_like).outcome, AdaptationClass::reached_support);
   EXPECT_EQ(analyse_trace(p, RunStatus::unphysical_state, scene_like).outcome, AdaptationClass::failed);
   EXPECT_EQ(analyse_trace(p, RunStatus::contact_solver_failure, scene_like).outcome, AdaptationClass::failed);
-  EXPECT_EQ(analyse_trace(trace(0.1, signature_x, signature_a), RunStatus::completed, scene_like).outcome,
+  EXPECT_EQ(analyse_trace(synthetic_periods(0.1, signature_x, signature_a), RunStatus::completed, scene_like).outcome,
             AdaptationClass::too_short);
 }
 
 TEST(TraceAnalysis, CentreCrossingAndEndStateWindow)
 {
   const TraceAnalysis c = analyse_trace(
-    trace(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }), RunStatus::completed,
+    synthetic_periods(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }), RunStatus::completed,
     scene_like);
   EXPECT_TRUE(c.crosses_centre);
   // End state: the mean over the last second (t in [19, 20)).
   double mean = 0;
   unsigned int n = 0;
-  for (const auto &r : trace(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }))
+  for (const auto &r : synthetic_periods(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }))
     if (r.t_start >= 20 - 124. / 124. - 1e-12)
       {
         mean += r.slider_x_over_L;

@@ -10,6 +10,8 @@
 #include "reduced/rom_beam_system.h"
 #include "verification/simulation_cases.h"
 
+#include "tests/synthetic_periods.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,25 +23,6 @@ namespace
 {
   const std::string mueller = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
 
-  // Period records at f = 124 Hz from t = 0 to t_end with the given slider
-  // position and amplitude as functions of time.
-  std::vector<PeriodRecord> periods(const double t_end, const std::function<double(double)> &x,
-                                    const std::function<double(double)> &amplitude)
-  {
-    const double T = 1. / 124.;
-    std::vector<PeriodRecord> p;
-    for (unsigned int k = 0; (k + 1) * T <= t_end; ++k)
-      {
-        PeriodRecord r;
-        r.index            = k;
-        r.t_start          = k * T;
-        r.t_end            = (k + 1) * T;
-        r.slider_x_over_L  = x(r.t_start);
-        r.amplitude_over_h = amplitude(r.t_start);
-        p.push_back(r);
-      }
-    return p;
-  }
 } // namespace
 
 // doc/scenes.md: frequency [Hz], base acceleration [m/s²], start x_C/L.
@@ -110,7 +93,7 @@ TEST(CaseVerdict, FindsTheJumpAndTheTurnWhereTheyWerePut)
   auto x = [](double t) { return t < 10 ? 0.3 - 0.005 * t : t < 20 ? 0.25 + 0.01 * (t - 10) : 0.35; };
   auto a = [](double t) { return t < 10 ? 0.1 : 1.5; };
   RunResult done;
-  const CaseVerdict v = case_verdict(periods(30, x, a), done);
+  const CaseVerdict v = case_verdict(synthetic_periods(30, x, a), done);
   EXPECT_EQ(v.initial_direction, "toward the clamp");
   EXPECT_TRUE(v.jumped);
   EXPECT_GT(v.jump_time, 10.);         // not before the step ...
@@ -133,21 +116,21 @@ TEST(CaseVerdict, TrivialAdaptionRecurrentJumpsAndCentreCrossing)
 {
   RunResult done;
   const CaseVerdict trivial =
-    case_verdict(periods(30, [](double t) { return 0.3 + 0.005 * t; }, [](double t) { return 0.1 + 0.03 * t; }), done);
+    case_verdict(synthetic_periods(30, [](double t) { return 0.3 + 0.005 * t; }, [](double t) { return 0.1 + 0.03 * t; }), done);
   EXPECT_EQ(trivial.initial_direction, "toward the centre");
   EXPECT_FALSE(trivial.jumped);
   EXPECT_FALSE(trivial.turned);
   EXPECT_EQ(disagreements(trivial, find_case("trivial-adaption").expected), "");
 
   const CaseVerdict bursts = case_verdict(
-    periods(40, [](double) { return 0.3; },
+    synthetic_periods(40, [](double) { return 0.3; },
             [](double t) { return (t > 5 && t < 10) || (t > 15 && t < 20) || (t > 25 && t < 30) ? 1.5 : 0.1; }),
     done);
   EXPECT_EQ(bursts.n_upward_jumps, 3u);
   EXPECT_EQ(disagreements(bursts, find_case("relaxation-oscillation").expected), "");
 
   const CaseVerdict cycling =
-    case_verdict(periods(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }), done);
+    case_verdict(synthetic_periods(20, [](double t) { return 0.5 - 0.2 * std::cos(t); }, [](double) { return 0.5; }), done);
   EXPECT_TRUE(cycling.crosses_centre);
   EXPECT_EQ(disagreements(cycling, find_case("frictionless").expected), "");
 }
