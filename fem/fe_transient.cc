@@ -284,8 +284,11 @@ namespace beamslider
     const unsigned int rank = damping_->rank();
     if (rank == 0)
       return;
-    const Eigen::VectorXd v = capacitance_.solve(Dg_.asDiagonal() * (U_.transpose() * y));
-    y -= Z_ * v;
+    // y −= Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ y, through scratch of size rank: no heap.
+    woodbury_rhs_.noalias() = U_.transpose() * y;
+    woodbury_rhs_.array() *= Dg_.array();
+    woodbury_v_ = capacitance_.solve(woodbury_rhs_);
+    y.noalias() -= Z_ * woodbury_v_;
   }
 
   void FETransientBeam::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
@@ -392,16 +395,19 @@ namespace beamslider
     const unsigned int n = n_dofs();
     if (X.rows() != B.rows() || X.cols() != B.cols())
       throw std::logic_error("FE transient: solve_iteration_matrix needs X of B's size");
-    dealii::Vector<double> &b = tmp_a_, &x = tmp_b_; // scratch of size n (mutable)
-    b.reinit(n, true);
-    x.reinit(n, true);
-    for (Eigen::Index j = 0; j < B.cols(); ++j)
+    // All right-hand sides at once (the contact directions, up to 8): one
+    // pass of the sparse triangular solves over a block, then the Woodbury
+    // correction as a block.
+    Eigen::MatrixXd rhs = B;
+    for (unsigned int i = 0; i < n; ++i)
+      if (constrained_[i])
+        rhs.row(i).setZero();
+    X = ldlt_.solve(rhs);
+    const unsigned int rank = damping_->rank();
+    if (rank > 0)
       {
-        for (unsigned int i = 0; i < n; ++i)
-          b[i] = constrained_[i] ? 0. : B(i, j);
-        solve(b, x);
-        for (unsigned int i = 0; i < n; ++i)
-          X(i, j) = x[i];
+        const Eigen::MatrixXd V = capacitance_.solve(Dg_.asDiagonal() * (U_.transpose() * X));
+        X.noalias() -= Z_ * V;
       }
     stats_.iteration_matrix_solves += B.cols();
   }

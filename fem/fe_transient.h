@@ -193,6 +193,7 @@ namespace beamslider
     Eigen::MatrixXd U_;            // [M φ_n]
     Eigen::VectorXd Dg_;           // Δt/2 · 2 D ω_n
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_; // I + Dg UᵀZ
+    mutable Eigen::VectorXd woodbury_rhs_, woodbury_v_; // scratch of size rank
 
     // Last step, for the predictor and step_work.
     double last_dt_ = 0, last_acceleration_ = 0;
