@@ -232,3 +232,39 @@ TEST(FEAgainstROMReport, DISABLED_Section5Alone)
   std::cout << "section 5 (" << (full ? "full" : "quick") << "): "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s wall\n";
 }
+
+// --model auto ranks the candidates by a stated cost model, never by a wall
+// clock: the same settings must get the same costs on any machine and load,
+// halving Δt must double a cost exactly, more modes or elements must cost
+// more, and the FE must cost more than every ROM candidate of the selection.
+TEST(ModelSelection, CostModelIsDeterministicAndOrdersTheCandidates)
+{
+  const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm");
+  const double dt   = scene.time_stepping.time_step;
+  ModelSetting rom5;
+  rom5.n_modes   = 5;
+  rom5.time_step = dt;
+  EXPECT_DOUBLE_EQ(cost_per_simulated_second(rom5, scene), 2. / dt); // 1 + (5/5)² units per step
+  ModelSetting half = rom5;
+  half.time_step    = dt / 2;
+  EXPECT_DOUBLE_EQ(cost_per_simulated_second(half, scene), 2. * cost_per_simulated_second(rom5, scene));
+  double most_expensive_rom = 0;
+  for (const unsigned int N : {1u, 3u, 5u, 7u})
+    for (const double step : {2 * dt, dt})
+      {
+        ModelSetting s;
+        s.n_modes   = N;
+        s.time_step = step;
+        ModelSetting more = s;
+        more.n_modes      = N + 2;
+        EXPECT_LT(cost_per_simulated_second(s, scene), cost_per_simulated_second(more, scene));
+        most_expensive_rom = std::max(most_expensive_rom, cost_per_simulated_second(s, scene));
+      }
+  ModelSetting fe;
+  fe.family    = "fe";
+  fe.time_step = dt;
+  EXPECT_GT(cost_per_simulated_second(fe, scene), most_expensive_rom);
+  ModelSetting fine = fe;
+  fine.n_elements   = 2 * scene.discretisation.n_elements;
+  EXPECT_DOUBLE_EQ(cost_per_simulated_second(fine, scene), 2. * cost_per_simulated_second(fe, scene));
+}

@@ -86,10 +86,20 @@ namespace beamslider
   // no other run is both faster and more accurate.
   std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs);
 
+  // The cost of simulating one second with a setting, in units of the
+  // published ROM's step (N = 5): a stated model, not a clock reading, so
+  // that a loaded machine cannot change a choice. Per step, a ROM costs
+  // 1 + (N/5)² units (its cubic force and mass-matrix products grow like N²,
+  // the contact part does not) and the FE 40 × elements/32 units (the
+  // measured ratio on the default mesh, ~28 µs against ~0.7 µs per step,
+  // README); times the steps per second, 1/Δt.
+  double cost_per_simulated_second(const ModelSetting &setting, const Scene &scene);
+
   // `simulate --model auto`: runs the candidate settings (ROM N = 1, 3, 5, 7
   // at the scene's Δt and 2Δt, the FE model) over a short window against the
-  // FE reference at Δt/2, and returns the cheapest setting whose drift error
-  // is within `tolerance`, or the FE model at the scene's Δt if none is. The
-  // reasoning (errors, times, what was picked and why) goes to `why`.
+  // FE reference at Δt/2, and returns the cheapest setting by
+  // cost_per_simulated_second whose drift error is within `tolerance`, or
+  // the FE model at the scene's Δt if none is. The reasoning (errors, costs,
+  // wall times for information, what was picked and why) goes to `why`.
   ModelSetting choose_model(const Scene &scene, double tolerance, std::string &why, double window = 0.5);
 } // namespace beamslider
