@@ -91,7 +91,8 @@ namespace beamslider
       prm.enter_subsection("Discretisation");
       prm.declare_entry("Number of elements", std::to_string(d.discretisation.n_elements), Integer(1, 4096), "beam elements of the FE model, at least N + 1 (Number of modes)");
       prm.declare_entry("Axial degree", std::to_string(d.discretisation.axial_degree), Integer(1, 6), "polynomial degree of the axial displacement u");
-      prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 10), "N, bending modes of the reduced model");
+      prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 40),
+                        "N, bending modes of the reduced model (and modes the FE damps); the explicit ROM step needs Delta t <= 2/omega_N");
       prm.declare_entry("Geometric nonlinearity", "true", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
       prm.leave_subsection();
 
