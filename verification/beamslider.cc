@@ -146,6 +146,9 @@ int run_command_line(int argc, char **argv)
   auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
   add_common(ensemble_cmd);
   ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  ensemble_cmd->add_option("--integrator", ensemble.integrator,
+                           "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
+    ->check(CLI::IsMember({"explicit", "implicit"}));
   ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see README)");
   ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
   ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")

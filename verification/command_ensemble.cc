@@ -97,6 +97,9 @@ namespace beamslider
 
     EnsembleSettings settings;
     settings.model.family    = options.model;
+    if (options.integrator != "explicit" && options.model != "rom")
+      throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
+    settings.model.integrator = options.integrator;
     settings.model.n_modes   = scene.discretisation.n_modes;
     settings.model.n_elements = scene.discretisation.n_elements;
     settings.model.time_step = scene.time_stepping.time_step;

@@ -99,6 +99,7 @@ namespace beamslider
     double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
     std::optional<double> end_time; // [s]
     std::string against;            // another ensemble's folder to compare with
+    std::string integrator = "explicit"; // rom: explicit | implicit (the FE's scheme)
   };
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
 

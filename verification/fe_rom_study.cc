@@ -6,6 +6,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "reduced/rom_beam_system.h"
+#include "reduced/rom_implicit_beam_system.h"
 #include "verification/coefficient_methods.h"
 
 #include <algorithm>
@@ -22,7 +23,7 @@ namespace beamslider
     if (family == "fe")
       s << "FE " << n_elements << " el.";
     else
-      s << "ROM N=" << n_modes << " " << coefficients;
+      s << "ROM N=" << n_modes << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     s << " dt=" << time_step; // no comma: labels go into CSV cells
     if (slider_offset_over_L != 0)
       s << " x0+" << slider_offset_over_L;
@@ -52,6 +53,11 @@ namespace beamslider
         const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
         rom.set_cubic_terms(compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
       }
+    if (setting.integrator == "implicit")
+      return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness,
+                                                     BaseExcitation::from_scene(scene.excitation));
+    if (setting.integrator != "explicit")
+      throw InputError("ROM integrator '" + setting.integrator + "' is not one of explicit, implicit");
     return std::make_unique<RomBeamSystem>(std::move(rom), scene.beam.thickness,
                                            BaseExcitation::from_scene(scene.excitation));
   }

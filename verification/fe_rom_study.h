@@ -37,6 +37,10 @@ namespace beamslider
     unsigned int n_elements = 0; // fe: 0 = the scene's
     unsigned int n_modes = 5;    // rom
     std::string coefficients = "analytic"; // rom: analytic | step-condensed | ice
+    // rom: explicit (the published midpoint step) | implicit (the FE's
+    // implicit midpoint rule, reduced/rom_implicit_beam_system.h): the
+    // ladder rung that changes only the integrator.
+    std::string integrator = "explicit";
     double time_step = 2e-5;     // [s]
     // Added to the scene's start position x_C/L: a "round-off twin" of a run
     // (e.g. 1e-9) measures how far the rattling alone spreads two runs.
