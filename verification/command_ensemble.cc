@@ -165,10 +165,15 @@ namespace beamslider
       for (const auto &[name, sample] : outcomes)
         {
           const OutcomeStatistics s = statistics(name, *sample);
-          csv.row({name, std::to_string(s.n), CsvWriter::cell(s.median), CsvWriter::cell(s.q1), CsvWriter::cell(s.q3),
-                   CsvWriter::cell(s.min), CsvWriter::cell(s.max)});
-          md << "| " << name << " | " << s.n << " | " << fixed(s.median, 4) << " | " << fixed(s.q1, 4) << " … "
-             << fixed(s.q3, 4) << " | " << fixed(s.min, 4) << " … " << fixed(s.max, 4) << " |\n";
+          // No member had the event: empty cells, as in members.csv, not NaN.
+          const bool any = s.n > 0;
+          csv.row({name, std::to_string(s.n), cell_or_empty(any, s.median), cell_or_empty(any, s.q1),
+                   cell_or_empty(any, s.q3), cell_or_empty(any, s.min), cell_or_empty(any, s.max)});
+          if (any)
+            md << "| " << name << " | " << s.n << " | " << fixed(s.median, 4) << " | " << fixed(s.q1, 4) << " … "
+               << fixed(s.q3, 4) << " | " << fixed(s.min, 4) << " … " << fixed(s.max, 4) << " |\n";
+          else
+            md << "| " << name << " | 0 | – | – | – |\n";
         }
     }
     std::map<std::string, unsigned int> classes;
