@@ -7,7 +7,7 @@
 #
 # Only our code is instrumented: the installed deal.II, PETSc, SLEPc, VTK and
 # Open MPI are not (their errors are not seen). Sanitizer settings are
-# compiled into the programs (verification/sanitizer_defaults.cc): leak
+# compiled into the programs (verification/cli/sanitizer_defaults.cc): leak
 # checking off (Open MPI's unloaded components), exit code 86 on a report.
 #
 # The tests: the programs below are built and every test in them runs.

@@ -291,7 +291,9 @@ TEST(Interruption, CtrlCFinishesTheStepWritesCompleteRowsAndTheSummary)
   for (const auto &[signal, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
     {
       const fs::path dir = fresh_folder("interrupt");
-      const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "60", "--output", dir.string()},
+      // 600 s of simulated time take ~30 s on one core: the signal at 2.5 s
+      // always arrives mid-run, also on a machine faster than this one.
+      const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "600", "--output", dir.string()},
                                           {.timeout_seconds = 60, .send_signal = signal, .signal_delay_seconds = 2.5});
       EXPECT_EQ(run.exit_code, code) << run.err;
       const std::string summary = read_file(dir / "summary.md");

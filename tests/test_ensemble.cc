@@ -1,7 +1,7 @@
-// Ensembles (verification/ensemble.h): members are reproducible and really
+// Ensembles (verification/studies/ensemble.h): members are reproducible and really
 // differ; order statistics and two-sample distances against values worked
 // out by hand.
-#include "verification/ensemble.h"
+#include "verification/studies/ensemble.h"
 
 #include <gtest/gtest.h>
 

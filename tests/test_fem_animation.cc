@@ -7,7 +7,7 @@
 #include "fem/fe_transient.h"
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
+#include "verification/cli/commands.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

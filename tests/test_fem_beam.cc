@@ -7,7 +7,7 @@
 #include "fem/fe_modal_damping.h"
 #include "fem/fe_modes.h"
 #include "meshes/scene.h"
-#include "verification/analytic_beam.h"
+#include "verification/studies/analytic_beam.h"
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>

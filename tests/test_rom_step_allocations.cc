@@ -5,7 +5,7 @@
 // temporary of dynamic size, a std::function, a string — shows up here.
 #include "contact/adaptation_run.h"
 #include "meshes/scene.h"
-#include "verification/fe_rom_study.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/simulation_cases.h"
+#include "verification/studies/simulation_cases.h"
 
 #include "tests/synthetic_periods.h"
 

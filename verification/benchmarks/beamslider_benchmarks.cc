@@ -14,7 +14,7 @@
 #include "meshes/scene.h"
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/coefficient_methods.h"
+#include "verification/studies/coefficient_methods.h"
 
 #include <deal.II/base/mpi.h>
 

@@ -1,4 +1,4 @@
-#include "verification/coefficient_methods.h"
+#include "verification/studies/coefficient_methods.h"
 
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"

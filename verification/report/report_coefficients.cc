@@ -5,10 +5,10 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
-#include "verification/coefficient_methods.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/report.h"
+#include "verification/studies/coefficient_methods.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/report/report.h"
 
 #include <cmath>
 #include <iomanip>

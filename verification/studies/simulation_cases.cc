@@ -1,5 +1,5 @@
 // The named adaptation cases, see simulation_cases.h.
-#include "verification/simulation_cases.h"
+#include "verification/studies/simulation_cases.h"
 #include "reduced/rom_operator.h"
 #include "reduced/harmonic_balance.h"
 #include "fem/fe_modes.h"

@@ -1,4 +1,4 @@
-#include "verification/fe_rom_study.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include "contact/beam_system.h"
 #include "fem/fe_beam.h"
@@ -7,7 +7,7 @@
 #include "fem/fe_modes.h"
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"
-#include "verification/coefficient_methods.h"
+#include "verification/studies/coefficient_methods.h"
 
 #include <algorithm>
 #include <chrono>

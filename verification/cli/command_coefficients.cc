@@ -7,8 +7,8 @@
 #include "fem/fe_modes.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/coefficient_methods.h"
-#include "verification/commands.h"
+#include "verification/studies/coefficient_methods.h"
+#include "verification/cli/commands.h"
 
 #include <fstream>
 #include <iostream>

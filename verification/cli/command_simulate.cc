@@ -19,9 +19,9 @@
 #include "contact/output_file.h"
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
-#include "verification/fe_rom_study.h"
-#include "verification/simulation_cases.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/fe_rom_study.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <chrono>
 #include <filesystem>

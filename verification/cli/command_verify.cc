@@ -2,8 +2,8 @@
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
-#include "verification/report.h"
+#include "verification/cli/commands.h"
+#include "verification/report/report.h"
 
 #include <chrono>
 #include <fstream>

@@ -1,8 +1,8 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/child_process.h"
-#include "verification/commands.h"
-#include "verification/simulation_cases.h"
+#include "verification/cli/child_process.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <filesystem>
 #include <iostream>

@@ -3,7 +3,7 @@
 // the process exit code. User errors are thrown as InputError.
 #pragma once
 
-#include "verification/child_process.h"
+#include "verification/cli/child_process.h"
 
 #include <optional>
 #include <stdexcept>

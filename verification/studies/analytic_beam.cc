@@ -1,4 +1,4 @@
-#include "verification/analytic_beam.h"
+#include "verification/studies/analytic_beam.h"
 
 #include <cmath>
 #include <algorithm>

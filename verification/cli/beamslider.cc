@@ -20,8 +20,8 @@
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/cli_validators.h"
-#include "verification/commands.h"
+#include "verification/cli/cli_validators.h"
+#include "verification/cli/commands.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>

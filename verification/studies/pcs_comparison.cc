@@ -1,8 +1,8 @@
 // Two prescribed-position sweeps compared, see pcs_comparison.h.
-#include "verification/pcs_comparison.h"
+#include "verification/studies/pcs_comparison.h"
 
 #include "meshes/scene.h"
-#include "verification/csv_writer.h"
+#include "verification/report/csv_writer.h"
 
 #include <algorithm>
 #include <cmath>

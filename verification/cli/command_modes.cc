@@ -4,8 +4,8 @@
 #include "fem/fe_modes.h"
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Ensembles of perturbed runs and two-sample comparisons, see ensemble.h.
-#include "verification/ensemble.h"
+#include "verification/studies/ensemble.h"
 
 #include "contact/beam_system.h"
-#include "verification/simulation_cases.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <algorithm>
 #include <atomic>

@@ -15,9 +15,9 @@
 #include "fem/fe_modes.h"
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_operator.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/report.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/report/report.h"
 
 #include <algorithm>
 #include <cmath>

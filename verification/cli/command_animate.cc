@@ -16,7 +16,7 @@
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/commands.h"
+#include "verification/cli/commands.h"
 
 #include <chrono>
 #include <cmath>

@@ -26,8 +26,8 @@
 #include "meshes/scene.h"
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_operator.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
 
 #include <chrono>
 #include <cmath>

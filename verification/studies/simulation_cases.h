@@ -14,8 +14,8 @@
 #include "contact/adaptation_run.h"
 #include "contact/trace_analysis.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
-#include "verification/fe_rom_study.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <string>
 #include <vector>
@@ -74,7 +74,7 @@ namespace beamslider
   std::string disagreements(const CaseVerdict &verdict, const ExpectedFeatures &expected);
 
   // One free-slider simulation as `beamslider simulate` runs it (files in
-  // verification/command_simulate.cc's header), returning what happened.
+  // verification/cli/command_simulate.cc's header), returning what happened.
   struct SimulationOutcome
   {
     Scene scene;

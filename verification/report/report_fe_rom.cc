@@ -5,11 +5,11 @@
 // explicit scheme of the ROM fails.
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/fe_rom_study.h"
-#include "verification/simulation_cases.h"
-#include "verification/report.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/studies/fe_rom_study.h"
+#include "verification/studies/simulation_cases.h"
+#include "verification/report/report.h"
 
 #include <algorithm>
 #include <chrono>

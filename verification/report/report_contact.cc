@@ -1,16 +1,16 @@
 // Verification section 4: the slider's contact dynamics on the reduced model.
-// Every published case and ablation (verification/simulation_cases.h) run as
+// Every published case and ablation (verification/studies/simulation_cases.h) run as
 // `beamslider simulate` runs it, with a one-line verdict per case compared
 // feature by feature with the published behaviour; the energy bookkeeping of
 // the signature move; and the prescribed-position sweeps (pcs_sweep.h).
 //
 // Quick mode: the signature move to its end time (60 s, ~7 s wall) and every
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/pcs_sweep.h"
-#include "verification/report.h"
-#include "verification/simulation_cases.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/studies/pcs_sweep.h"
+#include "verification/report/report.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <chrono>
 #include <cmath>

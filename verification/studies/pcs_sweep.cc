@@ -1,6 +1,6 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
-#include "verification/pcs_sweep.h"
-#include "verification/simulation_cases.h"
+#include "verification/studies/pcs_sweep.h"
+#include "verification/studies/simulation_cases.h"
 
 #include "contact/output_file.h"
 #include "contact/trace_analysis.h"
@@ -12,8 +12,8 @@
 #include "fem/fe_modes.h"
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,10 +1,10 @@
 // Verification section "Linear frequencies": see report.h.
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/analytic_beam.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/report.h"
+#include "verification/studies/analytic_beam.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/report/report.h"
 
 #include <chrono>
 #include <cmath>

@@ -1,6 +1,6 @@
 // `beamslider ensemble [SCENE] --model rom|fe [--case NAME] [--members K]
 // [--perturbation EPS] [--end-time S] [--against DIR]`: K runs that differ
-// only by the start x_C/L + m·EPS (verification/ensemble.h), in parallel.
+// only by the start x_C/L + m·EPS (verification/studies/ensemble.h), in parallel.
 //
 // Writes into the output folder:
 //   members.csv        member,perturbation,status,jump_time_s,turn_x_over_L,
@@ -16,10 +16,10 @@
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/commands.h"
-#include "verification/csv_writer.h"
-#include "verification/ensemble.h"
-#include "verification/simulation_cases.h"
+#include "verification/cli/commands.h"
+#include "verification/report/csv_writer.h"
+#include "verification/studies/ensemble.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <chrono>
 #include <fstream>

@@ -14,7 +14,7 @@
 #include "contact/adaptation_run.h"
 #include "contact/trace_analysis.h"
 #include "meshes/scene.h"
-#include "verification/fe_rom_study.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <functional>
 #include <optional>

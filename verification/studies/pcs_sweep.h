@@ -21,7 +21,7 @@
 
 #include "contact/prescribed_position_sweep.h"
 #include "meshes/scene.h"
-#include "verification/report.h"
+#include "verification/report/report.h"
 
 #include <optional>
 #include <string>

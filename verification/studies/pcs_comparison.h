@@ -59,7 +59,7 @@ namespace beamslider
   // The comparison; require_same_positions first.
   PcsComparison compare_sweeps(const std::vector<PcsPoint> &points, const std::vector<PcsPoint> &other_points);
 
-  // Reads a sweep's pcs.csv (the columns verification/pcs_sweep.h writes);
+  // Reads a sweep's pcs.csv (the columns verification/studies/pcs_sweep.h writes);
   // throws InputError for a missing or foreign file.
   std::vector<PcsPoint> read_pcs_csv(const std::string &path);
 
