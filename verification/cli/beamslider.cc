@@ -102,7 +102,7 @@ int run_command_line(int argc, char **argv)
   simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
   simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
   simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
-  simulate_cmd->add_option("--tolerance", simulate.tolerance, "error tolerance for --model auto")->check(finite_positive());
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
   simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
                            "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
     ->check(finite_positive());

@@ -17,6 +17,7 @@
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <chrono>
 #include <cmath>
@@ -42,16 +43,7 @@ namespace beamslider
                        " frames; lower --frame-rate or shorten the window (--start-time, --end-time)");
     const std::string dir = prepare_output_dir(common, scene.name, "animate");
 
-    std::unique_ptr<BeamSystem> beam;
-    if (options.model == "fe")
-      beam = make_fe_beam_system(scene);
-    else
-      {
-        const FEBeam fe(scene);
-        const unsigned int N = scene.discretisation.n_modes;
-        beam = std::make_unique<RomBeamSystem>(
-          RomBeamSystem::from_scene(scene, make_modal_basis(fe, compute_bending_modes(fe, N), N)));
-      }
+    std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, options.model));
     const double k_ax = scene.discretisation.geometric_nonlinearity ? scene.supports.membrane_stiffness(scene.beam) : 0.;
 
     std::cout << "animate " << scene.name << " --model " << options.model << ": " << end_time << " s at dt = " << dt

@@ -21,6 +21,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/fe_rom_study.h"
+#include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <chrono>
@@ -165,7 +166,7 @@ namespace beamslider
     if (options.model != "rom" && options.model != "fe" && options.model != "auto")
       throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
     if (options.model == "auto" && !options.tolerance)
-      throw InputError("--model auto needs --tolerance (the largest acceptable slider-drift error, e.g. 0.2)");
+      throw InputError("--model auto needs --tolerance (the largest acceptable distance of the end position x_C/L to the FE reference's, e.g. 0.03)");
     if (options.end_time && !(*options.end_time > 0.))
       throw InputError("--end-time " + std::to_string(*options.end_time) + " s must be > 0");
 
@@ -195,13 +196,10 @@ namespace beamslider
     // computes; it draws once the CSV files are complete.
     EarlyPlot chart("plot_trace.py");
 
-    // The model: as asked, or the cheapest that the speed–accuracy study says
-    // meets the tolerance on this scene.
+    // The model: as asked, or the cheapest whose ensemble end state the
+    // scene's error ladder puts within the tolerance of the FE reference's.
     ModelSetting &setting = outcome.setting;
-    setting.family    = options.model == "fe" ? "fe" : "rom";
-    setting.n_modes   = scene.discretisation.n_modes;
-    setting.n_elements = scene.discretisation.n_elements;
-    setting.time_step = scene.time_stepping.time_step;
+    setting = scene_model(scene, options.model == "fe" ? "fe" : "rom");
     std::string &why = outcome.why;
     if (resuming)
       {
@@ -211,9 +209,9 @@ namespace beamslider
       }
     else if (options.model == "auto")
       {
-        std::cout << "simulate --model auto: running the candidate models over 0.5 s against the FE reference ..."
-                  << std::endl;
-        setting = choose_model(scene, *options.tolerance, why);
+        // The ladder is cached beside the scene's reports, keyed by its content.
+        const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
+        setting = choose_model(scene, *options.tolerance, cache, why);
         std::cout << why << std::endl;
         scene.time_stepping.time_step = setting.time_step;
       }

@@ -1,21 +1,16 @@
-// The FE-against-ROM study behind report section 5 and `simulate --model
-// auto`: the same scene, the same contact code, run on beam models of
-// different fidelity and cost, each compared with a reference run over the
-// same time window.
+// Beam models from a scene, and one run of a model: the model factory that
+// `simulate`, `ensemble`, the error ladder (error_ladder.h) and report
+// section 5 use, and the stated cost model by which `--model auto` ranks
+// models.
 //
 // A setting is one model and its numerical parameters:
 //   fe   the deal.II beam (fem/fe_beam_system) with n_elements and Δt,
 //   rom  the reduced model on the FE modal basis with N modes, cubic
-//        coefficients from `analytic | step-condensed | ice`, and Δt.
-// Errors against the reference, per excitation period k. The rattling slider
-// makes the period-to-period amplitude sensitive to every impact (two runs
-// that differ in the last digit part after a few dozen periods), while the
-// slow quantities the adaptation is about, the slider drift and the
-// amplitude envelope, are robust. So we compare those:
-//   drift error      max_k |x̄_k − x̄_k^ref| / |x̄_end^ref − x̄_0^ref|  (x̄ = period mean of x_C)
-//   envelope error   ‖ā − ā_ref‖₂ / ‖ā_ref‖₂, ā = a averaged over the periods of the last 0.1 s
-//                    (a = ŵ(L/2)/h per period)
-//   position error   max_k |x̄_k − x̄_k^ref| / L
+//        coefficients from `analytic | step-condensed | ice`, an integrator
+//        (explicit | implicit) and Δt.
+// Single runs of this system are chaotic (two runs that differ in the last
+// digit part after a few dozen periods): compare models as ensembles
+// (ensemble.h), not run against run.
 #pragma once
 
 #include "contact/adaptation_run.h"
@@ -49,6 +44,10 @@ namespace beamslider
     std::string label() const;
   };
 
+  // The scene's own model of a family ("rom" | "fe", else InputError): its N
+  // modes or elements, analytic coefficients, the explicit ROM step, its Δt.
+  ModelSetting scene_model(const Scene &scene, const std::string &family);
+
   // The beam model of a setting for `scene` (the scene's mesh, damping and
   // excitation; the setting's own parameters). Throws if it cannot be built.
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting);
@@ -61,8 +60,6 @@ namespace beamslider
     bool ok = false;        // ran to the end of the window
     std::string message;    // why not
     double wall_seconds = 0; // model set-up + run
-    // Against the reference (-1: not compared); see the file header.
-    double drift_error = -1, envelope_error = -1, position_error = -1;
   };
 
   // Runs `setting` on `scene` from t = 0 to `window` seconds. Never throws
@@ -71,39 +68,14 @@ namespace beamslider
   ModelRun run_setting(const Scene &scene, const ModelSetting &setting, double window,
                        const std::function<void(const PeriodRecord &)> &on_period = {});
 
-  // The errors of `run` against `other` (compare_with_reference on a copy).
-  struct RunDifference
-  {
-    double drift = -1, envelope = -1, position = -1;
-  };
-  RunDifference difference(const ModelRun &run, const ModelRun &other);
-
-  // The outcome of a long adaptation run: the one trace analysis
-  // (contact/trace_analysis.h) with the scene's thresholds.
-  using TraceOutcome = TraceAnalysis;
-  TraceOutcome trace_outcome(const ModelRun &run, const TraceThresholds &thresholds);
-
-  // Fills amplitude_error and position_error of `run` against `reference`.
-  void compare_with_reference(ModelRun &run, const ModelRun &reference);
-
-  // Indices of the runs on the Pareto front of (wall time, drift error):
-  // no other run is both faster and more accurate.
-  std::vector<std::size_t> pareto_front(const std::vector<ModelRun> &runs);
-
   // The cost of simulating one second with a setting, in units of the
   // published ROM's step (N = 5): a stated model, not a clock reading, so
   // that a loaded machine cannot change a choice. Per step, a ROM costs
-  // 1 + (N/5)² units (its cubic force and mass-matrix products grow like N²,
-  // the contact part does not) and the FE 40 × elements/32 units (the
-  // measured ratio on the default mesh, ~28 µs against ~0.7 µs per step,
-  // README); times the steps per second, 1/Δt.
+  // 0.97 + 0.03 (N/5)² units (the contact part dominates; the cubic force
+  // grows like N² but stays small: measured 0.72, 0.80 and 1.1 µs per step
+  // for N = 5, 10, 20 in the error ladder's ensembles) and the FE
+  // 40 × elements/32 units (~28 µs per step on the default mesh); times the
+  // steps per second, 1/Δt.
   double cost_per_simulated_second(const ModelSetting &setting, const Scene &scene);
 
-  // `simulate --model auto`: runs the candidate settings (ROM N = 1, 3, 5, 7
-  // at the scene's Δt and 2Δt, the FE model) over a short window against the
-  // FE reference at Δt/2, and returns the cheapest setting by
-  // cost_per_simulated_second whose drift error is within `tolerance`, or
-  // the FE model at the scene's Δt if none is. The reasoning (errors, costs,
-  // wall times for information, what was picked and why) goes to `why`.
-  ModelSetting choose_model(const Scene &scene, double tolerance, std::string &why, double window = 0.5);
 } // namespace beamslider

@@ -1,5 +1,6 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
 #include "verification/studies/pcs_sweep.h"
+#include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
 
 #include "contact/output_file.h"
@@ -30,15 +31,6 @@ namespace beamslider
       const FEBeam fe(scene);
       const unsigned int N = scene.discretisation.n_modes;
       return make_modal_basis(fe, compute_bending_modes(fe, N), N);
-    }
-
-    std::unique_ptr<BeamSystem> make_beam(const Scene &scene, const std::string &model, const ModalBasis &basis)
-    {
-      if (model == "fe")
-        return make_fe_beam_system(scene);
-      if (model == "rom")
-        return std::make_unique<RomBeamSystem>(RomBeamSystem::from_scene(scene, basis));
-      throw InputError("--model '" + model + "' is not one of rom, fe");
     }
 
     std::string list(const std::vector<ForceZeroCrossing> &crossings)
@@ -101,7 +93,7 @@ namespace beamslider
                                    1e-9)) + 1;
     for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down})
       {
-        std::unique_ptr<BeamSystem> beam = make_beam(scene, settings.model, basis);
+        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
         long done                        = 0;
         auto on_point                    = [&](const PcsPoint &p) {
           pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
@@ -127,7 +119,7 @@ namespace beamslider
     // The free slider from the scene's own start, for the overlay.
     if (settings.free_time > 0.)
       {
-        std::unique_ptr<BeamSystem> beam = make_beam(scene, settings.model, basis);
+        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
         RunOptions options               = RunOptions::from_scene(scene);
         options.end_time                 = settings.free_time;
         options.output_rate              = 1.;

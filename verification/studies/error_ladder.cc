@@ -1,0 +1,126 @@
+// The error ladder, see error_ladder.h.
+#include "verification/studies/error_ladder.h"
+
+#include <numeric>
+
+namespace beamslider
+{
+  namespace
+  {
+    ModelSetting rom(const unsigned int n_modes, const double time_step, const std::string &integrator = "explicit")
+    {
+      ModelSetting s;
+      s.family     = "rom";
+      s.n_modes    = n_modes;
+      s.time_step  = time_step;
+      s.integrator = integrator;
+      return s;
+    }
+
+    ModelSetting fe(const Scene &scene, const double time_step)
+    {
+      ModelSetting s;
+      s.family     = "fe";
+      s.n_elements = scene.discretisation.n_elements;
+      s.time_step  = time_step;
+      return s;
+    }
+  } // namespace
+
+  std::vector<LadderRung> default_ladder(const Scene &scene, const bool full, std::size_t &reference)
+  {
+    const double dt       = scene.time_stepping.time_step;
+    const unsigned int N0 = scene.discretisation.n_modes;
+    std::vector<LadderRung> rungs;
+    rungs.push_back({"ROM N=" + std::to_string(N0) + " (published)", "the scene's reduced model and time step",
+                     rom(N0, dt), 0});
+    rungs.push_back({"ROM N=10", "more modes (Δt/2: the explicit step's limit 2/ω_N)", rom(10, dt / 2), 0});
+    rungs.push_back({"ROM N=20", "converged in N (Δt/4)", rom(20, dt / 4), 0});
+    if (full)
+      {
+        rungs.push_back({"ROM N=20 implicit", "the FE's integrator (implicit midpoint rule)", rom(20, dt / 4, "implicit"), 0});
+        rungs.push_back({"FE Δt/2 (20 damped modes)", "the FE beam (axial DoFs, all bending modes), damping the ROM's 20 modes",
+                         fe(scene, dt / 2), 20});
+        rungs.push_back({"FE Δt/2", "the FE damping the scene's " + std::to_string(N0) + " modes: the reference",
+                         fe(scene, dt / 2), 0});
+        rungs.push_back({"FE Δt/4", "the reference refined in the time step", fe(scene, dt / 4), 0});
+        reference = rungs.size() - 2;
+      }
+    else
+      {
+        rungs.push_back({"FE", "the FE beam at the scene's time step: the reference", fe(scene, dt), 0});
+        reference = rungs.size() - 1;
+      }
+    return rungs;
+  }
+
+  LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
+                         const double end_time, const unsigned int members,
+                         const std::function<void(const LadderRung &, std::size_t)> &before_rung,
+                         const std::function<void(const LadderRungResult &)> &on_rung)
+  {
+    if (reference >= rungs.size())
+      throw std::invalid_argument("run_ladder: reference rung " + std::to_string(reference) + " of " +
+                                  std::to_string(rungs.size()));
+    LadderStudy study;
+    study.end_time  = end_time;
+    study.members   = members;
+    study.reference = reference;
+    study.rungs.resize(rungs.size());
+
+    // The reference first: every other rung is compared with it as it ends.
+    std::vector<std::size_t> order{reference};
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      if (i != reference)
+        order.push_back(i);
+
+    OutcomeSamples reference_samples;
+    for (const std::size_t i : order)
+      {
+        const LadderRung &rung = rungs[i];
+        if (before_rung)
+          before_rung(rung, i);
+        Scene s                    = scene;
+        s.time_stepping.end_time = end_time;
+        if (rung.model.family == "fe" && rung.fe_damped_modes)
+          s.discretisation.n_modes = rung.fe_damped_modes;
+        EnsembleSettings settings;
+        settings.model     = rung.model;
+        settings.n_members = members;
+
+        LadderRungResult &r = study.rungs[i];
+        r.rung              = rung;
+        r.members           = run_ensemble(s, settings);
+        const OutcomeSamples samples = outcome_samples(r.members);
+        r.final_position             = statistics("final x_C/L", samples.final_position);
+        r.final_amplitude            = statistics("final amplitude [h]", samples.final_amplitude);
+        r.jump_time                  = statistics("jump time [s]", samples.jump_time);
+        for (const auto &m : r.members)
+          {
+            r.wall_seconds_per_member += m.wall_seconds / r.members.size();
+            if (m.result.status != RunStatus::completed && m.result.status != RunStatus::slider_at_support)
+              ++r.n_failed;
+            if (m.analysis.valid)
+              ++r.outcome_classes[to_string(m.analysis.outcome)];
+          }
+        r.cost_units = cost_per_simulated_second(rung.model, s) * end_time;
+        if (i == reference)
+          reference_samples = samples;
+        else if (!samples.final_position.empty() && !reference_samples.final_position.empty())
+          {
+            r.position_to_reference  = compare_samples(samples.final_position, reference_samples.final_position);
+            r.amplitude_to_reference = compare_samples(samples.final_amplitude, reference_samples.final_amplitude);
+          }
+        if (on_rung)
+          on_rung(r);
+      }
+    study.steps.resize(rungs.size());
+    for (std::size_t i = 1; i < rungs.size(); ++i)
+      {
+        const OutcomeSamples a = outcome_samples(study.rungs[i - 1].members), b = outcome_samples(study.rungs[i].members);
+        if (!a.final_position.empty() && !b.final_position.empty())
+          study.steps[i] = compare_samples(a.final_position, b.final_position);
+      }
+    return study;
+  }
+} // namespace beamslider

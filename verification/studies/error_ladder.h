@@ -1,0 +1,83 @@
+// The error ladder (doc/verification.md §6): between the published reduced
+// model and the FE reference, a sequence of models that each change one
+// thing, every rung run as an ensemble (ensemble.h) to the end state, and
+// every rung compared with the reference rung by the two-sample statistics
+// of its outcomes. Single traces part after a few dozen periods; what the
+// ladder compares are the distributions of the end state (final x_C/L and
+// amplitude) and of the jump time.
+//
+// A rung's distance to the reference is the Wasserstein distance W₁ of the
+// final positions (in x_C/L) with its 90 % bootstrap interval; the
+// "spread" is what the ensembles' own scatter gives at this size. A rung is
+// "indistinguishable" from the reference when the interval's lower end
+// does not exceed the spread.
+//
+// This study computes and returns results; it writes no files. The report
+// (verification/report/report_fe_rom.cc) and `simulate --model auto`
+// (model_choice.h) format or use them.
+#pragma once
+
+#include "meshes/scene.h"
+#include "verification/studies/ensemble.h"
+#include "verification/studies/fe_rom_study.h"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  struct LadderRung
+  {
+    std::string name;   // e.g. "ROM N=5 (published)"
+    std::string change; // what this rung changes against the one before
+    ModelSetting model;
+    // FE only: the number of modes the modal damping acts on (0: the
+    // scene's), so that an FE rung damps the same set as the ROM beside it.
+    unsigned int fe_damped_modes = 0;
+  };
+
+  struct LadderRungResult
+  {
+    LadderRung rung;
+    std::vector<EnsembleMember> members;
+    OutcomeStatistics final_position, final_amplitude, jump_time; // x_C/L, [h], [s]
+    std::map<std::string, unsigned int> outcome_classes;          // class name → members
+    // Against the reference rung (n_a = 0 for the reference itself).
+    SampleComparison position_to_reference, amplitude_to_reference;
+    double wall_seconds_per_member = 0; // mean over the members [s]
+    // The stated cost model (fe_rom_study.h), in units of one step of the
+    // published ROM, for one member over the ladder's end time.
+    double cost_units = 0;
+    unsigned int n_failed = 0; // members whose run failed
+  };
+
+  struct LadderStudy
+  {
+    double end_time      = 0; // [s] simulated per member
+    unsigned int members = 0;
+    std::size_t reference = 0; // index of the reference rung
+    std::vector<LadderRungResult> rungs;
+    // What each step of the ladder contributes: rung i−1 against rung i on
+    // the final position (steps[0] is empty, n_a = 0).
+    std::vector<SampleComparison> steps;
+  };
+
+  // The default ladder for a scene. Quick: the published ROM (N = scene's, Δt
+  // = scene's), converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
+  // explicit step's limit 2/ω_N forces the smaller steps) and the FE model at
+  // the scene's Δt as the reference. Full: adds the ROM N = 20 with the FE's
+  // implicit midpoint rule, the FE damping the same 20 modes, and the FE at
+  // Δt/2 and Δt/4 (the reference is the FE at Δt/2; Δt/4 shows whether the
+  // reference is converged in the time step).
+  std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
+
+  // Runs every rung as an ensemble of `members` members over [0, end_time].
+  // `on_rung` (optional) sees each rung as it finishes (for progress and to
+  // write partial results); `before_rung` announces the next one.
+  LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
+                         double end_time, unsigned int members,
+                         const std::function<void(const LadderRung &, std::size_t)> &before_rung = {},
+                         const std::function<void(const LadderRungResult &)> &on_rung = {});
+} // namespace beamslider
