@@ -412,6 +412,7 @@ namespace beamslider
 
     if (verbose)
       std::cout << summary.str();
+    outcome.periods = std::move(periods);
     return outcome;
   }
 

@@ -14,7 +14,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 
 namespace beamslider
@@ -29,29 +28,13 @@ namespace beamslider
       std::size_t n_periods = 0;
     };
 
-    EnergyCheck energy_check(const std::string &periods_csv)
+    EnergyCheck energy_check(const std::vector<PeriodRecord> &periods)
     {
       EnergyCheck e;
-      std::ifstream in(periods_csv);
-      std::string line;
-      std::getline(in, line); // header; columns as PeriodCsvWriter::header()
-      while (std::getline(in, line))
+      for (const PeriodRecord &p : periods)
         {
-          std::vector<double> v;
-          std::size_t start = 0;
-          while (start <= line.size())
-            {
-              const std::size_t comma = line.find(',', start);
-              v.push_back(std::atof(line.substr(start, comma - start).c_str()));
-              if (comma == std::string::npos)
-                break;
-              start = comma + 1;
-            }
-          if (v.size() < 15)
-            continue;
-          // work_excitation_J is column 10, energy_residual_J column 14 (0-based).
-          e.max_excitation_work = std::max(e.max_excitation_work, std::abs(v[10]));
-          e.max_residual        = std::max(e.max_residual, std::abs(v[14]));
+          e.max_excitation_work = std::max(e.max_excitation_work, std::abs(p.work_excitation));
+          e.max_residual        = std::max(e.max_residual, std::abs(p.energy_residual));
           ++e.n_periods;
         }
       return e;
@@ -84,6 +67,7 @@ namespace beamslider
                    "turn_x_over_L", "final_x_over_L", "final_amplitude_over_h", "upward_jumps", "crosses_centre",
                    "wall_s", "steps_per_s"});
     std::vector<std::string> pictures;
+    EnergyCheck energy;
     for (const SimulationCase &c : simulation_cases())
       {
         // The cases are defined on mueller2023's rig; on another scene they
@@ -113,6 +97,8 @@ namespace beamslider
                      o.verdict.crosses_centre ? "1" : "0", CsvWriter::cell(o.wall_seconds),
                      CsvWriter::cell(o.result.n_steps / std::max(o.wall_seconds, 1e-9))});
             pictures.push_back(c.name);
+            if (c.name == "signature-move")
+              energy = energy_check(o.periods);
           }
         catch (const std::exception &e)
           {
@@ -130,7 +116,6 @@ namespace beamslider
     // Energy bookkeeping of the signature move: per period, the change of
     // the kinetic + strain energy against the works of gravity, damping, the
     // base load, the impacts and friction.
-    const EnergyCheck energy = energy_check(report.dir + "/cases/signature-move/periods.csv");
     if (energy.n_periods > 0)
       md << "### Energy bookkeeping\n\nOver the " << energy.n_periods
          << " periods of the signature move, the energy balance of a period (change of beam + slider energy minus the "

@@ -83,6 +83,7 @@ namespace beamslider
     std::string dir;   // output folder
     RunResult result;
     CaseVerdict verdict;
+    std::vector<PeriodRecord> periods; // as written to periods.csv, with the energy bookkeeping
     double wall_seconds = 0;
   };
   SimulationOutcome run_simulation(const CommonOptions &common, const SimulateOptions &options, bool verbose = true);
