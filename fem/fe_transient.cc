@@ -56,10 +56,13 @@ namespace beamslider
           constrained_[i] = true;
         }
 
+    for (unsigned int i = 0; i < n; ++i)
+      if (constrained_[i])
+        constrained_list_.push_back(i);
+
     beam.assemble_mass_matrix(M_, c);
     beam.assemble_base_load(r_);
-    K_.reinit(beam.sparsity_pattern());
-    S0_.reinit(beam.sparsity_pattern());
+    to_eigen(r_, r_eigen_);
 
     const unsigned int n_kept = scene.discretisation.n_modes;
     if (n_kept > 0)
@@ -67,12 +70,40 @@ namespace beamslider
     damping_ = std::make_unique<ModalDamping>(M_, modes_, damping_ratio_ > 0. ? n_kept : 0, damping_ratio_);
     const unsigned int rank = damping_->rank();
     U_.resize(n, rank);
+    modal_c_.resize(rank);
     for (unsigned int k = 0; k < rank; ++k)
-      for (unsigned int i = 0; i < n; ++i)
-        U_(i, k) = damping_->mass_weighted_modes()[k][i];
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          U_(i, k) = damping_->mass_weighted_modes()[k][i];
+        modal_c_[k] = damping_->modal_coefficients()[k];
+      }
+    woodbury_rhs_.resize(rank);
+    woodbury_v_.resize(rank);
 
-    for (auto *v : {&tmp_a_, &tmp_b_, &tmp_c_, &q_bar_, &u_, &res_, &du_, &f_, &uB_, &qM_})
-      v->reinit(n);
+    // M in row-major form for the residual's product; S₀'s lower triangle
+    // on the FE matrices' pattern with M's values in it, analysed once.
+    {
+      std::vector<Eigen::Triplet<double>> triplets, lower;
+      for (auto e = M_.begin(); e != M_.end(); ++e)
+        {
+          triplets.emplace_back(e->row(), e->column(), e->value());
+          if (e->row() >= e->column())
+            lower.emplace_back(e->row(), e->column(), e->value());
+        }
+      M_eigen_.resize(n, n);
+      M_eigen_.setFromTriplets(triplets.begin(), triplets.end());
+      M_eigen_.makeCompressed();
+      S0_.resize(n, n);
+      S0_.setFromTriplets(lower.begin(), lower.end());
+      S0_.makeCompressed();
+      M_in_S0_ = Eigen::Map<const Eigen::VectorXd>(S0_.valuePtr(), S0_.nonZeros());
+      ldlt_.analyzePattern(S0_);
+    }
+    const auto entry_of = [&](const unsigned int i, const unsigned int j) -> std::ptrdiff_t {
+      if (constrained_[i] || constrained_[j] || i < j)
+        return -1;
+      return &S0_.coeffRef(i, j) - S0_.valuePtr(); // in the pattern: i, j share a cell
+    };
 
     // Quadrature data: the Gauss rule FEBeam::assemble_internal_force uses
     // (max(5, p + 2) points, exact for N w' N_a'), shape values from FEBeam.
@@ -80,22 +111,50 @@ namespace beamslider
     const dealii::QGauss<1> gauss(std::max(5u, degree + 2));
     for (const auto &cell : beam.get_dof_handler().active_cell_iterators())
       {
-        const double x0 = cell->vertex(0)[0], h = cell->vertex(1)[0] - x0;
+        CellData data;
+        data.x0 = cell->vertex(0)[0];
+        data.h  = cell->diameter();
+        cells_.push_back(std::move(data));
+      }
+    std::sort(cells_.begin(), cells_.end(), [](const CellData &a, const CellData &b) { return a.x0 < b.x0; });
+    for (CellData &cell : cells_)
+      {
+        cell.first_qp = quadrature_.size();
+        cell.n_qp     = gauss.size();
         for (unsigned int k = 0; k < gauss.size(); ++k)
           {
-            const FEPointShape p = beam.point_shape(x0 + gauss.point(k)[0] * h);
+            const FEPointShape p = beam.point_shape(cell.x0 + gauss.point(k)[0] * cell.h);
+            if (p.u_dofs.size() > max_axial_dofs)
+              throw std::invalid_argument("FE transient: axial degree " + std::to_string(degree) +
+                                          " has more than " + std::to_string(max_axial_dofs) +
+                                          " axial DoFs per cell; the largest allowed degree is 6");
+            if (k == 0)
+              {
+                cell.w_dofs = {{static_cast<unsigned int>(p.w_dofs[0]), static_cast<unsigned int>(p.w_dofs[1]),
+                                static_cast<unsigned int>(p.w_dofs[2]), static_cast<unsigned int>(p.w_dofs[3])}};
+                cell.n_u = p.u_dofs.size();
+                for (unsigned int i = 0; i < cell.n_u; ++i)
+                  cell.u_dofs[i] = p.u_dofs[i];
+              }
             QuadraturePointData d;
+            d.du.fill(0.);
             for (unsigned int a = 0; a < 4; ++a)
               {
-                d.w_dofs[a] = p.w_dofs[a];
-                d.dN[a]     = p.slope_values[a];
-                d.ddN[a]    = p.curvature_values[a];
+                d.dN[a]  = p.slope_values[a];
+                d.ddN[a] = p.curvature_values[a];
               }
-            d.u_dofs.assign(p.u_dofs.begin(), p.u_dofs.end());
-            d.du  = p.strain_values;
-            d.JxW = gauss.weight(k) * h;
-            quadrature_.push_back(std::move(d));
+            for (unsigned int i = 0; i < cell.n_u; ++i)
+              d.du[i] = p.strain_values[i];
+            d.JxW = gauss.weight(k) * cell.h;
+            quadrature_.push_back(d);
           }
+        const unsigned int n_local = 4 + cell.n_u;
+        const auto global = [&](const unsigned int l) { return l < 4 ? cell.w_dofs[l] : cell.u_dofs[l - 4]; };
+        cell.entry.resize(n_local * n_local);
+        for (unsigned int i = 0; i < n_local; ++i)
+          for (unsigned int j = 0; j < n_local; ++j)
+            cell.entry[i * n_local + j] = entry_of(global(i), global(j));
+        cell_x0_.push_back(cell.x0);
       }
     if (!beam.support_data().ideal_clamp)
       for (unsigned int end = 0; end < 2; ++end)
@@ -104,40 +163,128 @@ namespace beamslider
           springs_.emplace_back(theta, beam.support_data().rotational_stiffness);
           springs_.emplace_back(u, beam.support_data().axial_spring_per_end());
         }
+    for (const auto &[dof, k] : springs_)
+      spring_entry_.push_back(entry_of(dof, dof));
+
+    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_})
+      v->setZero(n);
+  }
+
+  void FETransientBeam::internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const
+  {
+    // f = ∫ N δε + M δκ dx with N = EA ε, M = EI κ, δε = δu' + w' δw'
+    // (doc/physics.md §2–3; FEBeam::assemble_internal_force), plus the
+    // springs; cell by cell, the cell's DoF values gathered once.
+    f.setZero(q.size());
+    const bool nonlinear = beam_->geometric_nonlinearity();
+    const double EA = beam_->beam_data().axial_stiffness(), EI = beam_->beam_data().bending_stiffness();
+    for (const CellData &cell : cells_)
+      {
+        std::array<double, 4> qw, fw{};
+        std::array<double, max_axial_dofs> qu, fu{};
+        for (unsigned int a = 0; a < 4; ++a)
+          qw[a] = q[cell.w_dofs[a]];
+        for (unsigned int i = 0; i < cell.n_u; ++i)
+          qu[i] = q[cell.u_dofs[i]];
+        for (unsigned int k = 0; k < cell.n_qp; ++k)
+          {
+            const QuadraturePointData &d = quadrature_[cell.first_qp + k];
+            double du = 0, dw = 0, ddw = 0;
+            for (unsigned int i = 0; i < cell.n_u; ++i)
+              du += d.du[i] * qu[i];
+            for (unsigned int a = 0; a < 4; ++a)
+              {
+                dw += d.dN[a] * qw[a];
+                ddw += d.ddN[a] * qw[a];
+              }
+            const double N = EA * (du + (nonlinear ? 0.5 * dw * dw : 0.)) * d.JxW;
+            const double M = EI * ddw * d.JxW, Nw = nonlinear ? N * dw : 0.;
+            for (unsigned int i = 0; i < cell.n_u; ++i)
+              fu[i] += N * d.du[i];
+            for (unsigned int a = 0; a < 4; ++a)
+              fw[a] += Nw * d.dN[a] + M * d.ddN[a];
+          }
+        for (unsigned int a = 0; a < 4; ++a)
+          f[cell.w_dofs[a]] += fw[a];
+        for (unsigned int i = 0; i < cell.n_u; ++i)
+          f[cell.u_dofs[i]] += fu[i];
+      }
+    for (const auto &[dof, k] : springs_)
+      f[dof] += k * q[dof];
+    for (const unsigned int i : constrained_list_)
+      f[i] = 0.;
   }
 
   void FETransientBeam::cached_internal_force(const dealii::Vector<double> &q, dealii::Vector<double> &f) const
   {
-    // f = ∫ N δε + M δκ dx with N = EA ε, M = EI κ, δε = δu' + w' δw'
-    // (doc/physics.md §2–3; FEBeam::assemble_internal_force), plus the springs.
-    if (f.size() != q.size())
-      f.reinit(q.size());
-    else
-      f = 0.;
+    Eigen::VectorXd qe, fe;
+    to_eigen(q, qe);
+    internal_force_cached(qe, fe);
+    to_dealii(fe, f);
+  }
+
+  void FETransientBeam::assemble_iteration_matrix(const Eigen::VectorXd &q_bar, const double dt)
+  {
+    // S₀ = M + Δt²/4 K_t(q̄): K_t = ∂f/∂q of internal_force_cached, cell by
+    // cell, with N = EA ε the membrane force:
+    //   K_uu = ∫ EA u_i' u_j',   K_uw = ∫ EA w' u_i' N_b',
+    //   K_ww = ∫ (EA w'² + N) N_a' N_b' + EI N_a'' N_b''.
     const bool nonlinear = beam_->geometric_nonlinearity();
     const double EA = beam_->beam_data().axial_stiffness(), EI = beam_->beam_data().bending_stiffness();
-    for (const QuadraturePointData &d : quadrature_)
+    const double scale = 0.25 * dt * dt;
+    double *values = S0_.valuePtr();
+    Eigen::Map<Eigen::VectorXd>(values, S0_.nonZeros()) = M_in_S0_;
+    for (const CellData &cell : cells_)
       {
-        double du = 0, dw = 0, ddw = 0;
-        for (unsigned int i = 0; i < d.u_dofs.size(); ++i)
-          du += d.du[i] * q[d.u_dofs[i]];
+        const unsigned int n_local = 4 + cell.n_u;
+        std::array<double, max_cell_dofs * max_cell_dofs> K{};
+        std::array<double, 4> qw;
+        std::array<double, max_axial_dofs> qu;
         for (unsigned int a = 0; a < 4; ++a)
+          qw[a] = q_bar[cell.w_dofs[a]];
+        for (unsigned int i = 0; i < cell.n_u; ++i)
+          qu[i] = q_bar[cell.u_dofs[i]];
+        for (unsigned int k = 0; k < cell.n_qp; ++k)
           {
-            dw += d.dN[a] * q[d.w_dofs[a]];
-            ddw += d.ddN[a] * q[d.w_dofs[a]];
+            const QuadraturePointData &d = quadrature_[cell.first_qp + k];
+            double du = 0, dw = 0;
+            for (unsigned int i = 0; i < cell.n_u; ++i)
+              du += d.du[i] * qu[i];
+            for (unsigned int a = 0; a < 4; ++a)
+              dw += d.dN[a] * qw[a];
+            const double coupling = nonlinear ? dw : 0.;
+            const double N        = nonlinear ? EA * (du + 0.5 * dw * dw) : 0.;
+            for (unsigned int a = 0; a < 4; ++a)
+              for (unsigned int b = 0; b < 4; ++b)
+                K[a * n_local + b] +=
+                  ((EA * coupling * coupling + N) * d.dN[a] * d.dN[b] + EI * d.ddN[a] * d.ddN[b]) * d.JxW;
+            for (unsigned int i = 0; i < cell.n_u; ++i)
+              {
+                for (unsigned int j = 0; j < cell.n_u; ++j)
+                  K[(4 + i) * n_local + 4 + j] += EA * d.du[i] * d.du[j] * d.JxW;
+                for (unsigned int b = 0; b < 4; ++b)
+                  {
+                    const double kib = EA * coupling * d.du[i] * d.dN[b] * d.JxW;
+                    K[(4 + i) * n_local + b] += kib;
+                    K[b * n_local + 4 + i] += kib;
+                  }
+              }
           }
-        const double N = EA * (du + (nonlinear ? 0.5 * dw * dw : 0.)) * d.JxW;
-        const double M = EI * ddw * d.JxW, Nw = nonlinear ? N * dw : 0.;
-        for (unsigned int i = 0; i < d.u_dofs.size(); ++i)
-          f[d.u_dofs[i]] += N * d.du[i];
-        for (unsigned int a = 0; a < 4; ++a)
-          f[d.w_dofs[a]] += Nw * d.dN[a] + M * d.ddN[a];
+        for (unsigned int l = 0; l < n_local * n_local; ++l)
+          if (cell.entry[l] >= 0)
+            values[cell.entry[l]] += scale * K[l];
       }
-    for (const auto &[dof, k] : springs_)
-      f[dof] += k * q[dof];
-    for (unsigned int i = 0; i < f.size(); ++i)
-      if (constrained_[i])
-        f[i] = 0.;
+    for (std::size_t s = 0; s < springs_.size(); ++s)
+      if (spring_entry_[s] >= 0)
+        values[spring_entry_[s]] += scale * springs_[s].second;
+  }
+
+  Eigen::MatrixXd FETransientBeam::cached_iteration_matrix(const Eigen::VectorXd &q_bar, const double dt)
+  {
+    assemble_iteration_matrix(q_bar, dt);
+    // (The factorisation is a copy of its own: unchanged.)
+    const Eigen::MatrixXd lower(S0_);
+    return lower.selfadjointView<Eigen::Lower>();
   }
 
   void FETransientBeam::to_dealii(const Eigen::VectorXd &a, dealii::Vector<double> &b)
@@ -162,49 +309,33 @@ namespace beamslider
         m << "FE beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
         throw std::out_of_range(m.str());
       }
-    const FEPointShape p = beam_->point_shape(x);
+    // The cell whose left vertex is the last one at or before x, and the
+    // Hermite shape functions there (the same numbers as FEBeam::point_shape,
+    // without its axial part and its allocations: this runs several times a step).
+    const auto it        = std::upper_bound(cell_x0_.begin(), cell_x0_.end(), x);
+    const CellData &cell = cells_[it == cell_x0_.begin() ? 0 : it - cell_x0_.begin() - 1];
+    const double xi      = std::clamp((x - cell.x0) / cell.h, 0., 1.);
+    std::array<double, 4> N, dN, ddN;
+    hermite_shape(xi, cell.h, N, dN, ddN);
     const unsigned int n = n_dofs();
     out.grad_w.setZero(n);
     out.grad_dw.setZero(n);
     for (unsigned int a = 0; a < 4; ++a)
       {
-        const auto dof = p.w_dofs[a];
+        const auto dof = cell.w_dofs[a];
         if (constrained_[dof])
           continue;
-        out.grad_w[dof] += p.w_values[a];
-        out.grad_dw[dof] += p.slope_values[a];
+        out.grad_w[dof] += N[a];
+        out.grad_dw[dof] += dN[a];
       }
     out.w  = out.grad_w.dot(q);
     out.dw = out.grad_dw.dot(q);
   }
 
-  void FETransientBeam::factorise(const dealii::Vector<double> &q_bar, const double dt)
+  void FETransientBeam::factorise(const Eigen::VectorXd &q_bar, const double dt)
   {
-    beam_->assemble_internal_force(q_bar, nullptr, &K_, beam_->constraints());
-    S0_.copy_from(M_);
-    S0_.add(0.25 * dt * dt, K_);
-    if (S0_entry_.empty())
-      {
-        // The pattern of S₀ in Eigen's compressed columns, once: the map from
-        // deal.II's entry order to Eigen's value array, and the fill-reducing
-        // ordering and symbolic factorisation.
-        std::vector<Eigen::Triplet<double>> triplets;
-        for (auto e = S0_.begin(); e != S0_.end(); ++e)
-          triplets.emplace_back(e->row(), e->column(), 0.);
-        S0_eigen_.resize(n_dofs(), n_dofs());
-        S0_eigen_.setFromTriplets(triplets.begin(), triplets.end());
-        S0_eigen_.makeCompressed();
-        for (auto e = S0_.begin(); e != S0_.end(); ++e)
-          S0_entry_.push_back(&S0_eigen_.coeffRef(e->row(), e->column()) - S0_eigen_.valuePtr());
-        ldlt_.analyzePattern(S0_eigen_);
-      }
-    {
-      double *values = S0_eigen_.valuePtr();
-      std::size_t k  = 0;
-      for (auto e = S0_.begin(); e != S0_.end(); ++e, ++k)
-        values[S0_entry_[k]] = e->value();
-    }
-    ldlt_.factorize(S0_eigen_);
+    assemble_iteration_matrix(q_bar, dt);
+    ldlt_.factorize(S0_);
     if (ldlt_.info() != Eigen::Success)
       throw std::runtime_error("FE transient: the LDL^T factorisation of S = M + dt^2/4 K_t failed (dt = " +
                                std::to_string(dt) + " s)");
@@ -213,22 +344,15 @@ namespace beamslider
     const unsigned int rank = damping_->rank();
     if (rank > 0)
       {
-        const unsigned int n = n_dofs();
-        Z_.resize(n, rank);
-        Dg_.resize(rank);
-        for (unsigned int k = 0; k < rank; ++k)
-          {
-            const dealii::Vector<double> &Mphi = damping_->mass_weighted_modes()[k];
-            Z_.col(k) = ldlt_.solve(Eigen::Map<const Eigen::VectorXd>(Mphi.begin(), Mphi.size()));
-            Dg_[k] = 0.5 * dt * damping_->modal_coefficients()[k];
-          }
+        Z_ = ldlt_.solve(U_);
+        Dg_ = (0.5 * dt) * modal_c_;
         const Eigen::MatrixXd cap =
           Eigen::MatrixXd::Identity(rank, rank) + Dg_.asDiagonal() * (U_.transpose() * Z_);
         capacitance_.compute(cap);
       }
-    factorised_      = true;
-    factorised_dt_   = dt;
-    factorised_step_ = stats_.steps;
+    factorised_       = true;
+    factorised_dt_    = dt;
+    factorised_step_  = stats_.steps;
     factorised_q_bar_ = q_bar;
     ++stats_.factorisations;
   }
@@ -240,9 +364,7 @@ namespace beamslider
   void FETransientBeam::save_state(CheckpointWriter &out) const
   {
     out.put(factorised_);
-    Eigen::VectorXd q_bar;
-    to_eigen(factorised_q_bar_, q_bar);
-    out.put(q_bar);
+    out.put(factorised_ ? factorised_q_bar_ : Eigen::VectorXd::Zero(n_dofs()).eval());
     out.put(factorised_dt_);
     out.put(std::uint64_t(factorised_step_));
     out.put(std::uint64_t(stats_.steps));
@@ -268,27 +390,22 @@ namespace beamslider
     factorised_                    = false;
     if (factorised)
       {
-        dealii::Vector<double> q(n_dofs());
-        to_dealii(q_bar, q);
-        factorise(q, factorised_dt);
+        factorise(q_bar, factorised_dt);
         factorised_step_ = step;
       }
   }
 
-  void FETransientBeam::solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const
+  void FETransientBeam::solve(const Eigen::VectorXd &b, Eigen::VectorXd &x) const
   {
-    if (x.size() != b.size())
-      x.reinit(b.size());
-    Eigen::Map<Eigen::VectorXd> y(x.begin(), x.size());
-    y = ldlt_.solve(Eigen::Map<const Eigen::VectorXd>(b.begin(), b.size()));
+    x = ldlt_.solve(b);
     const unsigned int rank = damping_->rank();
     if (rank == 0)
       return;
-    // y −= Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ y, through scratch of size rank: no heap.
-    woodbury_rhs_.noalias() = U_.transpose() * y;
+    // x −= Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ x, through scratch of size rank: no heap.
+    woodbury_rhs_.noalias() = U_.transpose() * x;
     woodbury_rhs_.array() *= Dg_.array();
     woodbury_v_ = capacitance_.solve(woodbury_rhs_);
-    y.noalias() -= Z_ * woodbury_v_;
+    x.noalias() -= Z_ * woodbury_v_;
   }
 
   void FETransientBeam::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
@@ -296,21 +413,17 @@ namespace beamslider
   {
     if (!(dt > 0.))
       throw std::invalid_argument("FE transient: time step Delta t = " + std::to_string(dt) + " s must be positive");
-    const unsigned int n = n_dofs();
-    const auto &c        = beam_->constraints();
     const bool nonlinear = beam_->geometric_nonlinearity();
-    to_dealii(q_M, qM_);
-    to_dealii(u_B, uB_);
-    const double a = excitation_.acceleration(t_M);
+    const double a       = excitation_.acceleration(t_M);
+    const unsigned int rank = damping_->rank();
 
-    // Predictor: the start velocity plus the last step's smooth velocity change.
-    u_ = uB_;
+    // Predictor: the start velocity (plus, optionally, the last step's smooth
+    // velocity change).
+    u_ = u_B;
     if (settings_.extrapolate && have_last_ && last_dt_ == dt)
-      for (unsigned int i = 0; i < n; ++i)
-        u_[i] += last_u_free_[i] - last_u_B_[i];
-    for (unsigned int i = 0; i < n; ++i)
-      if (constrained_[i])
-        u_[i] = 0.;
+      u_ += last_u_free_ - last_u_B_;
+    for (const unsigned int i : constrained_list_)
+      u_[i] = 0.;
 
     bool refactor = !factorised_ || factorised_dt_ != dt ||
                     (nonlinear && settings_.refactor_interval > 0 &&
@@ -322,31 +435,33 @@ namespace beamslider
       {
         ++it;
         // q̄ = q_M + Δt/4 (u − u_B).
-        q_bar_ = qM_;
-        q_bar_.add(0.25 * dt, u_, -0.25 * dt, uB_);
-        cached_internal_force(q_bar_, f_);
+        tmp_ = u_ - u_B;
+        q_bar_ = q_M;
+        q_bar_.noalias() += (0.25 * dt) * tmp_;
+        internal_force_cached(q_bar_, f_);
         if (refactor)
           {
             factorise(q_bar_, dt);
             refactor = false;
           }
-        // R = M(u − u_B) + Δt [f(q̄) + C(u_B + u)/2 − r ẅ0].
-        tmp_a_ = u_;
-        tmp_a_ -= uB_;
-        M_.vmult(res_, tmp_a_);
-        tmp_b_ = u_;
-        tmp_b_ += uB_;
-        damping_->vmult(tmp_c_, tmp_b_); // C (u + u_B)
-        res_.add(dt, f_, 0.5 * dt, tmp_c_);
-        res_.add(-dt * a, r_);
-        for (unsigned int i = 0; i < n; ++i)
-          if (constrained_[i])
-            res_[i] = 0.;
+        // R = M(u − u_B) + Δt [f(q̄) + C(u_B + u)/2 − r ẅ0], C = U diag(2Dω) Uᵀ.
+        res_.noalias() = M_eigen_ * tmp_;
+        res_.noalias() += dt * f_;
+        res_.noalias() -= (dt * a) * r_eigen_;
+        if (rank > 0)
+          {
+            tmp_ = u_ + u_B;
+            woodbury_rhs_.noalias() = U_.transpose() * tmp_;
+            woodbury_rhs_.array() *= (0.5 * dt) * modal_c_.array();
+            res_.noalias() += U_ * woodbury_rhs_;
+          }
+        for (const unsigned int i : constrained_list_)
+          res_[i] = 0.;
         solve(res_, du_);
         u_ -= du_;
         ++stats_.newton_iterations;
 
-        correction = du_.l2_norm();
+        correction = du_.norm();
         if (!std::isfinite(correction))
           break;
         // Converged when the correction moves q_E by less than rtol of the
@@ -357,7 +472,7 @@ namespace beamslider
         // Wanner, Solving ODEs II, §IV.8): accept on that estimate too, which
         // saves the iteration that would only confirm convergence.
         const double tolerance =
-          settings_.relative_tolerance * (u_.l2_norm() + q_bar_.l2_norm() / dt) + settings_.absolute_tolerance;
+          settings_.relative_tolerance * (u_.norm() + q_bar_.norm() / dt) + settings_.absolute_tolerance;
         const double c = correction / previous;
         if (correction <= tolerance || (it > 1 && c < 0.5 && c / (1. - c) * correction <= tolerance))
           {
@@ -376,9 +491,9 @@ namespace beamslider
         previous = correction;
       }
     if (!converged)
-      throw TransientNewtonFailure(t_M, it, correction, u_.l2_norm());
+      throw TransientNewtonFailure(t_M, it, correction, u_.norm());
 
-    to_eigen(u_, u_free);
+    u_free             = u_;
     last_u_B_          = u_B;
     last_u_free_       = u_free;
     last_dt_           = dt;
@@ -392,22 +507,22 @@ namespace beamslider
   {
     if (!factorised_)
       throw std::logic_error("FE transient: solve_iteration_matrix called before free_velocity");
-    const unsigned int n = n_dofs();
     if (X.rows() != B.rows() || X.cols() != B.cols())
       throw std::logic_error("FE transient: solve_iteration_matrix needs X of B's size");
     // All right-hand sides at once (the contact directions, up to 8): one
     // pass of the sparse triangular solves over a block, then the Woodbury
     // correction as a block.
-    Eigen::MatrixXd rhs = B;
-    for (unsigned int i = 0; i < n; ++i)
-      if (constrained_[i])
-        rhs.row(i).setZero();
-    X = ldlt_.solve(rhs);
+    block_rhs_ = B;
+    for (const unsigned int i : constrained_list_)
+      block_rhs_.row(i).setZero();
+    X = ldlt_.solve(block_rhs_);
     const unsigned int rank = damping_->rank();
     if (rank > 0)
       {
-        const Eigen::MatrixXd V = capacitance_.solve(Dg_.asDiagonal() * (U_.transpose() * X));
-        X.noalias() -= Z_ * V;
+        block_v_.noalias() = U_.transpose() * X;
+        block_v_           = Dg_.asDiagonal() * block_v_;
+        block_w_           = capacitance_.solve(block_v_);
+        X.noalias() -= Z_ * block_w_;
       }
     stats_.iteration_matrix_solves += B.cols();
   }
@@ -448,11 +563,15 @@ namespace beamslider
         damping_work = excitation_work = 0.;
         return;
       }
-    const Eigen::VectorXd u_mean = 0.5 * (last_u_B_ + u_E);
-    dealii::Vector<double> um, Cum;
-    to_dealii(u_mean, um);
-    damping_->vmult(Cum, um);
-    damping_work = -last_dt_ * (um * Cum);
-    excitation_work = last_dt_ * last_acceleration_ * (r_ * um);
+    // ū·C ū = Σ 2Dω_n (M φ_n · ū)², C = U diag(2Dω) Uᵀ.
+    u_mean_ = 0.5 * (last_u_B_ + u_E);
+    double c_work = 0;
+    for (Eigen::Index k = 0; k < U_.cols(); ++k)
+      {
+        const double projection = U_.col(k).dot(u_mean_);
+        c_work += modal_c_[k] * projection * projection;
+      }
+    damping_work    = -last_dt_ * c_work;
+    excitation_work = last_dt_ * last_acceleration_ * r_eigen_.dot(u_mean_);
   }
 } // namespace beamslider

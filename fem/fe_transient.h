@@ -27,31 +27,42 @@
 // Linear algebra. S = S₀ + U diag(Δt/2 · 2Dω_n) Uᵀ with the sparse, banded
 // S₀ = M + Δt²/4 K_t and the rank-N damping U = [M φ_n]. S₀ is symmetric
 // (K_t is the Hessian of the strain energy); it is factorised by a sparse
-// LDLᵀ (Eigen::SimplicialLDLT, ordering and symbolic analysis once, numeric
-// factorisation on refactorisation). We started with deal.II's UMFPACK: on
-// the 131-DoF default mesh a factorisation cost about 100 µs and a solve
-// about 10 µs, mostly call overhead, which made the step 2–3 times slower.
+// LDLᵀ (Eigen::SimplicialLDLT on the lower triangle, ordering and symbolic
+// analysis once, numeric factorisation on refactorisation). We started with
+// deal.II's UMFPACK: on the 131-DoF default mesh a factorisation cost about
+// 100 µs and a solve about 10 µs, mostly call overhead. LAPACK's band
+// Cholesky (dpbtrf/dpbtrs, half-bandwidth 6 after Cuthill–McKee) was tried
+// too: with Debian's reference BLAS its solve was no faster than Eigen's.
 // The damping is folded in by Sherman–Morrison–Woodbury:
 //   S⁻¹ b = y − Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ y,   y = S₀⁻¹ b,  Z = S₀⁻¹ U,
 // which costs N extra solves per factorisation and an N × N dense solve per
 // right-hand side. Newton runs with the last factorisation (modified
 // Newton) and refactorises K_t(q̄) when a correction shrinks by less than
-// `max_contraction` (0.1), or every `refactor_interval` steps (default: never
-// by count); for a linear beam S is factorised once. It stops when
+// `max_contraction` (0.01), or every `refactor_interval` steps (default:
+// never by count); for a linear beam S is factorised once. It stops when
 // ‖δu‖ ≤ rtol (‖u‖ + ‖q̄‖/Δt), or when the contraction estimate
 // c/(1 − c) ‖δu‖ is below that (Hairer & Wanner II, §IV.8); rtol = 1e-8
-// keeps q_E within 1e-8 of the state's size. f(q̄) in the loop comes from
-// shape data cached at the quadrature points (cached_internal_force, equal
-// to FEBeam's assembly to round-off); K_t from FEBeam's assembly.
+// keeps q_E within 1e-8 of the state's size. Two iterations are the floor
+// of this test (a contraction needs two corrections; the first correction
+// is ≳ 10³ tolerances even right after a refactorisation).
+// The hot path touches no deal.II object: f(q̄) and K_t(q̄) come from shape
+// data cached per cell at the quadrature points (internal_force_cached,
+// assemble_iteration_matrix: equal to FEBeam's FEValues assembly to
+// round-off, tested), written straight into S₀'s value array through a
+// per-cell map of local entries; M, r, U are Eigen objects; the contact
+// kinematics evaluate the Hermite shape functions of the cell directly.
 // Measured on the default mesh (32 elements, 131 DoFs), signature move
-// (124 Hz, 14 m/s², x_C/L = 0.3, Δt = 2e-5 s, first 0.5 s): 4.1 Newton
-// iterations and 1.3 iteration-matrix solves per step, one refactorisation
-// per ~400 steps, 37–39 µs per step (1.9 s per simulated second).
-// Refactorising every step (refactor_interval = 1) costs 2.4× (93 µs/step,
-// still 3.1 iterations: the undamped stiff axial modes, ωΔt ≫ 1, flip sign
-// every step and make u_B a poor start). The whole 60 s signature-move run
-// (jump to ŵ/h ≈ 2.5 near t = 40 s, where Newton refactorises every ~8
-// steps): 157 s wall on one core, 52 µs per step.
+// (124 Hz, 14 m/s², x_C/L = 0.3, Δt = 1e-5 s, first 0.2 s; the benchmark
+// FeContact/32 on one core): 2.06 Newton iterations, 1.1 iteration-matrix
+// solves and 0.022 refactorisations per step, 12.5 µs per step (before:
+// FEBeam's tangent, deal.II vectors and max_contraction = 0.1: 3.4
+// iterations, 24 µs). Where the 12.5 µs go: two sparse LDLᵀ solves (~1.7 µs
+// each) and the contact block solve (~2 µs), two f(q̄) (~1.1 µs each), the
+// residual's products (~0.7 µs per iteration), the contact kinematics and
+// the stepper. A solve of this size should take ~0.3 µs with a band solver
+// tuned for small bandwidths (an optimised BLAS, or a fixed-bandwidth
+// kernel): that, and the contact block solved once per change of the
+// active set, are what would come next.
 // Constrained DoFs (the supports) stay zero: their rows of M carry a diagonal
 // filler and every right-hand side is zero there.
 //
@@ -99,8 +110,13 @@ namespace beamslider
     double absolute_tolerance   = 1e-13; // [m/s]
     unsigned int max_iterations = 30;    // per step, including refactorisations
     // A modified-Newton iteration whose correction shrinks by less than this
-    // factor triggers a refactorisation with the current tangent.
-    double max_contraction = 0.1;
+    // factor triggers a refactorisation with the current tangent. 0.01
+    // rather than 0.1: with the tangent assembled from cached data a
+    // refactorisation costs ~20 µs (about two steps), and keeping the
+    // contraction below 0.01 brings Newton from 3.4 to 2.06 iterations per
+    // step for 0.02 refactorisations per step (signature move, Δt = 1e-5 s,
+    // 32 elements: 16.6 -> 12.6 µs per step).
+    double max_contraction = 0.01;
     // Newton's start: u_B plus the last step's smooth velocity change (true),
     // or u_B (false). Extrapolating gains nothing measurable (4.6 against 4.5
     // iterations per step on the signature move): the undamped stiff axial
@@ -149,8 +165,8 @@ namespace beamslider
     double strain_energy(const Eigen::VectorXd &q) const;
     Eigen::VectorXd internal_force(const Eigen::VectorXd &q) const;
     // The same f(q) from shape values cached at the quadrature points (what
-    // the Newton loop calls: FEBeam's assembly rebuilds its FEValues on every
-    // call, which was a third of the step). Zero on constrained DoFs.
+    // the Newton loop computes: FEBeam's assembly rebuilds its FEValues on
+    // every call, which was a third of the step). Zero on constrained DoFs.
     void cached_internal_force(const dealii::Vector<double> &q, dealii::Vector<double> &f) const;
 
     const FEBeam &beam() const { return *beam_; }
@@ -166,56 +182,89 @@ namespace beamslider
     static void to_dealii(const Eigen::VectorXd &a, dealii::Vector<double> &b);
     static void to_eigen(const dealii::Vector<double> &a, Eigen::VectorXd &b);
 
+    // S₀ = M + Δt²/4 K_t(q̄) as the Newton loop builds it from the cached
+    // quadrature data, dense (for tests: it must equal M + Δt²/4 times
+    // FEBeam's tangent on the free DoFs).
+    Eigen::MatrixXd cached_iteration_matrix(const Eigen::VectorXd &q_bar, double dt);
+
   private:
-    void factorise(const dealii::Vector<double> &q_bar, double dt);
+    // Factorises S₀ = M + Δt²/4 K_t(q̄) and the Woodbury terms of the damping.
+    void factorise(const Eigen::VectorXd &q_bar, double dt);
+    // S₀'s values (lower triangle) from the cached quadrature data.
+    void assemble_iteration_matrix(const Eigen::VectorXd &q_bar, double dt);
+    // f(q̄) from the cached quadrature data, zero on constrained DoFs.
+    void internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const;
     // x = S⁻¹ b (b zero on constrained DoFs).
-    void solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const;
+    void solve(const Eigen::VectorXd &b, Eigen::VectorXd &x) const;
 
     std::unique_ptr<FEBeam> beam_;
     BaseExcitation excitation_;
     FETransientSettings settings_;
     double damping_ratio_;
     FEModes modes_;
-    dealii::SparseMatrix<double> M_, K_, S0_;
+    dealii::SparseMatrix<double> M_;
     dealii::Vector<double> r_;
     std::unique_ptr<ModalDamping> damping_;
     std::vector<bool> constrained_;
+    std::vector<unsigned int> constrained_list_;
 
-    // Factorisation of S₀ (Eigen's sparse LDLᵀ on S₀'s pattern) and the Woodbury terms.
-    Eigen::SparseMatrix<double> S0_eigen_;
-    std::vector<std::ptrdiff_t> S0_entry_; // deal.II entry k ↦ index in S0_eigen_'s values
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+    // The hot path works on Eigen objects only: M (row-major for the
+    // product), the base load, the damping's U = [M φ_n] and 2 D ω_n.
+    Eigen::SparseMatrix<double, Eigen::RowMajor> M_eigen_;
+    Eigen::VectorXd r_eigen_;
+    Eigen::MatrixXd U_;            // [M φ_n]
+    Eigen::VectorXd modal_c_;      // 2 D ω_n [1/s]
+
+    // S₀ (Eigen's sparse LDLᵀ on the pattern of the FE matrices, lower
+    // triangle; ordering and symbolic analysis once) and the Woodbury terms.
+    Eigen::SparseMatrix<double> S0_;
+    Eigen::VectorXd M_in_S0_;          // M's values in S0_'s layout
+    std::vector<std::ptrdiff_t> spring_entry_; // S0_ value index of each spring's diagonal
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
     bool factorised_        = false;
     double factorised_dt_   = 0;
     unsigned long factorised_step_ = 0;
-    dealii::Vector<double> factorised_q_bar_; // where K_t of the factorisation was taken
+    Eigen::VectorXd factorised_q_bar_; // where K_t of the factorisation was taken
     Eigen::MatrixXd Z_;            // S₀⁻¹ U
-    Eigen::MatrixXd U_;            // [M φ_n]
     Eigen::VectorXd Dg_;           // Δt/2 · 2 D ω_n
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_; // I + Dg UᵀZ
     mutable Eigen::VectorXd woodbury_rhs_, woodbury_v_; // scratch of size rank
+    mutable Eigen::MatrixXd block_rhs_, block_v_, block_w_;       // scratch for solve_iteration_matrix
 
     // Last step, for the predictor and step_work.
     double last_dt_ = 0, last_acceleration_ = 0;
     Eigen::VectorXd last_u_B_, last_u_free_;
     bool have_last_ = false;
 
-    // Shape data at every quadrature point, from FEBeam::point_shape, for
-    // cached_internal_force: ε = u' + ½w'², κ = w'' and their DoFs.
-    struct QuadraturePointData
+    // Per cell: its Hermite and axial DoFs, where it lies, its quadrature
+    // points in quadrature_, and where each local entry (i, j) of the
+    // tangent goes in S0_'s values (−1 for a constrained row or
+    // column). Local order: (w0, θ0, w1, θ1), then the axial DoFs.
+    static constexpr unsigned int max_axial_dofs = 7; // axial degree ≤ 6
+    static constexpr unsigned int max_cell_dofs  = 4 + max_axial_dofs;
+    struct CellData
     {
       std::array<unsigned int, 4> w_dofs;
-      std::array<double, 4> dN, ddN; // Hermite N_a', N_a''
-      std::vector<unsigned int> u_dofs;
-      std::vector<double> du;        // axial shape derivatives
+      std::array<unsigned int, max_axial_dofs> u_dofs;
+      unsigned int n_u = 0, first_qp = 0, n_qp = 0;
+      double x0 = 0, h = 0; // left vertex and length [m]
+      std::vector<std::ptrdiff_t> entry; // (4 + n_u)² indices into S0_'s values
+    };
+    // Shape data at one quadrature point: ε = u' + ½w'², κ = w''.
+    struct QuadraturePointData
+    {
+      std::array<double, 4> dN, ddN;               // Hermite N_a', N_a''
+      std::array<double, max_axial_dofs> du;       // axial shape derivatives
       double JxW;
     };
+    std::vector<CellData> cells_;        // ordered from x = 0 to L
+    std::vector<double> cell_x0_;        // their left vertices, for locating x
     std::vector<QuadraturePointData> quadrature_;
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too
-    // Scratch.
-    mutable dealii::Vector<double> tmp_a_, tmp_b_, tmp_c_;
-    dealii::Vector<double> q_bar_, u_, res_, du_, f_, uB_, qM_;
+    // Scratch of the Newton loop.
+    Eigen::VectorXd q_bar_, u_, res_, du_, f_, tmp_;
+    mutable Eigen::VectorXd u_mean_;
   };
 } // namespace beamslider

@@ -115,6 +115,41 @@ TEST(FETransient, CachedInternalForceEqualsTheBeamAssembly)
     }
 }
 
+TEST(FETransient, CachedIterationMatrixEqualsMassPlusTheBeamTangent)
+{
+  // The Newton loop's S₀ = M + Δt²/4 K_t(q̄), assembled from cached quadrature
+  // data, against FEBeam's mass matrix and tangent stiffness (an independent
+  // assembly with FEValues) on the free DoFs, at a large-vibration state.
+  for (const std::string file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm")})
+    {
+      const Scene s = read_scene(file);
+      FETransientBeam sys(s, BaseExcitation{0., 0.});
+      const FEBeam &beam = sys.beam();
+      const unsigned int n = sys.n_dofs();
+      const double h = s.beam.thickness, L = s.beam.length, dt = 1e-5;
+      Eigen::VectorXd q = Eigen::VectorXd::Random(n);
+      for (unsigned int i = 0; i < n; ++i)
+        q[i] *= beam.constraints().is_constrained(i) ? 0. : beam.axial_dofs()[i] ? 1e-2 * h : beam.slope_dofs()[i] ? 30 * h / L : h;
+      const Eigen::MatrixXd S = sys.cached_iteration_matrix(q, dt);
+
+      dealii::Vector<double> qd;
+      FETransientBeam::to_dealii(q, qd);
+      dealii::SparseMatrix<double> K;
+      beam.assemble_internal_force(qd, nullptr, &K, beam.constraints());
+      Eigen::MatrixXd tangent = Eigen::MatrixXd::Zero(n, n), difference = Eigen::MatrixXd::Zero(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            if (beam.constraints().is_constrained(i) || beam.constraints().is_constrained(j))
+              continue;
+            tangent(i, j)    = 0.25 * dt * dt * K.el(i, j);
+            difference(i, j) = S(i, j) - sys.mass_matrix().el(i, j) - tangent(i, j);
+          }
+      // Relative to the tangent part alone (M is copied, not recomputed).
+      EXPECT_LT(difference.norm(), 1e-12 * tangent.norm()) << file;
+    }
+}
+
 TEST(FETransientLinearForcedResponse, AmplitudeAndPhaseMatchTheModalSolution)
 {
   // Small excitation (ŵ ≈ 1e-3 h: the von Kármán frequency shift, ~0.5 (ŵ/h)²,
@@ -333,11 +368,16 @@ TEST(FETransientSlider, RestingSliderStaysPutOnTheSaggingBeam)
   // The slider tilts with the beam's slope under it, which moves its centre
   // of mass (d + R/2 below the contacts) by about (d + R/2) β, a µm, while
   // the beam settles; after that (the last quarter of the run) nothing may creep.
-  double max_shift = 0, max_drift = 0, x_late = 0;
+  double max_shift = 0, max_drift = 0, x_late = 0, max_vx_late = 0, max_beta_rate_late = 0;
   for (unsigned int k = 0; k < n_steps; ++k)
     {
       stepper.step();
       const double x = stepper.state().s[0];
+      if (k >= 9 * n_steps / 10)
+        {
+          max_vx_late        = std::max(max_vx_late, std::abs(stepper.state().v[0]));
+          max_beta_rate_late = std::max(max_beta_rate_late, std::abs(stepper.state().v[2]));
+        }
       max_shift      = std::max(max_shift, std::abs(x - x_C));
       if (k == 3 * n_steps / 4)
         x_late = x;
@@ -358,7 +398,8 @@ TEST(FETransientSlider, RestingSliderStaysPutOnTheSaggingBeam)
   const double w_static = beam.deflection(xs, x_C);
   std::cout << "resting slider: sag w(x_C) = " << point.w << " m, static " << w_static << " m (relative "
             << point.w / w_static - 1 << "), max |x_C shift| = " << max_shift << " m, beta = " << state.s[2] << " rad, drift over the last quarter "
-            << max_drift << " m, v = (" << state.v.transpose() << "), Newton iterations/step "
+            << max_drift << " m, v = (" << state.v.transpose() << "), over the last tenth max |v_x| = "
+            << max_vx_late << " m/s, max |beta'| = " << max_beta_rate_late << " rad/s, Newton iterations/step "
             << double(sys.statistics().newton_iterations) / sys.statistics().steps << "\n";
   EXPECT_LT(w_static, 0.);
   // The two-point load model ignores the tilt's small moment d·β: 2 %.
@@ -368,9 +409,12 @@ TEST(FETransientSlider, RestingSliderStaysPutOnTheSaggingBeam)
   // The slider still rocks a little on the beam (β̇ ~ 3e-4 rad/s, x_C ± 1e-8 m
   // about a constant, decaying); a creep would exceed this within 0.1 s.
   EXPECT_LT(max_drift, 5e-8);
-  // What horizontal velocity is left is the rocking (β̇ × lever), no sliding.
-  EXPECT_LT(std::abs(state.v[2]), 1e-3);   // [rad/s]
-  EXPECT_LT(std::abs(state.v[0]), 2 * lever * std::abs(state.v[2]) + 1e-7); // [m/s]
+  // What horizontal velocity is left is the rocking (β̇ × lever), no sliding:
+  // compared as amplitudes over the last tenth (40 ms), not at one instant (v_x and
+  // β̇ of the rocking are not in phase: the contact point moves with the
+  // beam's surface, −h/2 ẇ').
+  EXPECT_LT(max_beta_rate_late, 1e-3);                         // [rad/s]
+  EXPECT_LT(max_vx_late, 2 * lever * max_beta_rate_late + 1e-7); // [m/s]
 }
 
 TEST(FETransientSlider, EnergyBalanceClosesOverAContactRun)
