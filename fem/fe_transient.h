@@ -244,8 +244,8 @@ namespace beamslider
     static constexpr unsigned int max_cell_dofs  = 4 + max_axial_dofs;
     struct CellData
     {
-      std::array<unsigned int, 4> w_dofs;
-      std::array<unsigned int, max_axial_dofs> u_dofs;
+      std::array<unsigned int, 4> w_dofs{};
+      std::array<unsigned int, max_axial_dofs> u_dofs{};
       unsigned int n_u = 0, first_qp = 0, n_qp = 0;
       double x0 = 0, h = 0; // left vertex and length [m]
       std::vector<std::ptrdiff_t> entry; // (4 + n_u)² indices into S0_'s values

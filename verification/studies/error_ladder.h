@@ -66,11 +66,12 @@ namespace beamslider
 
   // The default ladder for a scene. Quick: the published ROM (N = scene's, Δt
   // = scene's), converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
-  // explicit step's limit 2/ω_N forces the smaller steps) and the FE model at
-  // the scene's Δt as the reference. Full: adds the ROM N = 20 with the FE's
-  // implicit midpoint rule, the FE damping the same 20 modes, and the FE at
-  // Δt/2 and Δt/4 (the reference is the FE at Δt/2; Δt/4 shows whether the
-  // reference is converged in the time step).
+  // explicit step's limit 2/ω_N forces the smaller steps) and the FE at Δt/4
+  // as the reference (its end state is converged in Δt there, not at the
+  // scene's Δt). Full: adds the ROM N = 20 with the FE's implicit midpoint
+  // rule, the FE damping the same 20 modes, the FE at Δt and Δt/2 (not
+  // converged: they show how far off an FE at the ROM's step is) and at Δt/8
+  // (whether the reference is converged).
   std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
 
   // Runs every rung as an ensemble of `members` members over [0, end_time].
