@@ -152,6 +152,17 @@ namespace beamslider
         a.final_amplitude += periods[k].amplitude_over_h / tail;
       }
 
+    // Adaptation time: from when on every period mean x̄ stays within
+    // `settle_tolerance` of the end state (the end of the last period
+    // outside it; 0 if none is).
+    a.adaptation_time = 0.;
+    for (std::size_t k = n; k-- > 0;)
+      if (std::abs(periods[k].slider_x_over_L - a.final_position) > th.settle_tolerance)
+        {
+          a.adaptation_time = periods[k].t_end;
+          break;
+        }
+
     // Turn-around.
     std::size_t k_turn = 0;
     for (std::size_t k = 0; k < n; ++k)

@@ -30,6 +30,10 @@
 //                  end state is `turn_margin` back toward the centre from it;
 //   end state      x̄ and a averaged over the last `final_window` (or the last
 //                  tenth of a shorter run);
+//   adaptation time  the end of the last period whose x̄ lies more than
+//                  `settle_tolerance` from the end state's: from then on the
+//                  slider stays at its end position (a value near the run's
+//                  end says it has not settled);
 //   class          failed / reached a support (by the run's status); else
 //                  relaxation oscillation (≥ 2 jumps); signature move (toward
 //                  the clamp, jump, turn, and the end on the upper branch:
@@ -61,6 +65,7 @@ namespace beamslider
     double direction_threshold = 0.005; // [x/L]
     double turn_margin         = 0.02;  // [x/L]
     double final_window        = 1.0;   // [s]
+    double settle_tolerance    = 0.01;  // [x/L]
     double high_end_share      = 0.5;   // [-]
     double damped_share        = 0.2;   // [-]
 
@@ -103,6 +108,7 @@ namespace beamslider
     double turn_position = 0, turn_time = 0; // x_C/L, [s]
 
     double final_position = 0, final_amplitude = 0; // x_C/L, [h]
+    double adaptation_time = 0;                     // [s]
     bool crosses_centre = false;
 
     AdaptationClass outcome = AdaptationClass::too_short;

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
-          libbenchmark-dev libcli11-dev python3-matplotlib)
+          libbenchmark-dev libcli11-dev python3-matplotlib openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

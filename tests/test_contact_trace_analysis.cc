@@ -134,3 +134,19 @@ TEST(TraceAnalysis, CentreCrossingAndEndStateWindow)
       }
   EXPECT_NEAR(c.final_position, mean / n, 2e-3);
 }
+
+TEST(TraceAnalysis, AdaptationTimeIsWhenTheSliderStaysNearItsEndPosition)
+{
+  // x moves from 0.3 at 0.02 L/s until t = 8 s, then stays at 0.46: it is
+  // within 0.01 L of the end for good from t = 7.5 s on.
+  const auto x = [](double t) { return 0.3 + 0.02 * std::min(t, 8.); };
+  const TraceAnalysis a =
+    analyse_trace(synthetic_periods(20, x, [](double) { return 1.0; }), RunStatus::completed, scene_like);
+  EXPECT_NEAR(a.final_position, 0.46, 1e-12);
+  EXPECT_NEAR(a.adaptation_time, 7.5, 2. / 124.);
+  // A slider still on its way at the end has not settled: the time is near the end.
+  const TraceAnalysis moving = analyse_trace(
+    synthetic_periods(20, [](double t) { return 0.3 + 0.01 * t; }, [](double) { return 1.0; }), RunStatus::completed,
+    scene_like);
+  EXPECT_GT(moving.adaptation_time, 18.);
+}

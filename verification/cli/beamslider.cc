@@ -10,6 +10,7 @@
 //   beamslider sweep SCENE                          prescribed slider position sweeps
 //   beamslider animate SCENE --model fe|rom         ParaView time series (.pvd)
 //   beamslider ensemble SCENE --model rom|fe        K perturbed runs: outcome statistics, --against DIR
+//   beamslider map SCENE --frequency A:B:S ...      outcome maps over a parameter grid (MPI: mpirun -np P)
 //   beamslider verify [SCENE] [--full]              the verification report
 //   beamslider scene-template                       every parameter with unit and range
 //
@@ -156,6 +157,21 @@ int run_command_line(int argc, char **argv)
   ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
   ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
 
+  MapOptions map;
+  auto *map_cmd = app.add_subcommand("map", "the adaptation over a grid of parameters, one run or ensemble per cell "
+                                            "(under mpirun: cells spread over the ranks); restartable");
+  add_common(map_cmd);
+  map_cmd->add_option("--frequency", map.frequency, "excitation frequency axis [Hz]: A:B:STEP or one value");
+  map_cmd->add_option("--acceleration", map.acceleration, "base acceleration amplitude axis [m/s^2]: A:B:STEP or one value");
+  map_cmd->add_option("--start", map.start, "start position axis x_C/L: A:B:STEP or one value");
+  map_cmd->add_option("--axis", map.axes, "any scene parameter as an axis: \"Section/Name=A:B:STEP\" (repeatable)");
+  map_cmd->add_option("--model", map.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  map_cmd->add_option("--members", map.members, "K members per cell (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  map_cmd->add_option("--perturbation", map.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  map_cmd->add_option("--end-time", map.end_time, "simulated time per member [s]")->check(finite_positive());
+
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
@@ -207,6 +223,8 @@ int run_command_line(int argc, char **argv)
         return run_animate(common, animate);
       if (*ensemble_cmd)
         return run_ensemble_command(common, ensemble);
+      if (*map_cmd)
+        return run_map(common, map);
       if (*verify_cmd)
         return run_verify(common, verify);
       if (*template_cmd)

@@ -55,6 +55,10 @@ namespace beamslider
     if (interrupted())
       return interruption_exit_code();
     add_fe_rom_section(report, scene, options.full);
+    flush();
+    if (interrupted())
+      return interruption_exit_code();
+    add_map_section(report, scene, options.full);
     if (interrupted())
       return interruption_exit_code();
 

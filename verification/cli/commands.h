@@ -103,6 +103,21 @@ namespace beamslider
   };
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
 
+  // `beamslider map`: the adaptation over a grid of scene parameters, on MPI
+  // ranks when started by mpirun (command_map.cc).
+  struct MapOptions
+  {
+    std::string frequency;          // "A:B:STEP" [Hz] or one value; "" = not an axis
+    std::string acceleration;       // [m/s²]
+    std::string start;              // x_C/L [-]
+    std::vector<std::string> axes;  // "Section/Name=A:B:STEP"
+    std::string model = "rom";      // rom | fe
+    unsigned int members = 1;       // K per cell
+    double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
+    std::optional<double> end_time; // [s]; default the scene's
+  };
+  int run_map(const CommonOptions &common, const MapOptions &options);
+
   // The scene of a command that simulates: the scene file, or with a case
   // name the file with the case's parameters (simulation_cases.h); the
   // user's overrides last. `modified` lists the case's own parameters the

@@ -56,4 +56,7 @@ namespace beamslider
   // Section 5: FE against ROM adaptation traces, speed against accuracy,
   // failure chart (report_fe_rom.cc).
   void add_fe_rom_section(Report &report, const Scene &scene, bool full);
+  // Section 6: the operating range, a map of the adaptation over frequency ×
+  // level with the published cases (--full only; report_map.cc).
+  void add_map_section(Report &report, const Scene &scene, bool full);
 } // namespace beamslider

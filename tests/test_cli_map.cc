@@ -1,0 +1,195 @@
+// `beamslider map` end to end: the grid parser, restart after a kill (the
+// same rows as an uninterrupted run), and a 2-rank run under mpirun giving
+// the same rows as one process.
+#include "meshes/scene.h"
+#include "verification/report/report.h"
+#include "verification/studies/operating_map.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+extern char **environ;
+
+using namespace beamslider;
+
+namespace
+{
+  // Runs a program with an argument vector (no shell) and an environment
+  // without the MPI variables of this test process (its MPI is a singleton:
+  // a child must not take it for an mpirun launch). Returns the exit status.
+  int run_program(const std::vector<std::string> &args, const std::vector<std::string> &extra_env = {})
+  {
+    std::vector<std::string> env;
+    for (char **e = environ; *e; ++e)
+      {
+        const std::string v = *e;
+        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
+          continue;
+        env.push_back(v);
+      }
+    env.insert(env.end(), extra_env.begin(), extra_env.end());
+    std::vector<char *> argv, envp;
+    for (const auto &a : args)
+      argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    for (const auto &v : env)
+      envp.push_back(const_cast<char *>(v.c_str()));
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+      return -1;
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+  std::string read_file(const std::filesystem::path &p)
+  {
+    std::ifstream in(p);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  // The lines of a file as a sorted list (map.csv's rows come in the order
+  // cells finish).
+  std::vector<std::string> sorted_lines(const std::filesystem::path &p)
+  {
+    std::vector<std::string> lines;
+    std::istringstream in(read_file(p));
+    std::string l;
+    while (std::getline(in, l))
+      lines.push_back(l);
+    std::sort(lines.begin(), lines.end());
+    return lines;
+  }
+
+  std::filesystem::path fresh(const std::string &name)
+  {
+    const auto dir = std::filesystem::temp_directory_path() / ("beamslider_map_" + name + "_" + std::to_string(getpid()));
+    std::filesystem::remove_all(dir);
+    return dir;
+  }
+
+  // A small map: 2 frequencies × 2 accelerations, 2 members, 1.5 s of the ROM.
+  std::vector<std::string> small_map(const std::filesystem::path &out)
+  {
+    return {BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:10", "--acceleration", "10:14:4", "--members", "2",
+            "--end-time", "1.5", "--output", out.string()};
+  }
+} // namespace
+
+TEST(MapGrid, RangesAxesAndCells)
+{
+  const std::vector<double> f = parse_grid_range("95:135:2.5", "--frequency");
+  ASSERT_EQ(f.size(), 17u);
+  EXPECT_EQ(f.front(), 95.);
+  EXPECT_EQ(f.back(), 135.); // reached despite round-off in 16 × 2.5
+  EXPECT_EQ(parse_grid_range("0.1:0.3:0.1", "--start").back(), 0.3);
+  EXPECT_EQ(parse_grid_range("124", "--frequency"), std::vector<double>{124.});
+  for (const char *bad : {"1:2", "2:1:0.5", "1:2:0", "1:2:-1", "nan", "1:x:1", "0:1:1e-6", ""})
+    EXPECT_THROW(parse_grid_range(bad, "--frequency"), InputError) << bad;
+
+  const MapAxis mu = parse_parameter_axis("Contact/Friction coefficient=0:0.4:0.1");
+  EXPECT_EQ(mu.parameter, "Contact/Friction coefficient");
+  EXPECT_EQ(mu.column, "contact_friction_coefficient");
+  EXPECT_EQ(mu.values.size(), 5u);
+  EXPECT_THROW(parse_parameter_axis("Friction=0:1:0.1"), InputError);
+
+  // Row-major cells, the first axis slowest.
+  MapGrid grid;
+  grid.axes = {{"A/a", "a", {1, 2}}, {"B/b", "b", {10, 20, 30}}};
+  ASSERT_EQ(grid.n_cells(), 6u);
+  EXPECT_EQ(grid.cell_values(4), (std::vector<double>{2, 20}));
+  EXPECT_EQ(map_cell_key(grid, 5), "2,30");
+  EXPECT_EQ(map_row_cell_key("2,30,1,0,completed", 2), "2,30");
+}
+
+TEST(MapCommand, RestartAfterAKillKeepsFinishedCellsAndEndsWithTheSameRows)
+{
+  const auto full = fresh("full"), cut = fresh("cut");
+  ASSERT_EQ(run_program(small_map(full)), 0);
+  const std::vector<std::string> reference = sorted_lines(full / "map.csv");
+  ASSERT_EQ(reference.size(), 1u + 4 * 2); // header, 4 cells × 2 members
+
+  // What a kill -9 leaves: two complete cells, one cell with only one of its
+  // two members, and a last line cut short.
+  std::filesystem::create_directories(cut);
+  std::filesystem::copy_file(full / "map_settings.txt", cut / "map_settings.txt");
+  std::istringstream in(read_file(full / "map.csv"));
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::string> rows;
+  while (std::getline(in, line))
+    rows.push_back(line);
+  std::sort(rows.begin(), rows.end()); // rows of a cell next to each other
+  {
+    std::ofstream out(cut / "map.csv");
+    out << header << '\n' << rows[0] << '\n' << rows[1] << '\n' << rows[2] << '\n' << rows[3] << '\n' << rows[4]
+        << '\n' << rows[6].substr(0, rows[6].size() / 2);
+  }
+  ASSERT_EQ(run_program(small_map(cut)), 0);
+  EXPECT_EQ(sorted_lines(cut / "map.csv"), reference);
+  // The two complete cells were kept, not computed again: timing.csv lists
+  // only the two others.
+  EXPECT_EQ(sorted_lines(cut / "timing.csv").size(), 1u + 2);
+
+  // Another map into the same folder is refused, not mixed in.
+  std::vector<std::string> other = small_map(cut);
+  other[4]                       = "110:125:5";
+  EXPECT_EQ(run_program(other), 2);
+  std::filesystem::remove_all(full);
+  std::filesystem::remove_all(cut);
+}
+
+TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
+{
+  const auto one = fresh("one"), two = fresh("two");
+  ASSERT_EQ(run_program(small_map(one)), 0);
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe"};
+  const std::vector<std::string> map = small_map(two);
+  args.insert(args.end(), map.begin(), map.end());
+  // Root in a container (CI): Open MPI's opt-in.
+  ASSERT_EQ(run_program(args, {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"}), 0);
+  EXPECT_EQ(sorted_lines(two / "map.csv"), sorted_lines(one / "map.csv"));
+  // Both ranks computed cells.
+  std::set<std::string> ranks;
+  std::istringstream timing(read_file(two / "timing.csv"));
+  std::string line;
+  std::getline(timing, line);
+  while (std::getline(timing, line))
+    ranks.insert(line.substr(line.rfind(',', line.rfind(',') - 1) + 1, 1));
+  EXPECT_EQ(ranks.size(), 2u);
+  std::filesystem::remove_all(one);
+  std::filesystem::remove_all(two);
+}
+
+// Report section 6 on its own (minutes: a benchmark-like driver, disabled in
+// the suite): BEAMSLIDER_SECTION6_OUTPUT=dir build/tests/test_cli_map
+// --gtest_also_run_disabled_tests --gtest_filter='*Section6*'
+TEST(MapReport, DISABLED_Section6Alone)
+{
+  const char *dir_env = std::getenv("BEAMSLIDER_SECTION6_OUTPUT");
+  Report report;
+  report.dir        = dir_env ? dir_env : "/tmp/section6";
+  report.scene_file = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
+  std::filesystem::create_directories(report.dir);
+  add_map_section(report, read_scene(report.scene_file), true);
+  std::ofstream(report.dir + "/section6.md") << report.text.str();
+}

@@ -1,0 +1,310 @@
+// `[mpirun -np P] beamslider map [SCENE] --frequency A:B:STEP --acceleration
+// A:B:STEP [--start A:B:STEP] [--axis "Section/Name=A:B:STEP"]... [--members K]
+// [--model rom|fe] [--end-time S]`: the adaptation on every cell of a grid
+// (verification/studies/operating_map.h), spread over MPI ranks
+// (verification/cli/mpi_cells.h).
+//
+// Writes into the output folder:
+//   map.csv               one row per cell and member, the grid values first;
+//                         each finished cell is appended and flushed at once
+//   map_settings.txt      what the map is (scene content, model, members,
+//                         end time, axes): a restart must match it
+//   timing.csv            cell,rank,wall_s (appended; not part of the result)
+//   published_cases.csv   the published cases of the scene, to mark on the maps
+//   summary.md            outcome classes, cells per second, ranks
+//   map_*.png             heat maps (scripts/plot_map.py)
+//
+// Restart: the same command on the same folder keeps the complete cells of
+// map.csv (a cell cut short by a kill is dropped and computed again) and
+// computes the others; the file then holds the same rows as an uninterrupted
+// run, in another order.
+#include "contact/interruption.h"
+#include "contact/output_file.h"
+#include "meshes/scene.h"
+#include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
+#include "verification/report/csv_writer.h"
+#include "verification/studies/model_choice.h"
+#include "verification/studies/operating_map.h"
+#include "verification/studies/simulation_cases.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string read_whole(const std::string &path)
+    {
+      std::ifstream in(path, std::ios::binary);
+      std::ostringstream s;
+      s << in.rdbuf();
+      return s.str();
+    }
+
+    // Appends to a file and makes it reach the disk, checked.
+    void append_checked(const std::string &path, const std::string &text)
+    {
+      std::FILE *f = std::fopen(path.c_str(), "ab");
+      if (!f)
+        throw OutputError("cannot open '" + path + "' to append: " + std::strerror(errno));
+      const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+      const bool flushed = std::fflush(f) == 0;
+      const bool closed  = std::fclose(f) == 0;
+      if (!written || !flushed || !closed)
+        throw OutputError("cannot write to '" + path + "': " + std::strerror(errno));
+    }
+
+    std::string expected_class_of_case(const std::string &name)
+    {
+      for (const char *c : {"signature-move", "trivial-adaption", "relaxation-oscillation"})
+        if (name.rfind(c, 0) == 0)
+          {
+            std::string s = c;
+            std::replace(s.begin(), s.end(), '-', ' ');
+            return s;
+          }
+      if (name.rfind("self-damping", 0) == 0)
+        return "self-damping";
+      return "";
+    }
+
+    // The published cases that differ from the scene only in frequency,
+    // acceleration and start position (those a map over them can show).
+    std::string published_cases_csv()
+    {
+      std::ostringstream out;
+      out << "name,frequency_hz,acceleration_m_s2,start_x_over_L,expected_outcome\n";
+      for (const SimulationCase &c : simulation_cases())
+        {
+          std::map<std::string, std::string> v;
+          bool only_excitation = true;
+          for (const std::string &o : c.overrides)
+            {
+              const std::size_t eq = o.find('=');
+              const std::string key = o.substr(0, eq);
+              if (key == "Excitation/Frequency" || key == "Excitation/Acceleration amplitude" ||
+                  key == "Initial state/Slider position")
+                v[key] = o.substr(eq + 1);
+              else
+                only_excitation = false;
+            }
+          const std::string expected = expected_class_of_case(c.name);
+          if (only_excitation && !expected.empty())
+            out << c.name << ',' << v["Excitation/Frequency"] << ',' << v["Excitation/Acceleration amplitude"] << ','
+                << v["Initial state/Slider position"] << ',' << expected << '\n';
+        }
+      return out.str();
+    }
+
+    std::string duration_text(const double seconds)
+    {
+      std::ostringstream s;
+      if (seconds < 120)
+        s << std::fixed << std::setprecision(0) << seconds << " s";
+      else if (seconds < 7200)
+        s << std::fixed << std::setprecision(1) << seconds / 60 << " min";
+      else
+        s << std::fixed << std::setprecision(1) << seconds / 3600 << " h";
+      return s.str();
+    }
+  } // namespace
+
+  int run_map(const CommonOptions &common, const MapOptions &options)
+  {
+    using clock = std::chrono::steady_clock;
+    const auto start_time = clock::now();
+    // Under mpirun every rank runs this; only rank 0 reads back, writes and prints.
+    MpiSession mpi(launched_by_mpi_launcher());
+    const bool root = mpi.rank() == 0;
+
+    const std::string scene_file = resolve_scene_path(common.scene_file);
+    check_overrides_unique(common.overrides);
+    const Scene base = read_scene(scene_file, common.overrides);
+
+    MapGrid grid;
+    if (!options.frequency.empty())
+      grid.axes.push_back({"Excitation/Frequency", "frequency_hz", parse_grid_range(options.frequency, "--frequency")});
+    if (!options.acceleration.empty())
+      grid.axes.push_back({"Excitation/Acceleration amplitude", "acceleration_m_s2",
+                           parse_grid_range(options.acceleration, "--acceleration")});
+    if (!options.start.empty())
+      grid.axes.push_back(
+        {"Initial state/Slider position", "start_x_over_L", parse_grid_range(options.start, "--start")});
+    for (const std::string &a : options.axes)
+      grid.axes.push_back(parse_parameter_axis(a));
+    if (grid.axes.empty())
+      throw InputError("map: no axis given: use --frequency, --acceleration, --start or --axis");
+    for (std::size_t i = 0; i < grid.axes.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (grid.axes[i].parameter == grid.axes[j].parameter)
+          throw InputError("map: the parameter '" + grid.axes[i].parameter + "' is given as two axes");
+
+    MapSettings settings;
+    settings.model.family = options.model;
+    settings.n_members    = options.members;
+    settings.perturbation = options.perturbation;
+    settings.end_time     = options.end_time ? *options.end_time : base.time_stepping.end_time;
+
+    // Every cell's scene is checked before any work: a cell outside the
+    // allowed ranges is an input error on every rank alike, not a dead worker.
+    const std::size_t n_cells = grid.n_cells();
+    for (std::size_t c = 0; c < n_cells; ++c)
+      {
+        const Scene s = map_cell_scene(scene_file, common.overrides, grid, c, settings.end_time);
+        const double x_last = s.initial.slider_position_over_L + (settings.n_members - 1) * settings.perturbation;
+        if (!(x_last < 1.))
+          throw InputError("--perturbation " + std::to_string(settings.perturbation) +
+                           " moves the last member's start beyond the beam in cell " + map_cell_key(grid, c));
+      }
+
+    const std::vector<std::string> columns = map_csv_columns(grid);
+    std::string dir, map_csv;
+    std::vector<std::size_t> todo;
+    std::size_t n_skipped = 0;
+    if (root)
+      {
+        dir     = prepare_output_dir(common, base.name, "map");
+        map_csv = dir + "/map.csv";
+        // What this map is; a restart into the same folder must be the same map.
+        std::ostringstream what;
+        what << "scene " << base.name << " content " << scene_content_key(base) << "\nmodel " << options.model
+             << "\nmembers " << settings.n_members << "\nperturbation " << settings.perturbation << "\nend time "
+             << settings.end_time << " s\n";
+        for (const std::string &o : common.overrides)
+          what << "set " << o << "\n";
+        for (const MapAxis &a : grid.axes)
+          {
+            what << "axis " << a.parameter << " =";
+            for (const double v : a.values)
+              what << ' ' << v;
+            what << "\n";
+          }
+        const std::string settings_path = dir + "/map_settings.txt";
+        const std::string previous      = read_whole(settings_path);
+        std::map<std::string, std::string> finished;
+        if (!previous.empty())
+          {
+            if (previous != what.str())
+              throw InputError("the output folder '" + dir + "' holds a map with other settings (" + settings_path +
+                               "); use another --output or remove that folder");
+            finished = read_finished_cells(map_csv, columns, settings.n_members);
+          }
+        write_text_file(settings_path, what.str());
+        // map.csv anew with the complete cells only (atomically: a kill now
+        // leaves the old file or the new one).
+        std::string header;
+        for (std::size_t k = 0; k < columns.size(); ++k)
+          header += (k ? "," : "") + columns[k];
+        std::string kept = header + "\n";
+        for (const auto &[key, rows] : finished)
+          kept += rows;
+        write_file_atomically(map_csv, kept);
+        for (std::size_t c = 0; c < n_cells; ++c)
+          if (finished.count(map_cell_key(grid, c)))
+            ++n_skipped;
+          else
+            todo.push_back(c);
+        write_text_file(dir + "/published_cases.csv", published_cases_csv());
+        if (read_whole(dir + "/timing.csv").empty())
+          write_text_file(dir + "/timing.csv", "cell,rank,wall_s\n");
+
+        std::cout << "map " << base.name << ": " << n_cells << " cells";
+        for (const MapAxis &a : grid.axes)
+          std::cout << (&a == &grid.axes.front() ? " (" : " x ") << a.values.size() << " " << a.column;
+        std::cout << ") x " << settings.n_members << " member(s) of " << options.model << ", " << settings.end_time
+                  << " s each, on " << mpi.size() << " rank(s)";
+        if (n_skipped)
+          std::cout << "; " << n_skipped << " cells already in map.csv are kept";
+        std::cout << "; into " << dir << std::endl;
+      }
+
+    std::size_t n_done = 0;
+    std::map<std::string, unsigned int> class_counts;
+    const auto work_start = clock::now();
+    distribute_cells(
+      mpi, todo,
+      [&](const std::size_t cell) {
+        const auto t0        = clock::now();
+        std::string rows     = run_map_cell(scene_file, common.overrides, grid, cell, settings);
+        const double seconds = std::chrono::duration<double>(clock::now() - t0).count();
+        if (!rows.empty())
+          rows += "#wall " + std::to_string(seconds) + "\n"; // carried to rank 0 for timing.csv, not written to map.csv
+        return rows;
+      },
+      [&](const std::size_t cell, const std::string &result, const unsigned int rank) {
+        const std::size_t cut = result.rfind("#wall ");
+        const std::string rows = result.substr(0, cut);
+        append_checked(map_csv, rows);
+        const double wall = cut == std::string::npos ? 0. : std::stod(result.substr(cut + 6));
+        append_checked(dir + "/timing.csv",
+                       map_cell_key(grid, cell).insert(0, "\"") + "\"," + std::to_string(rank) + "," +
+                         std::to_string(wall) + "\n");
+        ++n_done;
+        std::istringstream lines(rows);
+        std::string line;
+        while (std::getline(lines, line))
+          {
+            const std::size_t k = [&] {
+              std::size_t pos = 0;
+              for (std::size_t i = 0; i < grid.axes.size() + 3; ++i)
+                pos = line.find(',', pos) + 1;
+              return pos;
+            }();
+            ++class_counts[line.substr(k, line.find(',', k) - k)];
+          }
+        const double elapsed = std::chrono::duration<double>(clock::now() - work_start).count();
+        const double rate    = n_done / elapsed;
+        std::cout << "  cells " << n_done + n_skipped << "/" << n_cells << " (" << map_cell_key(grid, cell)
+                  << " on rank " << rank << ", " << std::fixed << std::setprecision(1) << wall << " s), "
+                  << std::setprecision(3) << rate * 60 << " cells/min, about "
+                  << duration_text((todo.size() - n_done) / rate) << " left" << std::defaultfloat << std::endl;
+      },
+      [] { return interruption_requested(); });
+
+    if (!root)
+      return 0;
+    const double wall = std::chrono::duration<double>(clock::now() - start_time).count();
+    const double work_wall = std::chrono::duration<double>(clock::now() - work_start).count();
+    if (interruption_requested() || n_done < todo.size())
+      {
+        std::cerr << "map: stopped after " << n_done << " of " << todo.size()
+                  << " cells; map.csv holds every finished cell: run the same command again to continue" << std::endl;
+        return interruption_requested() ? 0 : 1; // main() turns an interruption into 130/143
+      }
+
+    std::ostringstream summary;
+    summary << "# Map: scene `" << base.name << "`\n\n- Axes:";
+    for (const MapAxis &a : grid.axes)
+      summary << " " << a.parameter << " (" << a.values.size() << " values, " << a.values.front() << " … "
+              << a.values.back() << ");";
+    summary << "\n- " << n_cells << " cells × " << settings.n_members << " member(s), " << options.model << ", "
+            << settings.end_time << " s simulated each; " << n_skipped << " cells kept from an earlier run.\n"
+            << "- " << mpi.size() << " MPI rank(s); " << n_done << " cells computed in " << std::fixed
+            << std::setprecision(1) << work_wall << " s (" << std::setprecision(3) << n_done / work_wall
+            << " cells/s); whole command " << std::setprecision(1) << wall << " s.\n"
+            << std::defaultfloat
+            << "- Classes by the one trace analysis (contact/trace_analysis.h) of each member; the adaptation "
+               "time is when the slider comes within 0.01 L of its end position for good.\n\n"
+            << "| outcome | members (this run) |\n|---|---|\n";
+    for (const auto &[name, count] : class_counts)
+      summary << "| " << name << " | " << count << " |\n";
+    summary << "\nFiles: map.csv (one row per cell and member), timing.csv, published_cases.csv, map_*.png.\n";
+    write_text_file(dir + "/summary.md", summary.str());
+    if (!run_plot_script("plot_map.py", {dir, "map of " + base.name + " (" + options.model + ")"}))
+      note_output_failure("map_*.png (scripts/plot_map.py)");
+    std::cout << "map: " << n_done << " cells in " << std::fixed << std::setprecision(1) << work_wall << " s on "
+              << mpi.size() << " rank(s); " << dir << "/summary.md" << std::endl;
+    return 0;
+  }
+} // namespace beamslider

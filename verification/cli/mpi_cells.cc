@@ -1,0 +1,163 @@
+// Manager–worker distribution of cells over MPI, see mpi_cells.h.
+#include "verification/cli/mpi_cells.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <mpi.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+namespace beamslider
+{
+  namespace
+  {
+    constexpr int tag_result = 1, tag_cell = 2, tag_stop = 3;
+
+    void check(const int error, const char *what)
+    {
+      if (error != MPI_SUCCESS)
+        throw std::runtime_error(std::string("MPI: ") + what + " failed (error code " + std::to_string(error) + ")");
+    }
+  } // namespace
+
+  bool launched_by_mpi_launcher()
+  {
+    // Open MPI's mpirun, PMIx launchers (srun with PMIx), MPICH/Hydra's PMI.
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
+      if (std::getenv(name))
+        return true;
+    return false;
+  }
+
+  struct MpiSession::Impl
+  {
+    int argc            = 1;
+    char name[16]       = "beamslider";
+    char *argv_store[2] = {name, nullptr};
+    char **argv         = argv_store;
+    std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
+  };
+
+  MpiSession::MpiSession(const bool use_mpi)
+  {
+    if (!use_mpi)
+      return;
+    impl_ = std::make_unique<Impl>();
+    impl_->mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(impl_->argc, impl_->argv, 1);
+    int rank = 0, size = 1, provided = MPI_THREAD_SINGLE;
+    check(MPI_Comm_rank(MPI_COMM_WORLD, &rank), "MPI_Comm_rank");
+    check(MPI_Comm_size(MPI_COMM_WORLD, &size), "MPI_Comm_size");
+    check(MPI_Query_thread(&provided), "MPI_Query_thread");
+    rank_       = rank;
+    size_       = size;
+    serialized_ = provided >= MPI_THREAD_SERIALIZED;
+  }
+
+  MpiSession::~MpiSession() = default;
+
+  void distribute_cells(const MpiSession &mpi, const std::vector<std::size_t> &todo,
+                        const std::function<std::string(std::size_t)> &work,
+                        const std::function<void(std::size_t, const std::string &, unsigned int)> &done,
+                        const std::function<bool()> &stop)
+  {
+    std::atomic<std::size_t> next{0};
+    std::mutex done_mutex;
+    // The next cell to hand out, or npos when all are out or we stop.
+    const auto take = [&]() -> std::size_t {
+      if (stop())
+        return std::string::npos;
+      const std::size_t k = next++;
+      return k < todo.size() ? todo[k] : std::string::npos;
+    };
+    const auto finish = [&](const std::size_t cell, const std::string &result, const unsigned int rank) {
+      if (result.empty())
+        return;
+      const std::lock_guard<std::mutex> lock(done_mutex);
+      done(cell, result, rank);
+    };
+
+    if (mpi.size() == 1)
+      {
+        for (std::size_t cell = take(); cell != std::string::npos; cell = take())
+          finish(cell, work(cell), 0);
+        return;
+      }
+
+    if (mpi.rank() == 0)
+      {
+        // The manager: answers every request until each worker has had its stop.
+        auto manage = [&] {
+          unsigned int active = mpi.size() - 1;
+          std::vector<char> buffer;
+          while (active > 0)
+            {
+              int flag = 0;
+              MPI_Status status;
+              check(MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+              if (!flag)
+                {
+                  // Sleeping, not spinning: the manager shares a core with rank 0's work.
+                  std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                  continue;
+                }
+              int count = 0;
+              check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
+              buffer.resize(std::max(count, 1));
+              check(MPI_Recv(buffer.data(), count, MPI_CHAR, status.MPI_SOURCE, tag_result, MPI_COMM_WORLD,
+                             MPI_STATUS_IGNORE),
+                    "MPI_Recv");
+              if (count >= 8)
+                {
+                  std::uint64_t cell = 0;
+                  std::memcpy(&cell, buffer.data(), 8);
+                  finish(cell, std::string(buffer.data() + 8, count - 8), status.MPI_SOURCE);
+                }
+              const std::size_t cell = take();
+              if (cell != std::string::npos)
+                {
+                  const std::uint64_t c = cell;
+                  check(MPI_Send(&c, 1, MPI_UINT64_T, status.MPI_SOURCE, tag_cell, MPI_COMM_WORLD), "MPI_Send");
+                }
+              else
+                {
+                  check(MPI_Send(nullptr, 0, MPI_UINT64_T, status.MPI_SOURCE, tag_stop, MPI_COMM_WORLD), "MPI_Send");
+                  --active;
+                }
+            }
+        };
+        if (mpi.manager_can_work())
+          {
+            std::thread manager(manage);
+            for (std::size_t cell = take(); cell != std::string::npos; cell = take())
+              finish(cell, work(cell), 0);
+            manager.join();
+          }
+        else
+          manage();
+        return;
+      }
+
+    // A worker: ask, compute, send back, until told to stop.
+    std::vector<char> message;
+    while (true)
+      {
+        check(MPI_Send(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD), "MPI_Send");
+        std::uint64_t cell = 0;
+        MPI_Status status;
+        check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
+        if (status.MPI_TAG == tag_stop)
+          return;
+        const std::string result = work(cell);
+        message.resize(8 + result.size());
+        std::memcpy(message.data(), &cell, 8);
+        std::memcpy(message.data() + 8, result.data(), result.size());
+      }
+  }
+} // namespace beamslider

@@ -1,0 +1,251 @@
+// Report section 6: the operating range. A map of the adaptation (the
+// scene's ROM, one run per cell) over excitation frequency × acceleration
+// around the first natural frequency with the slider bonded at its start,
+// classified by the one trace analysis; the published cases run as their own
+// cells and judged against the class their name says; the seed's statement
+// that self-adaptation works "for a broad, yet limited, range of excitation
+// frequencies around the system's first natural frequency" put in numbers.
+// Only with --full (the map takes minutes); the quick report points to
+// `beamslider map`.
+//
+// Files in <report>/map/: map.csv (as `beamslider map` writes it),
+// published_cases.csv, map_*.png (scripts/plot_map.py).
+#include "contact/interruption.h"
+#include "contact/output_file.h"
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+#include "verification/cli/commands.h"
+#include "verification/report/report.h"
+#include "verification/studies/operating_map.h"
+#include "verification/studies/simulation_cases.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <thread>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::vector<double> spaced(const double low, const double high, const unsigned int n, const double unit)
+    {
+      std::vector<double> v;
+      for (unsigned int i = 0; i < n; ++i)
+        v.push_back(std::round((low + (high - low) * i / (n - 1)) / unit) * unit);
+      return v;
+    }
+
+    // Cells of a grid on all cores (threads; a map on a cluster is
+    // `beamslider map` under mpirun).
+    std::vector<std::vector<MapMember>> run_cells(const std::string &scene_file,
+                                                  const std::vector<std::string> &overrides, const MapGrid &grid,
+                                                  const MapSettings &settings)
+    {
+      const std::size_t n = grid.n_cells();
+      std::vector<std::vector<MapMember>> results(n);
+      std::atomic<std::size_t> next{0};
+      std::mutex print;
+      std::size_t done = 0;
+      auto work = [&] {
+        for (std::size_t c = next++; c < n && !interruption_requested(); c = next++)
+          {
+            results[c] = run_map_cell_members(scene_file, overrides, grid, c, settings);
+            const std::lock_guard<std::mutex> lock(print);
+            if (++done % 10 == 0 || done == n)
+              std::cout << "    map: " << done << "/" << n << " cells" << std::endl;
+          }
+      };
+      const unsigned int n_threads = std::max(1u, std::thread::hardware_concurrency());
+      std::vector<std::thread> pool;
+      for (unsigned int i = 1; i < n_threads; ++i)
+        pool.emplace_back(work);
+      work();
+      for (auto &t : pool)
+        t.join();
+      return results;
+    }
+
+    bool adapted(const AdaptationClass c)
+    {
+      return c == AdaptationClass::signature_move || c == AdaptationClass::trivial_adaption;
+    }
+  } // namespace
+
+  void add_map_section(Report &report, const Scene &scene, const bool full)
+  {
+    std::ostringstream &md = report.text;
+    md << "## 6. Operating range\n\n";
+    if (!full)
+      {
+        md << "The map of the adaptation over excitation frequency and level runs with `verify --full` (a few "
+              "minutes on two cores) or on its own, on any number of MPI ranks, with `beamslider map` (README).\n\n";
+        return;
+      }
+    const auto start = std::chrono::steady_clock::now();
+    std::cout << "  section 6: operating-range map" << std::endl;
+
+    // Around the first natural frequency with the slider bonded at its start.
+    const FEBeam beam(scene);
+    const double x_C   = scene.initial.slider_position_over_L * scene.beam.length;
+    const FEModes bonded = compute_bending_modes(beam, 1, BondedBody{x_C, scene.slider_mass(), scene.slider_inertia()});
+    const double f_s   = bonded.omega[0] / (2 * M_PI);
+    const double a0    = scene.excitation.acceleration_amplitude;
+
+    MapGrid grid;
+    grid.axes.push_back({"Excitation/Frequency", "frequency_hz", spaced(0.875 * f_s, 1.25 * f_s, 17, 0.1)});
+    grid.axes.push_back({"Excitation/Acceleration amplitude", "acceleration_m_s2", spaced(0.25 * a0, 1.5 * a0, 9, 0.1)});
+    MapSettings settings;
+    settings.model.family = "rom";
+    settings.n_members    = 1;
+    settings.end_time     = scene.time_stepping.end_time;
+
+    const std::string dir = report.dir + "/map";
+    std::filesystem::create_directories(dir);
+    const std::vector<std::vector<MapMember>> cells = run_cells(report.scene_file, report.overrides, grid, settings);
+    if (interruption_requested())
+      {
+        md << "(interrupted before the map was complete)\n\n";
+        return;
+      }
+    {
+      std::string text;
+      const std::vector<std::string> columns = map_csv_columns(grid);
+      for (std::size_t k = 0; k < columns.size(); ++k)
+        text += (k ? "," : "") + columns[k];
+      text += "\n";
+      for (std::size_t c = 0; c < cells.size(); ++c)
+        text += format_map_rows(grid, c, cells[c]);
+      write_text_file(dir + "/map.csv", text);
+    }
+
+    // The published cases of this scene that a frequency × level map can
+    // show, each run as its own cell (its own start and end time).
+    struct CaseResult
+    {
+      std::string name, expected;
+      double f = 0, a = 0, x0 = 0;
+      MapMember member;
+    };
+    std::vector<CaseResult> cases;
+    std::string cases_csv = "name,frequency_hz,acceleration_m_s2,start_x_over_L,expected_outcome\n";
+    for (const SimulationCase &c : simulation_cases())
+      {
+        std::map<std::string, double> v;
+        bool plain = true;
+        for (const std::string &o : c.overrides)
+          {
+            const std::size_t eq = o.find('=');
+            const std::string key = o.substr(0, eq);
+            if (key == "Excitation/Frequency" || key == "Excitation/Acceleration amplitude" ||
+                key == "Initial state/Slider position")
+              v[key] = std::stod(o.substr(eq + 1));
+            else
+              plain = false;
+          }
+        std::string expected;
+        for (const char *k : {"signature-move", "trivial-adaption", "relaxation-oscillation", "self-damping"})
+          if (c.name.rfind(k, 0) == 0)
+            expected = k;
+        if (!plain || expected.empty() || scene.name != "mueller2023")
+          continue;
+        if (expected != "self-damping")
+          std::replace(expected.begin(), expected.end(), '-', ' ');
+        MapGrid one;
+        one.axes = {{"Excitation/Frequency", "frequency_hz", {v["Excitation/Frequency"]}},
+                    {"Excitation/Acceleration amplitude", "acceleration_m_s2", {v["Excitation/Acceleration amplitude"]}},
+                    {"Initial state/Slider position", "start_x_over_L", {v["Initial state/Slider position"]}}};
+        MapSettings s = settings;
+        s.end_time    = c.end_time;
+        const std::vector<MapMember> m = run_map_cell_members(report.scene_file, report.overrides, one, 0, s);
+        if (m.empty())
+          return; // interrupted
+        cases.push_back({c.name, expected, v["Excitation/Frequency"], v["Excitation/Acceleration amplitude"],
+                         v["Initial state/Slider position"], m.front()});
+        // Marked on the map only if it starts where the map's runs start.
+        if (std::abs(cases.back().x0 - scene.initial.slider_position_over_L) < 1e-9)
+          cases_csv += c.name + "," + fixed(cases.back().f, 1) + "," + fixed(cases.back().a, 1) + "," +
+                       fixed(cases.back().x0, 2) + "," + expected + "\n";
+      }
+    write_text_file(dir + "/published_cases.csv", cases_csv);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    // Counts per class and the frequency band of adaptation per level.
+    std::map<std::string, unsigned int> counts;
+    for (const auto &cell : cells)
+      for (const MapMember &m : cell)
+        ++counts[to_string(m.analysis.outcome)];
+    md << "The scene's ROM (N = " << scene.discretisation.n_modes << ", Δt = " << scene.time_stepping.time_step
+       << " s) from x_C/L = " << scene.initial.slider_position_over_L << " for " << settings.end_time
+       << " s on every cell of a grid of " << grid.axes[0].values.size() << " frequencies from "
+       << fixed(grid.axes[0].values.front(), 1) << " to " << fixed(grid.axes[0].values.back(), 1)
+       << " Hz (0.875 to 1.25 times f_s = " << fixed(f_s, 1)
+       << " Hz, the first natural frequency with the slider bonded at its start) × " << grid.axes[1].values.size()
+       << " base accelerations from " << fixed(grid.axes[1].values.front(), 1) << " to "
+       << fixed(grid.axes[1].values.back(), 1) << " m/s²: " << grid.n_cells()
+       << " runs, one member each (a cell near a class boundary may fall either way: `beamslider map --members K` "
+          "gives each cell an ensemble), "
+       << fixed(wall, 0) << " s wall on " << std::max(1u, std::thread::hardware_concurrency())
+       << " threads. Classes by the one trace analysis of section 4.\n\n| outcome | cells |\n|---|---|\n";
+    for (const auto &[name, n] : counts)
+      md << "| " << name << " | " << n << " |\n";
+
+    md << "\nWhere the slider adapts the system to resonance (signature move or trivial adaption: the end on the upper "
+          "branch), per level:\n\n| a [m/s²] | adapting frequencies [Hz] | as f/f_s | cells adapting |\n|---|---|---|---|\n";
+    const std::size_t n_f = grid.axes[0].values.size();
+    for (std::size_t j = 0; j < grid.axes[1].values.size(); ++j)
+      {
+        double low = 0, high = 0;
+        unsigned int n_adapt = 0;
+        for (std::size_t i = 0; i < n_f; ++i)
+          {
+            const std::vector<MapMember> &cell = cells[i * grid.axes[1].values.size() + j];
+            if (!cell.empty() && adapted(cell.front().analysis.outcome))
+              {
+                const double f = grid.axes[0].values[i];
+                if (n_adapt == 0)
+                  low = f;
+                high = f;
+                ++n_adapt;
+              }
+          }
+        md << "| " << fixed(grid.axes[1].values[j], 1) << " | "
+           << (n_adapt ? fixed(low, 1) + " – " + fixed(high, 1) : std::string("none")) << " | "
+           << (n_adapt ? fixed(low / f_s, 3) + " – " + fixed(high / f_s, 3) : std::string("–")) << " | " << n_adapt
+           << " of " << n_f << " |\n";
+      }
+    md << "\nThe seed states that self-adaptation works \"for a broad, yet limited, range of excitation frequencies "
+          "around the system's first natural frequency\": the table gives that range at each level (where it is not "
+          "one interval, the cells between low and high include others; see the map).\n\n";
+
+    if (!cases.empty())
+      {
+        md << "The published cases, each run as its own cell (its start and end time):\n\n"
+              "| case | f [Hz] | a [m/s²] | start x_C/L | class found | the name says | end x_C/L | end ŵ/h |\n"
+              "|---|---|---|---|---|---|---|---|\n";
+        unsigned int agree = 0;
+        for (const CaseResult &c : cases)
+          {
+            const std::string found = to_string(c.member.analysis.outcome);
+            agree += found == c.expected;
+            md << "| " << c.name << " | " << fixed(c.f, 1) << " | " << fixed(c.a, 1) << " | " << fixed(c.x0, 2) << " | "
+               << found << " | " << c.expected << (found == c.expected ? "" : " (**differs**)") << " | "
+               << fixed(c.member.analysis.final_position, 3) << " | " << fixed(c.member.analysis.final_amplitude, 2)
+               << " |\n";
+          }
+        md << "\n" << agree << " of " << cases.size()
+           << " published cases fall in the class their name says. The maps mark those that start where the map's runs "
+              "start.\n\n";
+      }
+    if (run_plot_script("plot_map.py", {dir, "operating range of " + scene.name + " (ROM)"}))
+      md << "![Outcome class over frequency and level](map/map_outcome_frequency_hz_acceleration_m_s2.png)\n\n"
+         << "![Final slider position](map/map_final_position_frequency_hz_acceleration_m_s2.png)\n\n"
+         << "![Late amplitude](map/map_late_amplitude_frequency_hz_acceleration_m_s2.png)\n\n";
+    md << "Files: map/map.csv (the columns of `beamslider map`), map/published_cases.csv, map/map_*.png.\n\n";
+  }
+} // namespace beamslider

@@ -1,0 +1,311 @@
+// Operating-range maps, see operating_map.h.
+#include "verification/studies/operating_map.h"
+
+#include "contact/adaptation_run.h"
+#include "contact/beam_system.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/simulation_cases.h"
+
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  namespace
+  {
+    double parse_number(const std::string &text, const std::string &option)
+    {
+      std::size_t used = 0;
+      double x         = 0;
+      try
+        {
+          x = std::stod(text, &used);
+        }
+      catch (const std::exception &)
+        {
+          used = 0;
+        }
+      if (used == 0 || used != text.size() || !std::isfinite(x))
+        throw InputError(option + " '" + text + "': not a finite number");
+      return x;
+    }
+
+    // Grid values are written with 12 significant digits, so that A + i·STEP
+    // gives the same text (and the same scene) on every rank and every run.
+    double rounded(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(12) << x;
+      return std::stod(s.str());
+    }
+
+    std::string number_field(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(12) << x;
+      return s.str();
+    }
+
+    // Results: 8 significant digits (far below the ensemble spread).
+    std::string result_field(const double x)
+    {
+      std::ostringstream s;
+      s << std::setprecision(8) << x;
+      return s.str();
+    }
+
+    std::vector<std::string> split(const std::string &line, const char separator)
+    {
+      std::vector<std::string> fields;
+      std::stringstream in(line);
+      std::string field;
+      while (std::getline(in, field, separator))
+        fields.push_back(field);
+      if (!line.empty() && line.back() == separator)
+        fields.emplace_back();
+      return fields;
+    }
+  } // namespace
+
+  std::vector<double> parse_grid_range(const std::string &text, const std::string &option)
+  {
+    const std::vector<std::string> parts = split(text, ':');
+    if (parts.size() == 1)
+      return {rounded(parse_number(parts[0], option))};
+    if (parts.size() != 3)
+      throw InputError(option + " '" + text + "': expected A:B:STEP (from A to B in steps of STEP) or one value");
+    const double a = parse_number(parts[0], option), b = parse_number(parts[1], option),
+                 step = parse_number(parts[2], option);
+    if (!(step > 0.))
+      throw InputError(option + " '" + text + "': STEP = " + parts[2] + " must be > 0");
+    if (b < a)
+      throw InputError(option + " '" + text + "': the end B = " + parts[1] + " lies below the start A = " + parts[0]);
+    const double count = std::floor((b - a) / step + 1e-9) + 1;
+    if (count > 10000)
+      throw InputError(option + " '" + text + "': " + std::to_string(static_cast<long long>(count)) +
+                       " values, more than the 10000 allowed per axis");
+    std::vector<double> values;
+    for (long long i = 0; i < static_cast<long long>(count); ++i)
+      values.push_back(rounded(a + i * step));
+    return values;
+  }
+
+  MapAxis parse_parameter_axis(const std::string &text)
+  {
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || text.find('/') > eq)
+      throw InputError("--axis '" + text + "': expected \"Section/Name=A:B:STEP\"");
+    MapAxis axis;
+    axis.parameter = text.substr(0, eq);
+    axis.values    = parse_grid_range(text.substr(eq + 1), "--axis " + axis.parameter);
+    for (const char c : axis.parameter)
+      axis.column += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '_';
+    return axis;
+  }
+
+  std::size_t MapGrid::n_cells() const
+  {
+    std::size_t n = axes.empty() ? 0 : 1;
+    for (const MapAxis &a : axes)
+      n *= a.values.size();
+    return n;
+  }
+
+  std::vector<double> MapGrid::cell_values(std::size_t c) const
+  {
+    std::vector<double> v(axes.size());
+    for (std::size_t k = axes.size(); k-- > 0;)
+      {
+        v[k] = axes[k].values[c % axes[k].values.size()];
+        c /= axes[k].values.size();
+      }
+    return v;
+  }
+
+  Scene map_cell_scene(const std::string &scene_file, const std::vector<std::string> &overrides,
+                       const MapGrid &grid, const std::size_t cell, const double end_time)
+  {
+    // The axes replace a user's --set of the same parameter (read_scene
+    // refuses a parameter set twice).
+    std::vector<std::string> all;
+    for (const std::string &o : overrides)
+      {
+        bool on_axis = false;
+        for (const MapAxis &a : grid.axes)
+          on_axis = on_axis || o.rfind(a.parameter + "=", 0) == 0;
+        if (!on_axis)
+          all.push_back(o);
+      }
+    const std::vector<double> values = grid.cell_values(cell);
+    for (std::size_t k = 0; k < grid.axes.size(); ++k)
+      all.push_back(grid.axes[k].parameter + "=" + number_field(values[k]));
+    all.push_back("Time stepping/End time=" + number_field(end_time));
+    return read_scene(scene_file, all);
+  }
+
+  std::vector<std::string> map_csv_columns(const MapGrid &grid)
+  {
+    std::vector<std::string> columns;
+    for (const MapAxis &a : grid.axes)
+      columns.push_back(a.column);
+    for (const char *c : {"member", "perturbation", "status", "outcome", "final_x_over_L", "late_amplitude_over_h",
+                          "adaptation_time_s", "jump_count", "first_jump_time_s"})
+      columns.emplace_back(c);
+    return columns;
+  }
+
+  std::string map_cell_key(const MapGrid &grid, const std::size_t cell)
+  {
+    std::string key;
+    const std::vector<double> values = grid.cell_values(cell);
+    for (std::size_t k = 0; k < values.size(); ++k)
+      key += (k ? "," : "") + number_field(values[k]);
+    return key;
+  }
+
+  std::string map_row_cell_key(const std::string &row, const std::size_t n_axes)
+  {
+    std::size_t end = 0;
+    for (std::size_t k = 0; k < n_axes; ++k)
+      {
+        end = row.find(',', end);
+        if (end == std::string::npos)
+          return row;
+        ++end;
+      }
+    return row.substr(0, end == 0 ? 0 : end - 1);
+  }
+
+  std::vector<MapMember> run_map_cell_members(const std::string &scene_file, const std::vector<std::string> &overrides,
+                                              const MapGrid &grid, const std::size_t cell, const MapSettings &settings)
+  {
+    const Scene scene = map_cell_scene(scene_file, overrides, grid, cell, settings.end_time);
+    std::vector<MapMember> members;
+    for (unsigned int m = 0; m < settings.n_members; ++m)
+      {
+        Scene member_scene = scene;
+        member_scene.initial.slider_position_over_L += m * settings.perturbation;
+        validate_scene(member_scene);
+        std::vector<PeriodRecord> periods;
+        RunResult result;
+        try
+          {
+            ModelSetting model = scene_model(member_scene, settings.model.family);
+            model.integrator   = settings.model.integrator;
+            const std::unique_ptr<BeamSystem> beam = make_beam_model(member_scene, model);
+            RunOptions options        = RunOptions::from_scene(member_scene);
+            options.progress_interval = 1e300;
+            AdaptationRun run(member_scene, *beam, options);
+            run.on_period = [&periods](const PeriodRecord &p) { periods.push_back(p); };
+            result        = run.run();
+          }
+        catch (const InputError &)
+          {
+            throw;
+          }
+        catch (const std::invalid_argument &)
+          {
+            throw;
+          }
+        catch (const std::exception &e)
+          {
+            result.status  = RunStatus::beam_solver_failure;
+            result.message = e.what();
+          }
+        if (result.status == RunStatus::interrupted)
+          return {};
+        MapMember member;
+        member.index        = m;
+        member.perturbation = m * settings.perturbation;
+        member.status       = result.status;
+        member.analysis     = analyse_trace(periods, result.status, trace_thresholds(member_scene));
+        members.push_back(std::move(member));
+      }
+    return members;
+  }
+
+  std::string format_map_rows(const MapGrid &grid, const std::size_t cell, const std::vector<MapMember> &members)
+  {
+    const std::string key = map_cell_key(grid, cell);
+    std::ostringstream row;
+    for (const MapMember &m : members)
+      {
+        const TraceAnalysis &a = m.analysis;
+        row << key << ',' << m.index << ',' << result_field(m.perturbation) << ',' << to_string(m.status) << ','
+            << to_string(a.outcome) << ',';
+        if (a.valid)
+          row << result_field(a.final_position) << ',' << result_field(a.final_amplitude) << ','
+              << result_field(a.adaptation_time);
+        else
+          row << ",,";
+        row << ',' << a.n_upward_jumps << ',';
+        if (a.jumped)
+          row << result_field(a.jump_time);
+        row << '\n';
+      }
+    return row.str();
+  }
+
+  std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,
+                           const MapGrid &grid, const std::size_t cell, const MapSettings &settings)
+  {
+    const std::vector<MapMember> members = run_map_cell_members(scene_file, overrides, grid, cell, settings);
+    return members.empty() ? std::string() : format_map_rows(grid, cell, members);
+  }
+
+  std::map<std::string, std::string> read_finished_cells(const std::string &path,
+                                                         const std::vector<std::string> &columns,
+                                                         const unsigned int n_members)
+  {
+    std::map<std::string, std::string> finished;
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+      return finished;
+    std::string header;
+    if (!std::getline(in, header) || in.eof())
+      return finished; // empty or only a cut header: start afresh
+    std::string expected;
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      expected += (k ? "," : "") + columns[k];
+    if (header != expected)
+      throw InputError("the output folder's map.csv has the columns '" + header + "', this map writes '" + expected +
+                       "': use another --output or remove it");
+    const std::size_t n_axes = columns.size() - 9;
+    std::map<std::string, std::vector<std::string>> rows;
+    std::string line;
+    while (std::getline(in, line))
+      {
+        if (in.eof())
+          break; // the last line had no '\n': cut short by a kill
+        if (split(line, ',').size() != columns.size())
+          continue;
+        rows[map_row_cell_key(line, n_axes)].push_back(line);
+      }
+    for (auto &[key, lines] : rows)
+      {
+        // Complete: members 0 … K−1, each once.
+        std::vector<bool> seen(n_members, false);
+        bool complete = lines.size() == n_members;
+        for (const std::string &l : lines)
+          {
+            const std::vector<std::string> f = split(l, ',');
+            const long m = std::strtol(f[n_axes].c_str(), nullptr, 10);
+            if (m < 0 || m >= static_cast<long>(n_members) || seen[m])
+              complete = false;
+            else
+              seen[m] = true;
+          }
+        if (!complete)
+          continue;
+        std::string block;
+        for (const std::string &l : lines)
+          block += l + '\n';
+        finished[key] = block;
+      }
+    return finished;
+  }
+} // namespace beamslider

@@ -1,0 +1,94 @@
+// Operating-range maps: the adaptation run (or a K-member ensemble) on every
+// cell of a grid over scene parameters — excitation frequency, acceleration
+// amplitude, start position, or any other parameter by its scene path — each
+// member classified by the one trace analysis (contact/trace_analysis.h).
+//
+// A cell's result is its rows of map.csv, one per member, formatted here so
+// that the same cell always gives the same bytes (no wall time in them):
+// that is what lets an interrupted map be resumed and end with the content of
+// an uninterrupted one (verification/cli/command_map.cc).
+#pragma once
+
+#include "contact/trace_analysis.h"
+#include "meshes/scene.h"
+#include "verification/studies/fe_rom_study.h"
+
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  // One grid axis: a scene parameter and its values.
+  struct MapAxis
+  {
+    std::string parameter;      // scene path, "Excitation/Frequency"
+    std::string column;         // map.csv column, "frequency_hz"
+    std::vector<double> values; // ascending
+  };
+
+  // "A:B:STEP" (A, A + STEP, … up to B within 1e-9 STEP) or one value "A".
+  // InputError naming `option` for anything else, STEP ≤ 0, B < A, non-finite
+  // numbers or more than 10 000 values.
+  std::vector<double> parse_grid_range(const std::string &text, const std::string &option);
+  // "Section/Name=A:B:STEP" (the --axis option): the parameter, a column
+  // named after it (lowercase, non-alphanumerics as '_').
+  MapAxis parse_parameter_axis(const std::string &text);
+
+  struct MapGrid
+  {
+    std::vector<MapAxis> axes; // the first varies slowest
+    std::size_t n_cells() const;
+    // The axis values of cell c (row-major over the axes).
+    std::vector<double> cell_values(std::size_t c) const;
+  };
+
+  struct MapSettings
+  {
+    ModelSetting model;          // family; Δt, modes, elements from each cell's scene
+    unsigned int n_members = 1;  // K
+    double perturbation    = 1e-9; // start x_C/L + m ε
+    double end_time        = 60.;  // [s]
+  };
+
+  // The scene of a cell: the scene file with the user's overrides, then the
+  // axes' values (an axis overrides a --set of the same parameter), the end
+  // time; validated (InputError for a cell outside the allowed ranges).
+  Scene map_cell_scene(const std::string &scene_file, const std::vector<std::string> &overrides,
+                       const MapGrid &grid, std::size_t cell, double end_time);
+
+  // map.csv: the axis columns, then these.
+  std::vector<std::string> map_csv_columns(const MapGrid &grid);
+  // One member of a cell: how its run ended and the trace analysis.
+  struct MapMember
+  {
+    unsigned int index  = 0;
+    double perturbation = 0; // m ε [-]
+    RunStatus status    = RunStatus::completed;
+    TraceAnalysis analysis;
+  };
+  // Runs cell c's K members (one thread). A member whose run fails has
+  // status and outcome "failed", never an exception; an invalid cell scene
+  // throws InputError. Empty if a member was interrupted (Ctrl-C): an
+  // interrupted cell is no result.
+  std::vector<MapMember> run_map_cell_members(const std::string &scene_file, const std::vector<std::string> &overrides,
+                                              const MapGrid &grid, std::size_t cell, const MapSettings &settings);
+  // The cell's rows of map.csv, each ending in '\n'.
+  std::string format_map_rows(const MapGrid &grid, std::size_t cell, const std::vector<MapMember> &members);
+  // Both: what a map worker returns ("" when interrupted).
+  std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,
+                           const MapGrid &grid, std::size_t cell, const MapSettings &settings);
+  // The key of a row: its axis fields as written (the first n_axes fields).
+  std::string map_row_cell_key(const std::string &row, std::size_t n_axes);
+  std::string map_cell_key(const MapGrid &grid, std::size_t cell);
+
+  // The rows of an existing map.csv grouped by cell key, keeping only the
+  // cells with all K members (a map killed mid-write may have left a cell
+  // incomplete or a last line cut short). Throws InputError if the header
+  // differs from `columns`.
+  std::map<std::string, std::string> read_finished_cells(const std::string &path,
+                                                         const std::vector<std::string> &columns,
+                                                         unsigned int n_members);
+} // namespace beamslider
