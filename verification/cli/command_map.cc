@@ -65,45 +65,13 @@ namespace beamslider
         throw OutputError("cannot write to '" + path + "': " + std::strerror(errno));
     }
 
-    std::string expected_class_of_case(const std::string &name)
-    {
-      for (const char *c : {"signature-move", "trivial-adaption", "relaxation-oscillation"})
-        if (name.rfind(c, 0) == 0)
-          {
-            std::string s = c;
-            std::replace(s.begin(), s.end(), '-', ' ');
-            return s;
-          }
-      if (name.rfind("self-damping", 0) == 0)
-        return "self-damping";
-      return "";
-    }
-
-    // The published cases that differ from the scene only in frequency,
-    // acceleration and start position (those a map over them can show).
     std::string published_cases_csv()
     {
       std::ostringstream out;
       out << "name,frequency_hz,acceleration_m_s2,start_x_over_L,expected_outcome\n";
-      for (const SimulationCase &c : simulation_cases())
-        {
-          std::map<std::string, std::string> v;
-          bool only_excitation = true;
-          for (const std::string &o : c.overrides)
-            {
-              const std::size_t eq = o.find('=');
-              const std::string key = o.substr(0, eq);
-              if (key == "Excitation/Frequency" || key == "Excitation/Acceleration amplitude" ||
-                  key == "Initial state/Slider position")
-                v[key] = o.substr(eq + 1);
-              else
-                only_excitation = false;
-            }
-          const std::string expected = expected_class_of_case(c.name);
-          if (only_excitation && !expected.empty())
-            out << c.name << ',' << v["Excitation/Frequency"] << ',' << v["Excitation/Acceleration amplitude"] << ','
-                << v["Initial state/Slider position"] << ',' << expected << '\n';
-        }
+      for (const PublishedMapCase &c : published_map_cases())
+        out << c.name << ',' << c.frequency_hz << ',' << c.acceleration << ',' << c.start_over_L << ','
+            << c.expected_outcome << '\n';
       return out.str();
     }
 

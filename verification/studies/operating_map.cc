@@ -257,6 +257,42 @@ namespace beamslider
     return members.empty() ? std::string() : format_map_rows(grid, cell, members);
   }
 
+  std::vector<PublishedMapCase> published_map_cases()
+  {
+    std::vector<PublishedMapCase> cases;
+    for (const SimulationCase &c : simulation_cases())
+      {
+        PublishedMapCase p;
+        p.name     = c.name;
+        p.end_time = c.end_time;
+        bool plain = true;
+        for (const std::string &o : c.overrides)
+          {
+            const std::size_t eq  = o.find('=');
+            const std::string key = o.substr(0, eq);
+            if (key == "Excitation/Frequency")
+              p.frequency_hz = std::stod(o.substr(eq + 1));
+            else if (key == "Excitation/Acceleration amplitude")
+              p.acceleration = std::stod(o.substr(eq + 1));
+            else if (key == "Initial state/Slider position")
+              p.start_over_L = std::stod(o.substr(eq + 1));
+            else
+              plain = false;
+          }
+        const std::pair<const char *, AdaptationClass> names[] = {
+          {"signature-move", AdaptationClass::signature_move},
+          {"trivial-adaption", AdaptationClass::trivial_adaption},
+          {"relaxation-oscillation", AdaptationClass::relaxation_oscillation},
+          {"self-damping", AdaptationClass::self_damping}};
+        for (const auto &[prefix, outcome] : names)
+          if (c.name.rfind(prefix, 0) == 0)
+            p.expected_outcome = to_string(outcome);
+        if (plain && !p.expected_outcome.empty())
+          cases.push_back(p);
+      }
+    return cases;
+  }
+
   std::map<std::string, std::string> read_finished_cells(const std::string &path,
                                                          const std::vector<std::string> &columns,
                                                          const unsigned int n_members)

@@ -84,6 +84,16 @@ namespace beamslider
   std::string map_row_cell_key(const std::string &row, std::size_t n_axes);
   std::string map_cell_key(const MapGrid &grid, std::size_t cell);
 
+  // The published cases (simulation_cases.h) that differ from the scene
+  // file only in frequency, acceleration and start position — those a map
+  // over them can show — with the class their name says.
+  struct PublishedMapCase
+  {
+    std::string name, expected_outcome;
+    double frequency_hz = 0, acceleration = 0, start_over_L = 0, end_time = 0;
+  };
+  std::vector<PublishedMapCase> published_map_cases();
+
   // The rows of an existing map.csv grouped by cell key, keeping only the
   // cells with all K members (a map killed mid-write may have left a cell
   // incomplete or a last line cut short). Throws InputError if the header
