@@ -154,7 +154,6 @@ namespace beamslider
         for (unsigned int i = 0; i < n_local; ++i)
           for (unsigned int j = 0; j < n_local; ++j)
             cell.entry[i * n_local + j] = entry_of(global(i), global(j));
-        cell_x0_.push_back(cell.x0);
       }
     if (!beam.support_data().ideal_clamp)
       for (unsigned int end = 0; end < 2; ++end)
@@ -170,6 +169,15 @@ namespace beamslider
       v->setZero(n);
   }
 
+  void FETransientBeam::gather(const CellData &cell, const Eigen::VectorXd &q, std::array<double, 4> &qw,
+                               std::array<double, max_axial_dofs> &qu)
+  {
+    for (unsigned int a = 0; a < 4; ++a)
+      qw[a] = q[cell.w_dofs[a]];
+    for (unsigned int i = 0; i < cell.n_u; ++i)
+      qu[i] = q[cell.u_dofs[i]];
+  }
+
   void FETransientBeam::internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const
   {
     // f = ∫ N δε + M δκ dx with N = EA ε, M = EI κ, δε = δu' + w' δw'
@@ -182,10 +190,7 @@ namespace beamslider
       {
         std::array<double, 4> qw, fw{};
         std::array<double, max_axial_dofs> qu, fu{};
-        for (unsigned int a = 0; a < 4; ++a)
-          qw[a] = q[cell.w_dofs[a]];
-        for (unsigned int i = 0; i < cell.n_u; ++i)
-          qu[i] = q[cell.u_dofs[i]];
+        gather(cell, q, qw, qu);
         for (unsigned int k = 0; k < cell.n_qp; ++k)
           {
             const QuadraturePointData &d = quadrature_[cell.first_qp + k];
@@ -240,10 +245,7 @@ namespace beamslider
         std::array<double, max_cell_dofs * max_cell_dofs> K{};
         std::array<double, 4> qw;
         std::array<double, max_axial_dofs> qu;
-        for (unsigned int a = 0; a < 4; ++a)
-          qw[a] = q_bar[cell.w_dofs[a]];
-        for (unsigned int i = 0; i < cell.n_u; ++i)
-          qu[i] = q_bar[cell.u_dofs[i]];
+        gather(cell, q_bar, qw, qu);
         for (unsigned int k = 0; k < cell.n_qp; ++k)
           {
             const QuadraturePointData &d = quadrature_[cell.first_qp + k];
@@ -312,8 +314,9 @@ namespace beamslider
     // The cell whose left vertex is the last one at or before x, and the
     // Hermite shape functions there (the same numbers as FEBeam::point_shape,
     // without its axial part and its allocations: this runs several times a step).
-    const auto it        = std::upper_bound(cell_x0_.begin(), cell_x0_.end(), x);
-    const CellData &cell = cells_[it == cell_x0_.begin() ? 0 : it - cell_x0_.begin() - 1];
+    const auto it = std::upper_bound(cells_.begin(), cells_.end(), x,
+                                     [](const double x, const CellData &c) { return x < c.x0; });
+    const CellData &cell = it == cells_.begin() ? *it : *std::prev(it);
     const double xi      = std::clamp((x - cell.x0) / cell.h, 0., 1.);
     std::array<double, 4> N, dN, ddN;
     hermite_shape(xi, cell.h, N, dN, ddN);

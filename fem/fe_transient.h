@@ -257,8 +257,10 @@ namespace beamslider
       std::array<double, max_axial_dofs> du;       // axial shape derivatives
       double JxW;
     };
+    // A cell's DoF values of q: (w0, θ0, w1, θ1) and the axial ones.
+    static void gather(const CellData &cell, const Eigen::VectorXd &q, std::array<double, 4> &qw,
+                       std::array<double, max_axial_dofs> &qu);
     std::vector<CellData> cells_;        // ordered from x = 0 to L
-    std::vector<double> cell_x0_;        // their left vertices, for locating x
     std::vector<QuadraturePointData> quadrature_;
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 

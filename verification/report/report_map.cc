@@ -20,13 +20,11 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <thread>
 
 namespace beamslider
@@ -39,36 +37,6 @@ namespace beamslider
       for (unsigned int i = 0; i < n; ++i)
         v.push_back(std::round((low + (high - low) * i / (n - 1)) / unit) * unit);
       return v;
-    }
-
-    // Cells of a grid on all cores (threads; a map on a cluster is
-    // `beamslider map` under mpirun).
-    std::vector<std::vector<MapMember>> run_cells(const std::string &scene_file,
-                                                  const std::vector<std::string> &overrides, const MapGrid &grid,
-                                                  const MapSettings &settings)
-    {
-      const std::size_t n = grid.n_cells();
-      std::vector<std::vector<MapMember>> results(n);
-      std::atomic<std::size_t> next{0};
-      std::mutex print;
-      std::size_t done = 0;
-      auto work = [&] {
-        for (std::size_t c = next++; c < n && !interruption_requested(); c = next++)
-          {
-            results[c] = run_map_cell_members(scene_file, overrides, grid, c, settings);
-            const std::lock_guard<std::mutex> lock(print);
-            if (++done % 10 == 0 || done == n)
-              std::cout << "    map: " << done << "/" << n << " cells" << std::endl;
-          }
-      };
-      const unsigned int n_threads = std::max(1u, std::thread::hardware_concurrency());
-      std::vector<std::thread> pool;
-      for (unsigned int i = 1; i < n_threads; ++i)
-        pool.emplace_back(work);
-      work();
-      for (auto &t : pool)
-        t.join();
-      return results;
     }
 
     bool adapted(const AdaptationClass c)
@@ -107,7 +75,11 @@ namespace beamslider
 
     const std::string dir = report.dir + "/map";
     std::filesystem::create_directories(dir);
-    const std::vector<std::vector<MapMember>> cells = run_cells(report.scene_file, report.overrides, grid, settings);
+    const std::vector<std::vector<MapMember>> cells =
+      run_map_cells(report.scene_file, report.overrides, grid, settings, [](const std::size_t done, const std::size_t n) {
+        if (done % 10 == 0 || done == n)
+          std::cout << "    map: " << done << "/" << n << " cells" << std::endl;
+      });
     if (interruption_requested())
       {
         md << "(interrupted before the map was complete)\n\n";

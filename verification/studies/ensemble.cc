@@ -2,6 +2,7 @@
 #include "verification/studies/ensemble.h"
 
 #include "contact/beam_system.h"
+#include "verification/studies/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <algorithm>
@@ -42,36 +43,24 @@ namespace beamslider
         members[m].wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
       }
 
-    std::atomic<unsigned int> next{0};
     std::mutex report;
-    auto work = [&] {
-      for (unsigned int m = next++; m < K; m = next++)
+    parallel_for(K, settings.n_threads, [&](const std::size_t m) {
+      const auto start = clock::now();
+      EnsembleMember &member = members[m];
+      RunOptions options        = RunOptions::from_scene(scenes[m]);
+      options.progress_interval = 1e300;
+      AdaptationRun run(scenes[m], *models[m], options);
+      run.on_period    = [&member](const PeriodRecord &p) { member.periods.push_back(p); };
+      member.result    = run.run();
+      member.analysis  = analyse_trace(member.periods, member.result.status, thresholds);
+      member.wall_seconds += std::chrono::duration<double>(clock::now() - start).count();
+      models[m].reset(); // its memory back as soon as it is done
+      if (on_member)
         {
-          const auto start = clock::now();
-          EnsembleMember &member = members[m];
-          RunOptions options        = RunOptions::from_scene(scenes[m]);
-          options.progress_interval = 1e300;
-          AdaptationRun run(scenes[m], *models[m], options);
-          run.on_period    = [&member](const PeriodRecord &p) { member.periods.push_back(p); };
-          member.result    = run.run();
-          member.analysis  = analyse_trace(member.periods, member.result.status, thresholds);
-          member.wall_seconds += std::chrono::duration<double>(clock::now() - start).count();
-          models[m].reset(); // its memory back as soon as it is done
-          if (on_member)
-            {
-              const std::lock_guard<std::mutex> lock(report);
-              on_member(member);
-            }
+          const std::lock_guard<std::mutex> lock(report);
+          on_member(member);
         }
-    };
-    const unsigned int n_threads =
-      std::max(1u, std::min(K, settings.n_threads ? settings.n_threads : std::thread::hardware_concurrency()));
-    std::vector<std::thread> pool;
-    for (unsigned int i = 1; i < n_threads; ++i)
-      pool.emplace_back(work);
-    work();
-    for (auto &t : pool)
-      t.join();
+    });
     return members;
   }
 

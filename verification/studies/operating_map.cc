@@ -3,13 +3,16 @@
 
 #include "contact/adaptation_run.h"
 #include "contact/beam_system.h"
+#include "contact/interruption.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -226,6 +229,27 @@ namespace beamslider
         members.push_back(std::move(member));
       }
     return members;
+  }
+
+  std::vector<std::vector<MapMember>> run_map_cells(const std::string &scene_file,
+                                                    const std::vector<std::string> &overrides, const MapGrid &grid,
+                                                    const MapSettings &settings,
+                                                    const std::function<void(std::size_t, std::size_t)> &on_cell)
+  {
+    const std::size_t n = grid.n_cells();
+    std::vector<std::vector<MapMember>> results(n);
+    std::mutex report;
+    std::size_t done = 0;
+    parallel_for(n, 0, [&](const std::size_t c) {
+      if (interruption_requested())
+        return;
+      results[c] = run_map_cell_members(scene_file, overrides, grid, c, settings);
+      const std::lock_guard<std::mutex> lock(report);
+      ++done;
+      if (on_cell)
+        on_cell(done, n);
+    });
+    return results;
   }
 
   std::string format_map_rows(const MapGrid &grid, const std::size_t cell, const std::vector<MapMember> &members)

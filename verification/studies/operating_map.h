@@ -14,6 +14,7 @@
 #include "verification/studies/fe_rom_study.h"
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -75,6 +76,14 @@ namespace beamslider
   // interrupted cell is no result.
   std::vector<MapMember> run_map_cell_members(const std::string &scene_file, const std::vector<std::string> &overrides,
                                               const MapGrid &grid, std::size_t cell, const MapSettings &settings);
+  // Every cell of the grid in this process, on all cores (threads); a map
+  // on many machines is `beamslider map` under mpirun. `on_cell(done, n)`
+  // (optional, serialised) reports progress. After Ctrl-C the cells not yet
+  // started stay empty, like an interrupted one.
+  std::vector<std::vector<MapMember>> run_map_cells(const std::string &scene_file,
+                                                    const std::vector<std::string> &overrides, const MapGrid &grid,
+                                                    const MapSettings &settings,
+                                                    const std::function<void(std::size_t, std::size_t)> &on_cell = {});
   // The cell's rows of map.csv, each ending in '\n'.
   std::string format_map_rows(const MapGrid &grid, std::size_t cell, const std::vector<MapMember> &members);
   // Both: what a map worker returns ("" when interrupted).

@@ -1,0 +1,34 @@
+// Independent work items on the machine's cores: body(i) for every i in
+// [0, n), each once, on up to n_threads threads (0: one per core, never
+// more threads than items). Items are taken in ascending order as threads
+// become free, so items of very different cost keep every thread busy.
+// Used by ensembles (members) and maps (cells) within one process; across
+// processes a map uses MPI (verification/cli/mpi_cells.h).
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace beamslider
+{
+  template <typename Body>
+  void parallel_for(const std::size_t n, const unsigned int n_threads, const Body &body)
+  {
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t i = next++; i < n; i = next++)
+        body(i);
+    };
+    const std::size_t wanted = n_threads ? n_threads : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t count  = std::max<std::size_t>(1, std::min(wanted, n));
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < count; ++t)
+      pool.emplace_back(work);
+    work();
+    for (auto &t : pool)
+      t.join();
+  }
+} // namespace beamslider
