@@ -278,12 +278,26 @@ namespace beamslider
       const PcsStudy fe     = run_pcs_sweep(scene, settings, fe_dir);
       settings.model        = "rom";
       const PcsStudy rom    = run_pcs_sweep(scene, settings, rom_dir);
-      auto points           = [](const PcsStudy &s) {
-        std::vector<PcsPoint> p = s.up.points;
-        p.insert(p.end(), s.down.points.begin(), s.down.points.end());
+      // A branch that stopped early (its run left the physically possible
+      // set, say) holds the first positions of the other's: compare those,
+      // and say which branch stopped, where and why.
+      std::string stopped;
+      auto points = [](const PcsBranch &a, const PcsBranch &b) {
+        const std::size_t n = std::min(a.points.size(), b.points.size());
+        return std::vector<PcsPoint>(a.points.begin(), a.points.begin() + n);
+      };
+      auto both = [&](const PcsStudy &s, const PcsStudy &other) {
+        std::vector<PcsPoint> p = points(s.up, other.up), down = points(s.down, other.down);
+        p.insert(p.end(), down.begin(), down.end());
         return p;
       };
-      const PcsComparison comparison = compare_sweeps(points(rom), points(fe));
+      for (const auto &[name, study] : {std::pair<const char *, const PcsStudy *>{"FE", &fe}, {"ROM", &rom}})
+        for (const PcsBranch *b : {&study->up, &study->down})
+          if (b->last_run.status != RunStatus::completed)
+            stopped += std::string("The ") + name + " sweep's branch '" + to_string(b->direction) + "' stopped after " +
+                       std::to_string(b->points.size()) + " positions (" + to_string(b->last_run.status) + ": " +
+                       b->last_run.message + "); the comparison below covers the positions both sweeps reached. ";
+      const PcsComparison comparison = compare_sweeps(both(rom, fe), both(fe, rom));
       write_pcs_comparison(comparison, rom_dir);
       run_plot_script("plot_pcs_compare.py", {rom_dir, fe_dir, "ROM N=" + std::to_string(scene.discretisation.n_modes), "FE"});
 
@@ -296,7 +310,7 @@ namespace beamslider
             "the period-mean horizontal force F̄_x is small against its rattling noise, so it carries a 95 % batch-means "
             "interval, and its zero crossings (the free slider's equilibria) carry the interval of positions where the "
             "sign is not resolved.\n\n"
-         << describe(comparison, "ROM", "FE") << "\n![FE against ROM on the slow manifold](slow_manifold_rom/pcs_compare.png)\n\n"
+         << (stopped.empty() ? "" : stopped + "\n\n") << describe(comparison, "ROM", "FE") << "\n![FE against ROM on the slow manifold](slow_manifold_rom/pcs_compare.png)\n\n"
          << "Files: slow_manifold_fe/pcs.csv, slow_manifold_rom/pcs.csv, slow_manifold_rom/comparison.csv and crossings.csv. "
             "The two sweeps took "
          << seconds_since(start) << ".\n\n";
