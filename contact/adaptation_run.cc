@@ -131,9 +131,7 @@ namespace beamslider
 
   void AdaptationRun::set_slider_position(const double x_C)
   {
-    SystemState s = stepper_.state();
-    s.s[0]        = x_C;
-    set_state(s);
+    set_state(stepper_.slider_moved_to(x_C));
   }
 
   void AdaptationRun::set_prescribed_slider_position(const bool prescribed)

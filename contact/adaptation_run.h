@@ -139,8 +139,9 @@ namespace beamslider
     // State access, for sweeps that continue from the previous state.
     const SystemState &state() const { return stepper_.state(); }
     void set_state(const SystemState &state);
-    // Move the slider horizontally to x_C (everything else kept), e.g. one
-    // step Δx_C of a prescribed-position sweep.
+    // Carry the slider along the beam to x_C (MoreauStepper::slider_moved_to:
+    // its gaps kept, no corner through the beam), e.g. one step Δx_C of a
+    // prescribed-position sweep.
     void set_slider_position(double x_C);
     void set_prescribed_slider_position(bool prescribed);
 

@@ -1,7 +1,9 @@
 // Moreau midpoint step for beam + slider, see moreau_stepper.h.
 #include "contact/moreau_stepper.h"
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace beamslider
@@ -103,6 +105,68 @@ namespace beamslider
     s.u = Eigen::VectorXd::Zero(beam_.n_dofs());
     s.s = geometry_.resting_position(x_C, t, beam_, base_, s.q);
     s.v.setZero();
+    return s;
+  }
+
+  SystemState MoreauStepper::slider_moved_to(const double x_C) const
+  {
+    const double L = beam_.length();
+    SystemState s  = state_;
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      {
+        const double x = x_C + geometry_.corner_offset(k, s.s[2])[0];
+        if (!(x >= 0. && x <= L))
+          {
+            std::ostringstream m;
+            m << "slider position x_C = " << x_C << " m puts the " << corner_name(k) << " corner at x = " << x
+              << " m, outside the beam [0, " << L << "] m";
+            throw std::invalid_argument(m.str());
+          }
+      }
+
+    // Beam displacement, slope and their rates under the old and the new x_C.
+    BeamPointKinematics p;
+    auto at = [&](const double x, const Eigen::VectorXd &q) {
+      beam_.evaluate(x, q, p);
+      return Eigen::Vector2d(p.w, p.dw);
+    };
+    const Eigen::Vector2d old_pos = at(s.s[0], s.q), new_pos = at(x_C, s.q);
+    const Eigen::Vector2d old_rate = at(s.s[0], s.u), new_rate = at(x_C, s.u);
+    const double angle_rate_old = old_rate[1] / (1. + old_pos[1] * old_pos[1]); // d/dt atan w'
+    const double angle_rate_new = new_rate[1] / (1. + new_pos[1] * new_pos[1]);
+    s.s[0] = x_C;
+    s.s[1] += new_pos[0] - old_pos[0];
+    s.s[2] += std::atan(new_pos[1]) - std::atan(old_pos[1]);
+    s.v[1] += new_rate[0] - old_rate[0];
+    s.v[2] += angle_rate_new - angle_rate_old;
+
+    // The side (upper or lower corners) nearer the beam keeps its smallest
+    // gap, so that a resting slider stays resting: the change of curvature
+    // under the window shifts the corners' gaps by about Δw'' B²/8
+    // (micrometres here), which would otherwise drop the slider for a
+    // millisecond or push it into the beam. g_N is linear in z_C with slope
+    // ∂g_N/∂z_C = ζ cos α, so one correction is exact.
+    CornerKinematics corner;
+    auto smallest_gaps = [&](const SystemState &state, double dz_dgap[2]) {
+      std::array<double, 2> g{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+      for (unsigned int k = 0; k < n_slider_corners; ++k)
+        {
+          geometry_.evaluate(k, state.t, beam_, base_, state.q, state.s, corner);
+          const unsigned int side = corner_zeta(k) > 0 ? 0 : 1;
+          if (corner.gap < g[side])
+            {
+              g[side] = corner.gap;
+              if (dz_dgap)
+                dz_dgap[side] = 1. / corner.slider_normal[1];
+            }
+        }
+      return g;
+    };
+    const std::array<double, 2> before = smallest_gaps(state_, nullptr);
+    double dz_dgap[2]                  = {0., 0.};
+    const std::array<double, 2> after  = smallest_gaps(s, dz_dgap);
+    const unsigned int near_side       = before[0] <= before[1] ? 0 : 1;
+    s.s[1] += (before[near_side] - after[near_side]) * dz_dgap[near_side];
     return s;
   }
 

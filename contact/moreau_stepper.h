@@ -129,6 +129,18 @@ namespace beamslider
     void set_state(const SystemState &state);
     const SystemState &state() const { return state_; }
 
+    // The current state with the slider carried along the beam to x_C, as if
+    // its window slid there with the beam held still: z_C, β and their rates
+    // change by the differences of w, atan w' and their rates between the old
+    // and the new x_C, so each corner keeps its gap up to the beam's curvature
+    // under the window; a last shift of z_C gives the side nearer the beam
+    // (upper or lower corners) its old smallest gap, so a resting slider stays
+    // resting and none goes through the beam. Keeping z_C and β would put the
+    // window where the beam was at the old x_C: on a beam vibrating at a few
+    // h, a step of 0.025 L puts a corner through the beam. Throws
+    // std::invalid_argument if a corner would leave [0, L].
+    SystemState slider_moved_to(double x_C) const;
+
     // Hold x_C fixed (v_x = 0; z_C and β stay free, contacts stay active):
     // seed §4.2. The horizontal contact force is then the force needed to keep
     // the slider in place.

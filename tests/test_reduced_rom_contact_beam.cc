@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 
 using namespace beamslider;
 
@@ -318,6 +319,83 @@ TEST(ContactGeometry, NormalForceDirectionsAreGapGradients)
       geometry.evaluate(corner, t - e, rom, base, q, s, km);
       EXPECT_NEAR((kp.gap - km.gap) / (2 * e), k0.imposed_normal, 1e-6 * std::abs(k0.imposed_normal) + 1e-12);
     }
+}
+
+TEST(ContactGeometry, MovingTheSliderCarriesItsWindowAlongTheVibratingBeam)
+{
+  // A prescribed-position sweep moves the slider by Δx_C = 0.025 L while the
+  // beam vibrates. On a beam bent to a centre deflection of 3 h the beam under
+  // the window moves by far more than the clearance R − h between 0.30 L and
+  // 0.325 L, so the slider must follow w and w' there: the moved z_C differs
+  // from the old by exactly Δw up to the lift for the curvature under the
+  // window (here bounded by a hundredth of the clearance), the corner that
+  // touched still touches, and none is through the beam.
+  const Scene scene = mueller_scene();
+  RomBeamSystem rom = RomBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 5));
+  MoreauStepper stepper(rom, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene),
+                        BaseExcitation::from_scene(scene.excitation), scene.time_stepping.time_step);
+  const double L = scene.beam.length, h = scene.beam.thickness;
+  const double clearance = scene.window_height() - h;
+
+  SystemState state = stepper.resting_state(0.30 * L, 0.);
+  BeamPointKinematics p;
+  Eigen::VectorXd mode1 = Eigen::VectorXd::Zero(5);
+  mode1[0]              = 1.;
+  rom.evaluate(0.5 * L, mode1, p);
+  state.q = (3. * h / p.w) * mode1; // centre deflection 3 h
+  state.u = (-2. * h / p.w) * mode1;
+  state.s = stepper.geometry().resting_position(0.30 * L, 0., rom, stepper.base(), state.q);
+  stepper.set_state(state);
+
+  const double x_new = 0.325 * L;
+  BeamPointKinematics old_point, new_point;
+  rom.evaluate(0.30 * L, state.q, old_point);
+  rom.evaluate(x_new, state.q, new_point);
+  ASSERT_GT(std::abs(new_point.w - old_point.w), 2. * clearance); // keeping z_C would put a corner through the beam
+
+  // Smallest upper gap before the move: the resting slider touches (≤ 0).
+  CornerKinematics corner;
+  double upper_gap_before = std::numeric_limits<double>::infinity();
+  for (unsigned int k = 0; k < 2; ++k)
+    {
+      stepper.geometry().evaluate(k, state.t, rom, stepper.base(), state.q, state.s, corner);
+      upper_gap_before = std::min(upper_gap_before, corner.gap);
+    }
+  ASSERT_LE(upper_gap_before, 0.);
+
+  // The z_C shift beyond Δw is the curvature under the window: the corners
+  // sit at ±B/2, where w differs from its tangent line by w'' B²/8.
+  auto curvature = [&](const double x) {
+    BeamPointKinematics a, b;
+    rom.evaluate(x + 1e-5, state.q, a);
+    rom.evaluate(x - 1e-5, state.q, b);
+    return (a.dw - b.dw) / 2e-5;
+  };
+  const double B               = scene.slider.window_width;
+  const double curvature_shift = std::abs(curvature(x_new) - curvature(0.30 * L)) * B * B / 8.;
+
+  const SystemState moved = stepper.slider_moved_to(x_new);
+  EXPECT_EQ(moved.s[0], x_new);
+  EXPECT_NEAR(moved.s[1] - state.s[1], new_point.w - old_point.w, 1.5 * curvature_shift + 1e-3 * clearance);
+  EXPECT_NEAR(moved.s[2] - state.s[2], std::atan(new_point.dw) - std::atan(old_point.dw), 1e-12);
+  double upper_gap_after = std::numeric_limits<double>::infinity();
+  for (unsigned int k = 0; k < n_slider_corners; ++k)
+    {
+      stepper.geometry().evaluate(k, moved.t, rom, stepper.base(), moved.q, moved.s, corner);
+      EXPECT_GE(corner.gap, upper_gap_before - 1e-15) << "corner " << k << " is through the beam";
+      if (corner_zeta(k) > 0)
+        upper_gap_after = std::min(upper_gap_after, corner.gap);
+    }
+  EXPECT_NEAR(upper_gap_after, upper_gap_before, 1e-15); // still resting on the beam
+
+  // The slider moves with the beam: its vertical velocity changes by Δẇ.
+  BeamPointKinematics old_rate, new_rate;
+  rom.evaluate(0.30 * L, state.u, old_rate);
+  rom.evaluate(x_new, state.u, new_rate);
+  EXPECT_NEAR(moved.v[1] - state.v[1], new_rate.w - old_rate.w, 1e-12);
+
+  // Off the beam is refused, naming where.
+  EXPECT_THROW(stepper.slider_moved_to(0.), std::invalid_argument);
 }
 
 namespace
