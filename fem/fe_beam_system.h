@@ -14,5 +14,8 @@ namespace beamslider
   // The FE beam of `scene` (its mesh, supports, damping ratio D on the
   // scene's N lowest bending modes and none on the others, base excitation)
   // as a BeamSystem. n_elements = 0 takes the scene's mesh.
-  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, unsigned int n_elements = 0);
+  // axial_inertia = false gives the axial DoFs no mass (the membrane in
+  // static equilibrium, as in the reduced model; fem/fe_transient.h).
+  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, unsigned int n_elements = 0,
+                                                  bool axial_inertia = true);
 } // namespace beamslider

@@ -61,6 +61,17 @@ namespace beamslider
         constrained_list_.push_back(i);
 
     beam.assemble_mass_matrix(M_, c);
+    if (!settings_.axial_inertia)
+      {
+        // The axial block of M (it has no coupling to the bending DoFs);
+        // the constrained DoFs keep their diagonal filler.
+        const std::vector<bool> &axial = beam.axial_dofs();
+        for (unsigned int i = 0; i < n; ++i)
+          if (axial[i] && !constrained_[i])
+            for (auto e = M_.begin(i); e != M_.end(i); ++e)
+              if (axial[e->column()] && !constrained_[e->column()])
+                e->value() = 0.;
+      }
     beam.assemble_base_load(r_);
     to_eigen(r_, r_eigen_);
 

@@ -125,6 +125,13 @@ namespace beamslider
     bool extrapolate = false;
     // Refactorise at least every this many steps (0: only when Newton needs it).
     unsigned int refactor_interval = 0;
+    // false: the axial DoFs carry no mass, so the membrane is in static
+    // equilibrium at every instant (the reduced model's assumption,
+    // doc/physics.md §5). S₀ = M + Δt²/4 K_t stays positive definite (the
+    // axial block is Δt²/4 times the axial stiffness), and the implicit
+    // midpoint rule then imposes f_axial(q̄) = 0 at each step's midpoint:
+    // the error ladder's rung "FE without axial inertia".
+    bool axial_inertia = true;
   };
 
   // Counters for the benchmark note.

@@ -21,7 +21,7 @@ namespace beamslider
   {
     std::ostringstream s;
     if (family == "fe")
-      s << "FE " << n_elements << " el.";
+      s << "FE " << n_elements << " el." << (axial_inertia ? "" : " no axial inertia");
     else
       s << "ROM N=" << n_modes << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     s << " dt=" << time_step; // no comma: labels go into CSV cells
@@ -50,7 +50,7 @@ namespace beamslider
       {
         if (setting.n_elements)
           scene.discretisation.n_elements = setting.n_elements;
-        return make_fe_beam_system(scene);
+        return make_fe_beam_system(scene, 0, setting.axial_inertia);
       }
     if (setting.family != "rom")
       throw InputError("model family '" + setting.family + "' is not one of fe, rom");

@@ -36,6 +36,9 @@ namespace beamslider
     // implicit midpoint rule, reduced/rom_implicit_beam_system.h): the
     // ladder rung that changes only the integrator.
     std::string integrator = "explicit";
+    // fe: false gives the axial DoFs no mass (membrane in static equilibrium,
+    // the ROM's assumption): the ladder rung "FE without axial inertia".
+    bool axial_inertia = true;
     double time_step = 2e-5;     // [s]
     // Added to the scene's start position x_C/L: a "round-off twin" of a run
     // (e.g. 1e-9) measures how far the rattling alone spreads two runs.
