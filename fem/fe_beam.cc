@@ -102,7 +102,9 @@ namespace beamslider
       {
         const auto [u, w, theta] = end_dofs[end];
         support_constraints.add_line(w);
-        if (supports.ideal_clamp)
+        if (supports.pinned_end[end])
+          support_constraints.add_line(u); // immovable hinge: w' free
+        else if (supports.ideal_clamp)
           {
             support_constraints.add_line(theta);
             support_constraints.add_line(u);
@@ -240,7 +242,7 @@ namespace beamslider
     // Support springs: ½ k_r θ² and ½ (2 k_t) u² at both ends, so that the two
     // axial springs in series are the clamping's total k_t (the clamp has
     // constrained these DoFs instead).
-    if (!supports.ideal_clamp)
+    if (supports.elastic())
       for (unsigned int end = 0; end < 2; ++end)
         {
           const auto [u, w, theta] = end_dofs[end];

@@ -166,7 +166,7 @@ namespace beamslider
           for (unsigned int j = 0; j < n_local; ++j)
             cell.entry[i * n_local + j] = entry_of(global(i), global(j));
       }
-    if (!beam.support_data().ideal_clamp)
+    if (beam.support_data().elastic())
       for (unsigned int end = 0; end < 2; ++end)
         {
           const auto [u, w, theta] = beam.support_dofs(end);

@@ -10,6 +10,7 @@
 // rigid slider with clearance, base excitation w0 = (a/Ω²) cos Ωt).
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,23 +47,40 @@ namespace beamslider
   // (2023) define it: the two supports together, in series with the beam.
   // The symmetric FE model realises it with a spring 2 k_t at each end (two
   // springs 2 k_t in series are k_t).
+  //
+  // Supports (Type in the scene): elastic (the springs), clamped (w = w' =
+  // u = 0 at both ends), pinned (w = u = 0, w' free: immovable hinges) and
+  // clamped-pinned (clamped at x = 0, pinned at x = L). An end is pinned if
+  // pinned_end says so, else clamped if ideal_clamp, else elastic.
   struct SupportData
   {
     bool   ideal_clamp          = false;
+    std::array<bool, 2> pinned_end{{false, false}}; // at x = 0, x = L
     double rotational_stiffness = 125.;   // k_r, at each end [N m/rad]
     double axial_stiffness      = 1.93e7; // k_t, both ends together [N/m]
 
     // The axial spring the FE model puts at each end: 2 k_t [N/m].
     double axial_spring_per_end() const { return 2. * axial_stiffness; }
+    // Both ends on the springs k_r, k_t (neither clamped nor pinned).
+    bool elastic() const { return !ideal_clamp && !pinned_end[0] && !pinned_end[1]; }
+    // The scene's Type: elastic | clamped | pinned | clamped-pinned.
+    std::string type() const
+    {
+      if (pinned_end[0] && pinned_end[1])
+        return "pinned";
+      if (pinned_end[1])
+        return "clamped-pinned";
+      return ideal_clamp ? "clamped" : "elastic";
+    }
 
     // Stiffness of the membrane in series with the clamping: the axial force
     // of a beam stretched by Δ is N = k_ax Δ with
     //   k_ax = (L/(EA) + 1/k_t)^-1      (elastic supports, k_t in total),
-    //   k_ax = EA/L                     (ideal clamp).
+    //   k_ax = EA/L                     (ideal clamp, pinned: immovable ends).
     double membrane_stiffness(const BeamData &beam) const
     {
       const double beam_compliance = beam.length / beam.axial_stiffness();
-      return 1. / (beam_compliance + (ideal_clamp ? 0. : 1. / axial_stiffness));
+      return 1. / (beam_compliance + (elastic() ? 1. / axial_stiffness : 0.));
     }
   };
 

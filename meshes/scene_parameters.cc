@@ -49,9 +49,10 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
-      prm.declare_entry("Type", "elastic", Selection("elastic|clamped"),
+      prm.declare_entry("Type", "elastic", Selection("elastic|clamped|pinned|clamped-pinned"),
                         "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
-                        "clamped: the ideal clamp w = w' = u = 0 (the springs below are then ignored)");
+                        "clamped: the ideal clamp w = w' = u = 0; pinned: immovable hinges w = u = 0, w' free; "
+                        "clamped-pinned: clamped at x = 0, pinned at x = L (the springs below are used by elastic only)");
       prm.declare_entry("Rotational stiffness", num(d.supports.rotational_stiffness), Double(0), "k_r, on w' at each end [N m/rad]");
       prm.declare_entry("Axial stiffness", num(d.supports.axial_stiffness), Double(0), "k_t, the clamping's TOTAL axial stiffness as published (Mueller, Beck & Krack 2023): in series with the beam, k_ax = (L/(EA) + 1/k_t)^-1; the FE model puts 2 k_t at each end [N/m]");
       prm.leave_subsection();
@@ -138,7 +139,9 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
-      s.supports.ideal_clamp          = prm.get("Type") == "clamped";
+      const std::string type          = prm.get("Type");
+      s.supports.ideal_clamp          = type == "clamped" || type == "clamped-pinned";
+      s.supports.pinned_end           = {{type == "pinned", type == "pinned" || type == "clamped-pinned"}};
       s.supports.rotational_stiffness = get_double(prm, "Supports", "Rotational stiffness");
       s.supports.axial_stiffness      = get_double(prm, "Supports", "Axial stiffness");
       prm.leave_subsection();
@@ -410,7 +413,7 @@ namespace beamslider
               num(s.time_stepping.time_step) + " s; at most " + num(max_time_steps) + " (End time <= " +
               num(max_time_steps * s.time_stepping.time_step) + " s) are allowed");
     require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
-    if (!s.supports.ideal_clamp)
+    if (s.supports.elastic())
       {
         require(s.supports.rotational_stiffness > 0, "Supports/Rotational stiffness", s.supports.rotational_stiffness,
                 "must be > 0 N m/rad for elastic supports (use Type = clamped for the ideal clamp)");

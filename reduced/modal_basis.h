@@ -19,7 +19,7 @@ namespace beamslider
     Eigen::VectorXd omega;        // ω_n, linear natural frequencies [rad/s]
     Eigen::VectorXd gamma;        // γ_n = -ρA ∫ φ_n dx [kg^1/2]
     Eigen::MatrixXd stretch;      // K'_jk = ∫ φ_j' φ_k' dx [1/(kg m)]
-    double membrane_stiffness = 0; // k_ax = (L/(EA) + 2/k_t)^-1 [N/m] (SupportData::membrane_stiffness)
+    double membrane_stiffness = 0; // k_ax = (L/(EA) + 1/k_t)^-1 [N/m] (SupportData::membrane_stiffness)
 
     // φ_n(x) and φ_n'(x) for all n at one x in [0, L].
     std::function<void(double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi)> evaluate;

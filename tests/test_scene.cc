@@ -49,6 +49,23 @@ TEST(SceneFiles, DefaultSceneHoldsThePublishedRig)
   EXPECT_DOUBLE_EQ(s.window_height(), 1.05e-3);
 }
 
+TEST(SceneFiles, SupportTypesSetTheEnds)
+{
+  // pinned: both ends hinged, no springs needed (k_r = 0 allowed);
+  // clamped-pinned: clamped at x = 0, hinged at x = L; elastic still asks
+  // for positive springs.
+  const Scene pinned = read_scene(scene_dir + "mueller2023.prm",
+                                  {"Supports/Type=pinned", "Supports/Rotational stiffness=0"});
+  EXPECT_EQ(pinned.supports.type(), "pinned");
+  EXPECT_TRUE(pinned.supports.pinned_end[0] && pinned.supports.pinned_end[1]);
+  EXPECT_FALSE(pinned.supports.elastic());
+  EXPECT_DOUBLE_EQ(pinned.supports.membrane_stiffness(pinned.beam), pinned.beam.axial_stiffness() / pinned.beam.length);
+  const Scene mixed = read_scene(scene_dir + "mueller2023.prm", {"Supports/Type=clamped-pinned"});
+  EXPECT_EQ(mixed.supports.type(), "clamped-pinned");
+  EXPECT_TRUE(mixed.supports.ideal_clamp && !mixed.supports.pinned_end[0] && mixed.supports.pinned_end[1]);
+  EXPECT_THROW(read_scene(scene_dir + "mueller2023.prm", {"Supports/Rotational stiffness=0"}), InputError);
+}
+
 TEST(SceneFiles, AllScenesParse)
 {
   EXPECT_TRUE(read_scene(scene_dir + "mueller2023-ideal.prm").supports.ideal_clamp);

@@ -268,6 +268,7 @@ namespace beamslider
     {
       Scene ideal               = scene;
       ideal.supports.ideal_clamp = true;
+      ideal.supports.pinned_end  = {{false, false}};
       // Quick mode: 16 elements here (the tongue moves by ~0.2 % in ŵ/h
       // against 32 elements: 2.726 against 2.721), to stay within ~20 s.
       const unsigned int n_ideal = full ? n_elements : std::min(16u, n_elements);

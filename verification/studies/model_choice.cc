@@ -76,7 +76,7 @@ namespace beamslider
     // Every field the ladder's outcome depends on, in full precision.
     std::ostringstream c;
     c << std::setprecision(17) << s.beam.length << ' ' << s.beam.width << ' ' << s.beam.thickness << ' '
-      << s.beam.youngs_modulus << ' ' << s.beam.density << ' ' << s.supports.ideal_clamp << ' '
+      << s.beam.youngs_modulus << ' ' << s.beam.density << ' ' << s.supports.type() << ' '
       << s.supports.rotational_stiffness << ' ' << s.supports.axial_stiffness << ' ' << s.slider.mass << ' '
       << s.slider.inertia << ' ' << s.slider.window_width << ' ' << s.slider.window_height_ratio << ' '
       << s.slider.com_offset << ' ' << s.slider.mass_factor << ' ' << s.contact.friction_coefficient << ' '
