@@ -68,6 +68,8 @@ namespace beamslider
         throw std::invalid_argument(m.str());
       }
     const double x_C = scene.initial.slider_position_over_L * beam.length();
+    beam.evaluate(0.5 * beam.length(), Eigen::VectorXd::Zero(beam.n_dofs()), point_);
+    centre_grad_w_ = point_.grad_w;
     set_state(stepper_.resting_state(x_C, 0.));
     stepper_.set_prescribed_horizontal_position(options_.prescribed_slider_position);
   }
@@ -168,8 +170,7 @@ namespace beamslider
     current_.index       = static_cast<unsigned int>(std::llround(t / period_));
     current_.t_start     = t;
     current_.energy_start = stepper_.beam_energy() + stepper_.slider_kinetic_energy();
-    beam_.evaluate(0.5 * beam_.length(), s.q, point_);
-    w_min_ = w_max_ = point_.w;
+    w_min_ = w_max_ = centre_grad_w_.dot(s.q);
     x_sum_ = impulse_x_ = 0;
     period_steps_ = contact_steps_ = 0;
     period_open_  = true;
@@ -315,9 +316,9 @@ namespace beamslider
             ++period_steps_;
             if (report->n_active > 0)
               ++contact_steps_;
-            beam_.evaluate(0.5 * L, s.q, point_);
-            w_min_ = std::min(w_min_, point_.w);
-            w_max_ = std::max(w_max_, point_.w);
+            const double w_centre = centre_grad_w_.dot(s.q);
+            w_min_                = std::min(w_min_, w_centre);
+            w_max_                = std::max(w_max_, w_centre);
           }
         // Period boundary crossed in this step?
         if (std::floor(s.t / period_ + 1e-9) > std::floor(t_B / period_ + 1e-9))

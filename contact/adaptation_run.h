@@ -174,6 +174,7 @@ namespace beamslider
     double next_progress_      = 0;
     bool last_row_is_current_  = false;
     mutable BeamPointKinematics point_;
+    Eigen::VectorXd centre_grad_w_; // ∂w(L/2)/∂q: the centre's deflection, tracked every step, is its dot with q
   };
 
   // trace.csv: header, one row per call, flushes every `flush_every` rows and

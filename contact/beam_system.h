@@ -43,7 +43,9 @@ namespace beamslider
     virtual double length() const       = 0; // L [m]
     virtual double thickness() const    = 0; // h [m]
 
-    // w, w' and gradients at x ∈ [0, L] for coordinates q.
+    // w, w' and gradients at x ∈ [0, L] for coordinates q. w and w' are
+    // linear in q (w = grad_w · q): AdaptationRun takes the gradient at the
+    // centre once and forms w(L/2) by a dot product every step.
     virtual void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const = 0;
 
     // End velocity of one step of size dt without contact impulses, given the
@@ -83,6 +85,15 @@ namespace beamslider
       damping_work    = std::numeric_limits<double>::quiet_NaN();
       excitation_work = std::numeric_limits<double>::quiet_NaN();
     }
+
+    // Called with the step's start and end coordinates and the end velocity
+    // before they become the state. Coordinates without mass (the FE
+    // without axial inertia) carry no momentum: their velocity is the mean
+    // over the step, (q_E − q_B)/Δt, not the midpoint rule's 2(q_E − q_B)/Δt
+    // − u_B, which flips sign every step and never decays. Others keep u_E.
+    virtual void finish_step(const Eigen::VectorXd & /*q_B*/, const Eigen::VectorXd & /*q_E*/, double /*dt*/,
+                             Eigen::VectorXd & /*u_E*/) const
+    {}
 
     // Whatever the model carries from one step to the next and that changes
     // a later step's result in any bit (a reused factorisation and the point

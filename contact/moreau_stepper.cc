@@ -389,6 +389,7 @@ namespace beamslider
 
     report_.work_gravity = -slider_.mass * slider_.gravity * (s_E[1] - state_.s[1]);
     beam_.step_work(u_E_, report_.work_damping, report_.work_excitation);
+    beam_.finish_step(state_.q, q_next_, dt_, u_E_);
 
     // Swapping hands the buffers over without copying or allocating.
     state_.t = t_origin_ + (steps_taken_ + 1) * dt_;

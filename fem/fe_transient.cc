@@ -176,7 +176,11 @@ namespace beamslider
     for (const auto &[dof, k] : springs_)
       spring_entry_.push_back(entry_of(dof, dof));
 
-    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_})
+    if (!settings_.axial_inertia)
+      for (unsigned int i = 0; i < n; ++i)
+        if (beam.axial_dofs()[i] && !constrained_[i])
+          massless_axial_.push_back(i);
+    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &q_end_, &f_end_})
       v->setZero(n);
   }
 
@@ -469,6 +473,16 @@ namespace beamslider
             woodbury_rhs_.array() *= (0.5 * dt) * modal_c_.array();
             res_.noalias() += U_ * woodbury_rhs_;
           }
+        if (!massless_axial_.empty())
+          {
+            // Massless axial DoFs: equilibrium at the step's end (see
+            // FETransientSettings::axial_inertia).
+            q_end_ = q_M;
+            q_end_.noalias() += (0.5 * dt) * u_;
+            internal_force_cached(q_end_, f_end_);
+            for (const unsigned int i : massless_axial_)
+              res_[i] = 0.5 * dt * f_end_[i];
+          }
         for (const unsigned int i : constrained_list_)
           res_[i] = 0.;
         solve(res_, du_);
@@ -514,6 +528,13 @@ namespace beamslider
     last_acceleration_ = a;
     have_last_         = true;
     ++stats_.steps;
+  }
+
+  void FETransientBeam::finish_step(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, const double dt,
+                                    Eigen::VectorXd &u_E) const
+  {
+    for (const unsigned int i : massless_axial_)
+      u_E[i] = (q_E[i] - q_B[i]) / dt;
   }
 
   void FETransientBeam::solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,

@@ -50,11 +50,10 @@ namespace beamslider
         m << "reduced model: beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
         throw std::out_of_range(m.str());
       }
-    rom_.basis().evaluate(x, phi_, dphi_);
-    out.w       = phi_.dot(q);
-    out.dw      = dphi_.dot(q);
-    out.grad_w  = phi_;
-    out.grad_dw = dphi_;
+    // φ(x) and φ'(x) are the gradients of w and w': written in place.
+    rom_.basis().evaluate(x, out.grad_w, out.grad_dw);
+    out.w  = out.grad_w.dot(q);
+    out.dw = out.grad_dw.dot(q);
   }
 
   double RomBeamSystem::max_stable_time_step() const { return 2. / rom_.basis().omega.maxCoeff(); }

@@ -62,7 +62,6 @@ namespace beamslider
     ReducedOrderModel rom_;
     double thickness_;
     BaseExcitation excitation_;
-    mutable Eigen::VectorXd phi_, dphi_; // scratch for evaluate
 
     // Kept from the last free_velocity call, for step_work.
     double last_dt_ = 0;

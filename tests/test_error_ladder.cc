@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -139,3 +140,45 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   EXPECT_EQ(strict.n_elements, 32u);
   std::filesystem::remove_all(dir);
 }
+
+// Not a test: the modelling rungs of the full ladder at the quick size (4
+// members over 25 s), printed as a table for the issue note. Run with
+// --gtest_also_run_disabled_tests --gtest_filter='*ModellingRungs*'
+// (about 25 min on two cores; BEAMSLIDER_LADDER_RUNGS picks fewer).
+TEST(ErrorLadder, DISABLED_ModellingRungsAtQuickSize)
+{
+  const Scene scene = read_scene(mueller);
+  std::size_t reference = 0;
+  const auto full       = default_ladder(scene, true, reference);
+  // BEAMSLIDER_LADDER_RUNGS="name;name;..." picks rungs (the reference
+  // "FE Δt/4" is always run).
+  const char *pick = std::getenv("BEAMSLIDER_LADDER_RUNGS");
+  std::vector<LadderRung> rungs;
+  for (const auto &r : full)
+    if (pick ? (r.name == "FE Δt/4" || (";" + std::string(pick) + ";").find(";" + r.name + ";") != std::string::npos)
+             : (r.name.rfind("ROM N=20", 0) == 0 || r.name.find("20 damped") != std::string::npos ||
+                r.name == "FE Δt/4"))
+      rungs.push_back(r);
+  std::size_t ref = 0;
+  while (rungs[ref].name != "FE Δt/4")
+    ++ref;
+  const LadderStudy study = run_ladder(scene, rungs, ref, 25., 4, [](const LadderRung &r, std::size_t) {
+    std::cout << "rung " << r.name << " (" << r.model.label() << ")" << std::endl;
+  });
+  for (std::size_t i = 0; i < study.rungs.size(); ++i)
+    {
+      const LadderRungResult &r = study.rungs[i];
+      std::cout << r.rung.name << ": final x/L median " << r.final_position.median << " [" << r.final_position.min
+                << ", " << r.final_position.max << "], amplitude median " << r.final_amplitude.median << " ["
+                << r.final_amplitude.min << ", " << r.final_amplitude.max << "] h, jump median " << r.jump_time.median
+                << " s (" << r.jump_time.n << "), W1 to ref " << r.position_to_reference.wasserstein << " ["
+                << r.position_to_reference.interval_low << ", " << r.position_to_reference.interval_high << "] spread "
+                << r.position_to_reference.spread << ", wall/member " << r.wall_seconds_per_member << " s, failed "
+                << r.n_failed << "\n";
+      if (i > 0)
+        std::cout << "  step from " << study.rungs[i - 1].rung.name << ": W1 " << study.steps[i].wasserstein << " ["
+                  << study.steps[i].interval_low << ", " << study.steps[i].interval_high << "] spread "
+                  << study.steps[i].spread << "\n";
+    }
+}
+
