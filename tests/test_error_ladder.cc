@@ -144,7 +144,8 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
 // Not a test: the modelling rungs of the full ladder at the quick size (4
 // members over 25 s), printed as a table for the issue note. Run with
 // --gtest_also_run_disabled_tests --gtest_filter='*ModellingRungs*'
-// (about 25 min on two cores; BEAMSLIDER_LADDER_RUNGS picks fewer).
+// (about 25 min on two cores; BEAMSLIDER_LADDER_RUNGS picks fewer,
+// BEAMSLIDER_LADDER_END_TIME sets the simulated time, default 25 s).
 TEST(ErrorLadder, DISABLED_ModellingRungsAtQuickSize)
 {
   const Scene scene = read_scene(mueller);
@@ -162,7 +163,8 @@ TEST(ErrorLadder, DISABLED_ModellingRungsAtQuickSize)
   std::size_t ref = 0;
   while (rungs[ref].name != "FE Δt/4")
     ++ref;
-  const LadderStudy study = run_ladder(scene, rungs, ref, 25., 4, [](const LadderRung &r, std::size_t) {
+  const char *end       = std::getenv("BEAMSLIDER_LADDER_END_TIME"); // [s], default 25
+  const LadderStudy study = run_ladder(scene, rungs, ref, end ? std::atof(end) : 25., 4, [](const LadderRung &r, std::size_t) {
     std::cout << "rung " << r.name << " (" << r.model.label() << ")" << std::endl;
   });
   for (std::size_t i = 0; i < study.rungs.size(); ++i)

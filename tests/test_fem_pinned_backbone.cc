@@ -21,6 +21,8 @@
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
 
+#include "tests/duffing_period.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -47,20 +49,7 @@ namespace
   // First-order harmonic balance, ω/ω₀ = √(1 + ¾ ε a²), published at a/r = 1 and 5.
   constexpr double first_order_hb_at_1 = 1.089725, first_order_hb_at_5 = 2.384848;
 
-  // Period of q̈ + ω² q + b q³ = 0 from rest at q0 (q = q0 sin φ):
-  // T = 4 ∫₀^{π/2} dφ / √(ω² + (b/2) q0² (1 + sin²φ)), composite Simpson.
-  double duffing_period(const double omega, const double b, const double q0)
-  {
-    const unsigned int n = 4000;
-    double sum           = 0;
-    for (unsigned int i = 0; i <= n; ++i)
-      {
-        const double phi = 0.5 * M_PI * i / n, s = std::sin(phi);
-        const double g   = 1. / std::sqrt(omega * omega + 0.5 * b * q0 * q0 * (1 + s * s));
-        sum += (i == 0 || i == n ? 1. : (i % 2 ? 4. : 2.)) * g;
-      }
-    return 4. * sum * (0.5 * M_PI / n) / 3.;
-  }
+  using beamslider::testing::duffing_period;
 
   // Mean period of w(x) from its zero crossings over `periods` periods of a
   // free vibration stepped by `step(t, q, u)`.

@@ -19,6 +19,8 @@
 #include <Eigen/Dense>
 #include "tests/fem_test_loads.h"
 
+#include "tests/duffing_period.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -44,20 +46,7 @@ namespace
     t += dt;
   }
 
-  // The exact period of q̈ + ω² q + b q³ = 0 started from rest at q0:
-  // T = 4 ∫₀^{π/2} dφ / √(ω² + (b/2) q0² (1 + sin²φ))  (q = q0 sin φ).
-  double duffing_period(const double omega, const double b, const double q0)
-  {
-    const unsigned int n = 2000; // composite Simpson, smooth periodic integrand
-    double sum = 0;
-    for (unsigned int i = 0; i <= n; ++i)
-      {
-        const double phi = 0.5 * M_PI * i / n, s = std::sin(phi);
-        const double g   = 1. / std::sqrt(omega * omega + 0.5 * b * q0 * q0 * (1 + s * s));
-        sum += (i == 0 || i == n ? 1. : (i % 2 ? 4. : 2.)) * g;
-      }
-    return 4. * sum * (0.5 * M_PI / n) / 3.;
-  }
+  using beamslider::testing::duffing_period;
 } // namespace
 
 TEST(FETransient, IterationMatrixIsTheNewtonJacobian)
