@@ -145,7 +145,8 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
 // members over 25 s), printed as a table for the issue note. Run with
 // --gtest_also_run_disabled_tests --gtest_filter='*ModellingRungs*'
 // (about 25 min on two cores; BEAMSLIDER_LADDER_RUNGS picks fewer,
-// BEAMSLIDER_LADDER_END_TIME sets the simulated time, default 25 s).
+// BEAMSLIDER_LADDER_END_TIME sets the simulated time, default 25 s, and
+// BEAMSLIDER_LADDER_MEMBERS the members, default 4).
 TEST(ErrorLadder, DISABLED_ModellingRungsAtQuickSize)
 {
   const Scene scene = read_scene(mueller);
@@ -164,7 +165,9 @@ TEST(ErrorLadder, DISABLED_ModellingRungsAtQuickSize)
   while (rungs[ref].name != "FE Δt/4")
     ++ref;
   const char *end       = std::getenv("BEAMSLIDER_LADDER_END_TIME"); // [s], default 25
-  const LadderStudy study = run_ladder(scene, rungs, ref, end ? std::atof(end) : 25., 4, [](const LadderRung &r, std::size_t) {
+  const char *members   = std::getenv("BEAMSLIDER_LADDER_MEMBERS");  // default 4
+  const LadderStudy study = run_ladder(scene, rungs, ref, end ? std::atof(end) : 25., members ? std::atoi(members) : 4,
+                                       [](const LadderRung &r, std::size_t) {
     std::cout << "rung " << r.name << " (" << r.model.label() << ")" << std::endl;
   });
   for (std::size_t i = 0; i < study.rungs.size(); ++i)

@@ -173,8 +173,9 @@ namespace beamslider
             "interval; the spread is W₁ between the halves of one ensemble, i.e. what its own scatter gives at this size. "
             "A model is distinguishable from another when the interval's lower end exceeds the spread. Reference: **"
          << ref.rung.name << "** (" << ref.rung.model.label() << ")"
-         << (full ? "" : "; `verify --full` runs 8 members over 40 s and adds the implicit ROM, the FE with the ROM's damped "
-                         "modes and the FE at Δt, Δt/2 and Δt/8")
+         << (full ? "" : "; `verify --full` runs 8 members over 40 s and adds the implicit ROM with 20 modes and with all "
+                         "the mesh's bending modes, the FE without axial inertia, the FE with the ROM's damped modes and "
+                         "the FE at Δt, Δt/2 and Δt/8")
          << ". Cost: the stated model of `fe_rom_study.h` in units of one step of the published ROM (not a clock reading); "
             "wall time is per member on this machine, for information.\n\n"
          << "### 5.1 Headline: every model against the FE reference\n\n"

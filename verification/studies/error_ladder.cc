@@ -1,6 +1,8 @@
 // The error ladder, see error_ladder.h.
 #include "verification/studies/error_ladder.h"
 
+#include "fem/fe_beam.h"
+
 #include <numeric>
 
 namespace beamslider
@@ -25,6 +27,16 @@ namespace beamslider
       s.time_step  = time_step;
       return s;
     }
+
+    // The number of bending modes the FE mesh has: its free w and θ DoFs.
+    unsigned int fe_bending_modes(const Scene &scene)
+    {
+      const FEBeam beam(scene);
+      unsigned int n = 0;
+      for (unsigned int i = 0; i < beam.n_dofs(); ++i)
+        n += !beam.axial_dofs()[i] && !beam.bending_constraints().is_constrained(i);
+      return n;
+    }
   } // namespace
 
   std::vector<LadderRung> default_ladder(const Scene &scene, const bool full, std::size_t &reference)
@@ -43,6 +55,11 @@ namespace beamslider
     if (full)
       {
         rungs.push_back({"ROM N=20 implicit", "the FE's integrator (implicit midpoint rule)", rom(20, dt / 4, "implicit"), 0});
+        const unsigned int all_modes = fe_bending_modes(scene);
+        rungs.push_back({"ROM all " + std::to_string(all_modes) + " modes implicit",
+                         "every bending mode of the FE mesh (implicit: the explicit step would need 2/ω_" +
+                           std::to_string(all_modes) + ")",
+                         rom(all_modes, dt / 4, "implicit"), 0});
         ModelSetting fe_static_membrane = fe(scene, dt / 4);
         fe_static_membrane.axial_inertia = false;
         rungs.push_back({"FE Δt/4 no axial inertia (20 damped modes)",

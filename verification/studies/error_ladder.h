@@ -69,7 +69,8 @@ namespace beamslider
   // explicit step's limit 2/ω_N forces the smaller steps) and the FE at Δt/4
   // as the reference (its end state is converged in Δt there, not at the
   // scene's Δt). Full: adds the ROM N = 20 with the FE's implicit midpoint
-  // rule, the FE damping the same 20 modes without and then with axial
+  // rule, the implicit ROM with every bending mode of the FE mesh, the FE
+  // damping the same 20 modes without and then with axial
   // inertia (the two differences between ROM and FE beam), the FE at Δt and Δt/2 (not
   // converged: they show how far off an FE at the ROM's step is) and at Δt/8
   // (whether the reference is converged).
