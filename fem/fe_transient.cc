@@ -63,14 +63,17 @@ namespace beamslider
     beam.assemble_mass_matrix(M_, c);
     if (!settings_.axial_inertia)
       {
-        // The axial block of M (it has no coupling to the bending DoFs);
-        // the constrained DoFs keep their diagonal filler.
+        // The free axial DoFs lose their mass: the axial block of M (it has
+        // no coupling to the bending DoFs); the constrained DoFs keep their
+        // diagonal filler.
         const std::vector<bool> &axial = beam.axial_dofs();
         for (unsigned int i = 0; i < n; ++i)
           if (axial[i] && !constrained_[i])
-            for (auto e = M_.begin(i); e != M_.end(i); ++e)
-              if (axial[e->column()] && !constrained_[e->column()])
-                e->value() = 0.;
+            massless_axial_.push_back(i);
+        for (const unsigned int i : massless_axial_)
+          for (auto e = M_.begin(i); e != M_.end(i); ++e)
+            if (axial[e->column()] && !constrained_[e->column()])
+              e->value() = 0.;
       }
     beam.assemble_base_load(r_);
     to_eigen(r_, r_eigen_);
@@ -176,10 +179,6 @@ namespace beamslider
     for (const auto &[dof, k] : springs_)
       spring_entry_.push_back(entry_of(dof, dof));
 
-    if (!settings_.axial_inertia)
-      for (unsigned int i = 0; i < n; ++i)
-        if (beam.axial_dofs()[i] && !constrained_[i])
-          massless_axial_.push_back(i);
     for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &q_end_, &f_end_})
       v->setZero(n);
   }

@@ -28,14 +28,12 @@ namespace beamslider
       return s;
     }
 
-    // The number of bending modes the FE mesh has: its free w and θ DoFs.
+    // The number of bending modes the FE mesh has: its free w and θ DoFs,
+    // counted as compute_bending_modes counts them.
     unsigned int fe_bending_modes(const Scene &scene)
     {
       const FEBeam beam(scene);
-      unsigned int n = 0;
-      for (unsigned int i = 0; i < beam.n_dofs(); ++i)
-        n += !beam.axial_dofs()[i] && !beam.bending_constraints().is_constrained(i);
-      return n;
+      return beam.n_dofs() - beam.bending_constraints().n_constraints();
     }
   } // namespace
 
