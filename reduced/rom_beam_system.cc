@@ -72,10 +72,10 @@ namespace beamslider
       }
     // In place, into storage sized once: the step allocates nothing. The
     // operations and their order are those of the plain formula
-    //   h = (−2Dω∘u_B − ω²∘q_M) − f_nl(q_M) + γ ẅ0,
+    //   h = (−c∘u_B − ω²∘q_M) − f_nl(q_M) + γ ẅ0,   c_n = 2 D ω_n (or 0),
     // so that the results stay the same to the bit.
     const auto w = rom_.basis().omega.array(); // an expression, not a copy
-    last_damping_force_.array() = -(2. * rom_.damping_ratio() * w * u_B.array());
+    last_damping_force_.array() = -(rom_.damping_coefficients().array() * u_B.array());
     last_excitation_force_      = rom_.basis().gamma * excitation_.acceleration(t_M);
     h_.array()                  = last_damping_force_.array() - w * w * q_M.array();
     rom_.add_nonlinear_force(q_M, -1., h_, scratch_);

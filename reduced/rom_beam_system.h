@@ -4,7 +4,7 @@
 // Mass-normalised modes give M = I. One explicit Moreau midpoint step
 // (doc/physics.md §7–8) of the smooth part:
 //
-//   h(t_M, q_M, u_B) = −(2 D ω ∘ u_B + ω² ∘ q_M + f_nl(q_M)) + γ ẅ0(t_M)
+//   h(t_M, q_M, u_B) = −(c ∘ u_B + ω² ∘ q_M + f_nl(q_M)) + γ ẅ0(t_M),  c_n = 2 D ω_n
 //   u_free = u_B + Δt h,     S = I
 //
 // [q] = m kg^1/2, [u] = m kg^1/2/s, [h] = m kg^1/2/s². The scheme is explicit

@@ -2,6 +2,8 @@
 // rom_implicit_beam_system.h.
 #include "reduced/rom_implicit_beam_system.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -13,7 +15,7 @@ namespace beamslider
     : RomBeamSystem(std::move(rom), thickness, excitation)
   {
     const Eigen::ArrayXd w = model().basis().omega.array();
-    c_                     = (2. * model().damping_ratio() * w).matrix();
+    c_                     = model().damping_coefficients();
     omega2_                = (w * w).matrix();
   }
 
@@ -36,18 +38,38 @@ namespace beamslider
     const Eigen::Index N  = n_dofs();
     const double a        = excitation().acceleration(t_M);
     const Eigen::VectorXd &gamma = model().basis().gamma;
+    structured_                  = model().has_membrane_form();
+    if (structured_ && structured_dt_ != dt)
+      prepare_structure(dt);
     Eigen::VectorXd u     = u_B;
+    Eigen::VectorXd du(N);
     for (unsigned int it = 1; it <= 30; ++it)
       {
         const Eigen::VectorXd q_bar = q_M + 0.25 * dt * (u - u_B);
         const Eigen::VectorXd R =
           (u - u_B) + dt * (0.5 * c_.cwiseProduct(u_B + u) + omega2_.cwiseProduct(q_bar) +
                             model().nonlinear_force(q_bar) - a * gamma);
-        Eigen::MatrixXd S = (0.25 * dt * dt) * model().nonlinear_tangent(q_bar);
-        S.diagonal() += Eigen::VectorXd::Ones(N) + 0.5 * dt * c_ + (0.25 * dt * dt) * omega2_;
-        lu_.compute(S);
-        factorised_               = true;
-        const Eigen::VectorXd du  = lu_.solve(R);
+        if (structured_)
+          {
+            // S = D + α K' + β v vᵀ in the eigenbasis of D^-½ K' D^-½.
+            const double k = model().is_nonlinear() ? model().basis().membrane_stiffness : 0.;
+            Kq_.noalias()  = model().basis().stretch * q_bar;
+            const double alpha = 0.125 * dt * dt * k * q_bar.dot(Kq_);
+            beta_              = 0.25 * dt * dt * k;
+            z_.noalias()       = W_.transpose() * Kq_;
+            e_inv_             = (1. + alpha * lambda_.array()).inverse().matrix();
+            e_inv_z_           = e_inv_.cwiseProduct(z_);
+            sm_denominator_    = 1. + beta_ * z_.dot(e_inv_z_);
+            structured_solve(R, du);
+          }
+        else
+          {
+            Eigen::MatrixXd S = (0.25 * dt * dt) * model().nonlinear_tangent(q_bar);
+            S.diagonal() += Eigen::VectorXd::Ones(N) + 0.5 * dt * c_ + (0.25 * dt * dt) * omega2_;
+            lu_.compute(S);
+            du = lu_.solve(R);
+          }
+        factorised_ = true;
         u -= du;
         ++newton_iterations_;
         const double correction = du.norm();
@@ -73,7 +95,37 @@ namespace beamslider
   {
     if (!factorised_)
       throw std::logic_error("implicit reduced model: solve_iteration_matrix called before free_velocity");
-    X = lu_.solve(B);
+    if (!structured_)
+      {
+        X = lu_.solve(B);
+        return;
+      }
+    for (Eigen::Index j = 0; j < B.cols(); ++j)
+      structured_solve(B.col(j), X.col(j));
+  }
+
+  void RomImplicitBeamSystem::prepare_structure(const double dt)
+  {
+    const Eigen::VectorXd D = Eigen::VectorXd::Ones(n_dofs()) + 0.5 * dt * c_ + (0.25 * dt * dt) * omega2_;
+    d_inv_sqrt_             = D.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd A = d_inv_sqrt_.asDiagonal() * model().basis().stretch * d_inv_sqrt_.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(A);
+    if (eigen.info() != Eigen::Success)
+      throw std::runtime_error("implicit reduced model: eigendecomposition of the scaled stretch matrix K' failed");
+    lambda_        = eigen.eigenvalues();
+    W_             = d_inv_sqrt_.asDiagonal() * eigen.eigenvectors();
+    work_.resize(n_dofs());
+    structured_dt_ = dt;
+  }
+
+  void RomImplicitBeamSystem::structured_solve(const Eigen::Ref<const Eigen::VectorXd> &r,
+                                               Eigen::Ref<Eigen::VectorXd> x) const
+  {
+    // S⁻¹ = W (E + β z zᵀ)⁻¹ Wᵀ with W = D^-½ V, by Sherman–Morrison.
+    work_.noalias() = W_.transpose() * r;
+    work_           = e_inv_.cwiseProduct(work_);
+    work_ -= (beta_ * z_.dot(work_) / sm_denominator_) * e_inv_z_;
+    x.noalias() = W_ * work_;
   }
 
   void RomImplicitBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work,

@@ -9,7 +9,16 @@ namespace beamslider
     : basis_(std::move(basis))
     , damping_ratio_(damping_ratio)
     , nonlinear_(geometric_nonlinearity)
-  {}
+  {
+    set_damped_modes(n_modes());
+  }
+
+  void ReducedOrderModel::set_damped_modes(const unsigned int n_damped)
+  {
+    n_damped_ = std::min(n_damped, n_modes());
+    damping_  = Eigen::VectorXd::Zero(n_modes());
+    damping_.head(n_damped_) = 2. * damping_ratio_ * basis_.omega.head(n_damped_);
+  }
 
   void ReducedOrderModel::set_cubic_terms(std::vector<CubicTerm> terms)
   {
@@ -64,7 +73,7 @@ namespace beamslider
   Eigen::VectorXd ReducedOrderModel::linear_force(const Eigen::VectorXd &q, const Eigen::VectorXd &v) const
   {
     const Eigen::ArrayXd w = basis_.omega.array();
-    return (w * w * q.array() + 2. * damping_ratio_ * w * v.array()).matrix();
+    return (w * w * q.array() + damping_.array() * v.array()).matrix();
   }
 
   std::vector<CubicTerm> ReducedOrderModel::analytic_cubic_terms() const

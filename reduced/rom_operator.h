@@ -40,6 +40,21 @@ namespace beamslider
     const ModalBasis &basis() const { return basis_; }
     double damping_ratio() const { return damping_ratio_; }
 
+    // Modal damping acts on the first n_damped modes only; the others ring
+    // undamped. The FE's modal damping acts on the scene's N modes of a mesh
+    // with many more, so a ROM with every mode of that mesh damps the same
+    // set only with this (the error ladder's "damped set" rung). Default and
+    // n_damped ≥ N: every kept mode is damped.
+    void set_damped_modes(unsigned int n_damped);
+    unsigned int n_damped_modes() const { return n_damped_; }
+    // c_n = 2 D ω_n for a damped mode, 0 otherwise [1/s].
+    const Eigen::VectorXd &damping_coefficients() const { return damping_; }
+
+    // Whether f is the analytic membrane form (qᵀK'q) K'q (true unless cubic
+    // terms replaced it); the implicit step exploits its structure.
+    bool has_membrane_form() const { return !terms_.has_value(); }
+    bool is_nonlinear() const { return nonlinear_; }
+
     // Nonlinear part f(q) of the modal restoring force [N kg^-1/2 = m kg^1/2/s²].
     Eigen::VectorXd nonlinear_force(const Eigen::VectorXd &q) const;
     // f += scale · f(q) without allocating (scratch: a vector of N entries).
@@ -47,7 +62,7 @@ namespace beamslider
                              Eigen::VectorXd &scratch) const;
     // ∂f/∂q.
     Eigen::MatrixXd nonlinear_tangent(const Eigen::VectorXd &q) const;
-    // Linear part: ω_n² q_n + 2 D ω_n v_n.
+    // Linear part: ω_n² q_n + c_n v_n.
     Eigen::VectorXd linear_force(const Eigen::VectorXd &q, const Eigen::VectorXd &v) const;
 
     // The analytic tensor in the sorted storage above (for reports and
@@ -57,6 +72,8 @@ namespace beamslider
   private:
     ModalBasis basis_;
     double damping_ratio_;
+    unsigned int n_damped_;
+    Eigen::VectorXd damping_; // c_n [1/s]
     bool nonlinear_;
     std::optional<std::vector<CubicTerm>> terms_;
   };

@@ -125,7 +125,7 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
-    << "rung,family,n_modes,n_elements,integrator,time_step_s,fe_damped_modes,reference,cost_units,final_x_median,w1,w1_high\n"
+    << "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,reference,cost_units,final_x_median,w1,w1_high\n"
     << "ROM N=5,rom,5,0,explicit,2e-05,0,0,2500000,0.33,0.09,0.1\n"
     << "ROM N=20,rom,20,0,explicit,5e-06,0,0,8.5e7,0.40,0.02,0.025\n"
     << "FE,fe,0,32,implicit,2e-05,0,1,1.56e9,0.43,0,0\n";

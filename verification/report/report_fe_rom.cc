@@ -86,7 +86,7 @@ namespace beamslider
                                      CsvWriter::cell(m.family == "fe" ? m.n_elements : 0u),
                                      m.family == "rom" ? m.integrator : "implicit",
                                      CsvWriter::cell(m.time_step),
-                                     CsvWriter::cell(r.rung.fe_damped_modes),
+                                     CsvWriter::cell(m.damped_modes),
                                      is_reference ? "1" : "0",
                                      CsvWriter::cell(static_cast<unsigned int>(r.members.size())),
                                      CsvWriter::cell(r.n_failed),
@@ -129,7 +129,7 @@ namespace beamslider
                 << std::endl;
 
       CsvWriter rungs_csv(report.dir + "/ladder.csv",
-                          {"index", "rung", "family", "n_modes", "n_elements", "integrator", "time_step_s", "fe_damped_modes",
+                          {"index", "rung", "family", "n_modes", "n_elements", "integrator", "time_step_s", "damped_modes",
                            "reference", "members", "failed", "wall_s_per_member", "cost_units", "final_x_n",
                            "final_x_median", "final_x_min", "final_x_max", "final_amplitude_n", "final_amplitude_median",
                            "final_amplitude_min", "final_amplitude_max", "jump_n", "jump_time_median_s", "jump_time_min_s",

@@ -32,10 +32,7 @@ namespace beamslider
   {
     std::string name;   // e.g. "ROM N=5 (published)"
     std::string change; // what this rung changes against the one before
-    ModelSetting model;
-    // FE only: the number of modes the modal damping acts on (0: the
-    // scene's), so that an FE rung damps the same set as the ROM beside it.
-    unsigned int fe_damped_modes = 0;
+    ModelSetting model; // its damped_modes keeps the damped set of the rungs beside it
   };
 
   struct LadderRungResult
@@ -69,11 +66,13 @@ namespace beamslider
   // explicit step's limit 2/ω_N forces the smaller steps) and the FE at Δt/4
   // as the reference (its end state is converged in Δt there, not at the
   // scene's Δt). Full: adds the ROM N = 20 with the FE's implicit midpoint
-  // rule, the implicit ROM with every bending mode of the FE mesh, the FE
-  // damping the same 20 modes without and then with axial
-  // inertia (the two differences between ROM and FE beam), the FE at Δt and Δt/2 (not
-  // converged: they show how far off an FE at the ROM's step is) and at Δt/8
-  // (whether the reference is converged).
+  // rule; the implicit ROM with every bending mode of the FE mesh damping
+  // 20 of them and then all; the FE without axial inertia damping all and
+  // then 20 modes, and the FE with axial inertia damping 20 (each step
+  // changes one thing: modes, damped set, beam model, damped set, axial
+  // inertia); the FE at Δt and Δt/2 (not converged: they show how far off
+  // an FE at the ROM's step is) and at Δt/8 (whether the reference is
+  // converged).
   std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
 
   // Runs every rung as an ensemble of `members` members over [0, end_time].

@@ -24,6 +24,8 @@ namespace beamslider
       s << "FE " << n_elements << " el." << (axial_inertia ? "" : " no axial inertia");
     else
       s << "ROM N=" << n_modes << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
+    if (damped_modes)
+      s << " damped " << damped_modes;
     s << " dt=" << time_step; // no comma: labels go into CSV cells
     if (slider_offset_over_L != 0)
       s << " x0+" << slider_offset_over_L;
@@ -50,6 +52,8 @@ namespace beamslider
       {
         if (setting.n_elements)
           scene.discretisation.n_elements = setting.n_elements;
+        if (setting.damped_modes) // the FE damps the scene's N modes
+          scene.discretisation.n_modes = setting.damped_modes;
         return make_fe_beam_system(scene, 0, setting.axial_inertia);
       }
     if (setting.family != "rom")
@@ -59,6 +63,8 @@ namespace beamslider
     const FEModes modes = compute_bending_modes(beam, setting.n_modes);
     ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
     ReducedOrderModel rom(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+    if (setting.damped_modes)
+      rom.set_damped_modes(setting.damped_modes);
     if (setting.coefficients != "analytic")
       {
         // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).

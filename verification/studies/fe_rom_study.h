@@ -39,6 +39,10 @@ namespace beamslider
     // fe: false gives the axial DoFs no mass (membrane in static equilibrium,
     // the ROM's assumption): the ladder rung "FE without axial inertia".
     bool axial_inertia = true;
+    // The modes the modal damping acts on (0: the model's own set: the
+    // scene's N for the FE, every kept mode for the ROM). The ladder sets it
+    // so that a ROM and the FE beside it damp the same modes.
+    unsigned int damped_modes = 0;
     double time_step = 2e-5;     // [s]
     // Added to the scene's start position x_C/L: a "round-off twin" of a run
     // (e.g. 1e-9) measures how far the rattling alone spreads two runs.

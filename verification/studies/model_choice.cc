@@ -20,7 +20,7 @@ namespace beamslider
     constexpr double ladder_end_time      = 25.; // [s]: the end state of the published cases is reached by ~25 s
 
     const char *cache_header =
-      "rung,family,n_modes,n_elements,integrator,time_step_s,fe_damped_modes,reference,cost_units,final_x_median,w1,w1_high";
+      "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,reference,cost_units,final_x_median,w1,w1_high";
 
     std::vector<std::string> split(const std::string &line)
     {
@@ -52,7 +52,7 @@ namespace beamslider
           r.model.n_elements    = std::stoul(c[3]);
           r.model.integrator    = c[4];
           r.model.time_step     = std::stod(c[5]);
-          r.fe_damped_modes     = std::stoul(c[6]);
+          r.model.damped_modes  = std::stoul(c[6]);
           r.reference           = c[7] == "1";
           r.cost_units          = std::stod(c[8]);
           r.final_x_median      = std::stod(c[9]);
@@ -136,7 +136,6 @@ namespace beamslider
             LadderChoiceRow row;
             row.rung            = r.rung.name;
             row.model           = r.rung.model;
-            row.fe_damped_modes = r.rung.fe_damped_modes;
             row.reference       = i == reference;
             row.cost_units      = r.cost_units;
             row.final_x_median  = r.final_position.median;
@@ -149,7 +148,7 @@ namespace beamslider
         text << cache_header << '\n';
         for (const auto &r : rows)
           text << r.rung << ',' << r.model.family << ',' << r.model.n_modes << ',' << r.model.n_elements << ','
-               << r.model.integrator << ',' << number(r.model.time_step) << ',' << r.fe_damped_modes << ','
+               << r.model.integrator << ',' << number(r.model.time_step) << ',' << r.model.damped_modes << ','
                << (r.reference ? 1 : 0) << ',' << number(r.cost_units) << ',' << number(r.final_x_median) << ','
                << number(r.w1) << ',' << number(r.w1_high) << '\n';
         write_text_file(path, text.str());

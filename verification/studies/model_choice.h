@@ -10,7 +10,7 @@
 // start position, mesh, N, Δt; not the name, end time or output rate). A
 // changed scene gets a new key, so a stale cache is never read.
 // Columns: rung,family,n_modes,n_elements,integrator,time_step_s,
-//          fe_damped_modes,reference,cost_units,final_x_median,w1,w1_high
+//          damped_modes,reference,cost_units,final_x_median,w1,w1_high
 #pragma once
 
 #include "meshes/scene.h"
@@ -28,7 +28,6 @@ namespace beamslider
   {
     std::string rung;
     ModelSetting model;
-    unsigned int fe_damped_modes = 0;
     bool reference               = false;
     double cost_units            = 0; // one member over the ladder's window
     double final_x_median        = 0;
