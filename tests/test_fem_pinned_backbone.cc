@@ -142,9 +142,13 @@ TEST(PinnedSupports, ReducedModelBackboneIsTheExactSingleModeOne)
       // Published to 6 decimals; the FE modes add < 1e-9.
       EXPECT_NEAR(ratio, exact_ratio[k], 1e-6) << "a/r = " << a_over_r;
       if (k == 0)
-        EXPECT_NEAR(hb1, first_order_hb_at_1, 1e-6);
+        {
+          EXPECT_NEAR(hb1, first_order_hb_at_1, 1e-6);
+        }
       if (k == 4)
-        EXPECT_NEAR(hb1, first_order_hb_at_5, 1e-6);
+        {
+          EXPECT_NEAR(hb1, first_order_hb_at_5, 1e-6);
+        }
     }
 
   // The three-mode ROM in time (explicit midpoint, Δt far below 2/ω_3) from

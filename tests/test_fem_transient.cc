@@ -86,7 +86,7 @@ TEST(FETransient, CachedInternalForceEqualsTheBeamAssembly)
   // The Newton loop's f(q) from cached quadrature data against
   // FEBeam::assemble_internal_force, at a state of the size of a large
   // vibration (w ~ h, θ ~ 30 h/L, u ~ 1e-2 h), on both support types.
-  for (const std::string file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm")})
+  for (const std::string &file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm")})
     {
       const Scene s = read_scene(file);
       FETransientBeam sys(s, BaseExcitation{0., 0.});
@@ -110,7 +110,7 @@ TEST(FETransient, CachedIterationMatrixEqualsMassPlusTheBeamTangent)
   // The Newton loop's S₀ = M + Δt²/4 K_t(q̄), assembled from cached quadrature
   // data, against FEBeam's mass matrix and tangent stiffness (an independent
   // assembly with FEValues) on the free DoFs, at a large-vibration state.
-  for (const std::string file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm")})
+  for (const std::string &file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm")})
     {
       const Scene s = read_scene(file);
       FETransientBeam sys(s, BaseExcitation{0., 0.});
