@@ -300,6 +300,9 @@ namespace beamslider
         const SystemState &s = stepper_.state();
         ++result.n_steps;
         result.max_solver_iterations = std::max(result.max_solver_iterations, report->iterations);
+        if (report->n_active > 0)
+          ++result.n_contact_steps;
+        result.solver_iterations += report->iterations;
 
         if (period_open_)
           {

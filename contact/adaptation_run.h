@@ -92,6 +92,9 @@ namespace beamslider
     unsigned long n_steps = 0;
     double wall_seconds = 0, steps_per_second = 0;
     unsigned int max_solver_iterations = 0;
+    // Steps with an active contact (each one contact solve) and the contact
+    // solver's iterations summed over them, for the benchmarks.
+    unsigned long n_contact_steps = 0, solver_iterations = 0;
   };
 
   struct RunOptions

@@ -30,7 +30,8 @@ namespace beamslider
       }
     if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
       throw std::invalid_argument("reduced model: ω must be positive and γ must have one entry per mode");
-    for (Eigen::VectorXd *v : {&h_, &scratch_, &last_u_B_, &last_damping_force_, &last_excitation_force_, &u_mean_})
+    for (Eigen::VectorXd *v : {&h_, &scratch_, &last_u_B_, &last_damping_force_, &last_excitation_force_, &u_mean_,
+                               &energy_force_, &energy_scratch_})
       v->resize(rom_.n_modes());
   }
 
@@ -88,8 +89,12 @@ namespace beamslider
 
   double RomBeamSystem::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
   {
-    const Eigen::ArrayXd w = rom_.basis().omega.array();
-    return 0.5 * u.squaredNorm() + 0.5 * (w * w * q.array().square()).sum() + 0.25 * q.dot(rom_.nonlinear_force(q));
+    // Called at every period's start and end: into storage sized once, so
+    // that a run allocates nothing after its start.
+    const auto w = rom_.basis().omega.array(); // an expression, not a copy
+    energy_force_.setZero();
+    rom_.add_nonlinear_force(q, 1., energy_force_, energy_scratch_);
+    return 0.5 * u.squaredNorm() + 0.5 * (w * w * q.array().square()).sum() + 0.25 * q.dot(energy_force_);
   }
 
   void RomBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const

@@ -68,5 +68,6 @@ namespace beamslider
     Eigen::VectorXd last_u_B_, last_damping_force_, last_excitation_force_;
     Eigen::VectorXd h_, scratch_; // smooth force and K'q of free_velocity
     mutable Eigen::VectorXd u_mean_; // (u_B + u_E)/2 of step_work
+    mutable Eigen::VectorXd energy_force_, energy_scratch_; // f(q) and K'q of energy()
   };
 } // namespace beamslider

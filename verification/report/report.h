@@ -35,6 +35,11 @@ namespace beamslider
     s << std::fixed << std::setprecision(digits) << x;
     return s.str();
   }
+  // With its sign always written: a shift or a difference.
+  inline std::string signed_fixed(const double x, const int digits = 3)
+  {
+    return (x >= 0 ? "+" : "") + fixed(x, digits);
+  }
 
   // Section 1: linear frequencies. FE against the clamped–clamped and the
   // spring-supported characteristic equations on refined meshes (error and

@@ -245,8 +245,7 @@ namespace beamslider
               md << "– | – | – | – |\n";
               continue;
             }
-          md << std::showpos << fixed(study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median, 3)
-             << std::noshowpos << " | " << distance(c) << " | " << fixed(c.spread, 3) << " | "
+          md << signed_fixed(study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median, 3) << " | " << distance(c) << " | " << fixed(c.spread, 3) << " | "
              << (c.distinguishable ? "yes" : "no") << " |\n";
         }
       // Which step carries the difference: computed from this run, not
@@ -267,7 +266,7 @@ namespace beamslider
           md << "\n**Which steps carry the differences** (distinguishable steps, largest shift first): ";
           for (std::size_t k = 0; k < carried.size(); ++k)
             md << (k ? "; " : "") << study.rungs[carried[k] - 1].rung.name << " → " << study.rungs[carried[k]].rung.name
-               << " (" << std::showpos << fixed(shift(carried[k]), 3) << std::noshowpos << " L: "
+               << " (" << signed_fixed(shift(carried[k]), 3) << " L: "
                << study.rungs[carried[k]].rung.change << ")";
           md << ". Every other step is within the ensembles' own scatter.\n";
         }
