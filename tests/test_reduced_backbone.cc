@@ -296,6 +296,16 @@ TEST(MultiModeBackbone, SevenModesTenHarmonicsUpToFourThicknesses)
           // ŵ/h ≈ 2.7 — where the seed sees Eq. 4 and the NMA part (≈ 2.6).
           EXPECT_GT(a_max / s.beam.h, 2.5);
           EXPECT_NE(bb.message.find("tongue"), std::string::npos) << bb.message;
+          // The tongue is where the amplitude turns back: one fold, the one
+          // the stop reports (the amplitude fell after its maximum).
+          EXPECT_EQ(n_turns, 1u);
+        }
+      else
+        {
+          // Continuation in the amplitude can only go up: no fold, and it
+          // stops at the first tongue (the 5:1 near ŵ/h ≈ 0.64).
+          EXPECT_EQ(n_turns, 0u);
+          EXPECT_NEAR(a_max / s.beam.h, 0.64, 0.03);
         }
     }
 }

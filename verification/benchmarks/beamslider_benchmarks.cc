@@ -206,6 +206,58 @@ static void RomBackbone(benchmark::State &state)
 }
 BENCHMARK(RomBackbone)->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
 
+// Harmonic balance on a dense system the size of a condensed FE model: the
+// ROM with every bending mode of the default mesh (64) written in
+// non-modal coordinates q = P x (P = I + 0.1 S, S a fixed dense matrix with
+// entries in [−1, 1]/√n), so that M = PᵀP and K = PᵀΩ²P are full. H = 10,
+// ŵ/h from 0.01 to 4; arg 1: odd harmonics only.
+static void DenseBackbone(benchmark::State &state)
+{
+  const Scene &scene = default_scene();
+  const FEBeam fe(scene);
+  const unsigned int n = fe.n_dofs() - fe.bending_constraints().n_constraints(); // every bending mode
+  const FEModes modes  = compute_bending_modes(fe, n);
+  const ModalBasis basis = make_modal_basis(fe, modes, n);
+  const ReducedOrderModel rom(basis, 0.);
+  Eigen::MatrixXd S(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < n; ++j)
+      S(i, j) = std::sin(1.7 * i + 0.3 * j * j + 0.1) / std::sqrt(double(n));
+  const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n) + 0.1 * S;
+  ConservativeSystem dense;
+  dense.mass      = P.transpose() * P;
+  dense.stiffness = P.transpose() * basis.omega.array().square().matrix().asDiagonal() * P;
+  dense.force     = [&](const Eigen::VectorXd &x) -> Eigen::VectorXd { return P.transpose() * rom.nonlinear_force(P * x); };
+  dense.tangent   = [&](const Eigen::VectorXd &x) -> Eigen::MatrixXd {
+    return P.transpose() * rom.nonlinear_tangent(P * x) * P;
+  };
+  Eigen::VectorXd phi, dphi;
+  basis.evaluate(0.5 * scene.beam.length, phi, dphi);
+  BackboneSettings settings;
+  settings.output                = P.transpose() * phi;
+  settings.hb.n_harmonics        = 10;
+  settings.hb.odd_harmonics_only = state.range(0) == 1;
+  settings.start_amplitude       = 0.01 * scene.beam.thickness;
+  settings.end_amplitude         = 4 * scene.beam.thickness;
+  unsigned long iterations = 0, points = 0, unknowns = 0;
+  double seconds = 0;
+  for (auto _ : state)
+    {
+      const Backbone bb = compute_backbone(dense, settings);
+      for (const auto &p : bb.points)
+        if (!(p.relative_residual < 1e-8))
+          state.SkipWithError("a backbone point is not converged");
+      iterations += bb.n_newton_iterations;
+      points += bb.points.size();
+      seconds += bb.seconds;
+      unknowns = bb.points.empty() ? 0 : bb.points.front().harmonics.size() + 1;
+    }
+  state.counters["unknowns"]     = unknowns;
+  state.counters["points"]       = double(points) / state.iterations();
+  state.counters["ms/iteration"] = 1e3 * seconds / std::max<unsigned long>(iterations, 1);
+}
+BENCHMARK(DenseBackbone)->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->Iterations(1);
+
 // The FE backbone at small amplitude (H = 3, ŵ/h ≤ 0.3): the FE-implied b_111.
 static void FeImpliedCoefficient(benchmark::State &state)
 {
