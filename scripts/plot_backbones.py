@@ -8,18 +8,9 @@
 Amplitude: first-harmonic amplitude of w(L/2) relative to the base, over h.
 Each continuation segment is drawn as its own line: the gap between segments
 is the internal-resonance tongue jumped over."""
-import csv
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def segments(rows):
@@ -40,8 +31,8 @@ def draw(ax, rows, style, label, **kw):
 
 def command(folder):
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    draw(ax, read(f"{folder}/backbone.csv"), "b.-", "harmonic balance", ms=3)
-    draw(ax, read(f"{folder}/eq4.csv"), "k--", "seed Eq. 4 (one mode, one harmonic)")
+    draw(ax, read_rows(f"{folder}/backbone.csv"), "b.-", "harmonic balance", ms=3)
+    draw(ax, read_rows(f"{folder}/eq4.csv"), "k--", "seed Eq. 4 (one mode, one harmonic)")
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("ŵ(L/2) / h (first harmonic)")
     ax.grid(True, alpha=0.3)
@@ -57,7 +48,7 @@ def report(folder):
     for ax, name, title in ((axes[0], "backbone_curves.csv", "scene as given"),
                             (axes[1], "backbone_ideal_curves.csv", "ideal clamp")):
         try:
-            rows = read(f"{folder}/{name}")
+            rows = read_rows(f"{folder}/{name}")
         except FileNotFoundError:
             ax.set_visible(False)
             continue
@@ -73,7 +64,7 @@ def report(folder):
     fig.tight_layout()
     fig.savefig(f"{folder}/backbones.png", dpi=120)
 
-    rows = read(f"{folder}/backbone_harmonics.csv")
+    rows = read_rows(f"{folder}/backbone_harmonics.csv")
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for H, style in {"1": "ks-", "3": "bo-", "5": "r^-"}.items():
         sel = [r for r in rows if r["n_harmonics"] == H and r["difference_hz"] != ""]

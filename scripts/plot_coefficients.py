@@ -1,18 +1,13 @@
 """Chart for the verification section "Cubic coefficients": relative error of
 b_111 against the STEP amplitude / ICE load level (coefficient_load_levels.csv
 in the report folder given as the only argument) -> coefficient_load_levels.png."""
-import csv
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder):
-    with open(f"{folder}/coefficient_load_levels.csv") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(f"{folder}/coefficient_load_levels.csv")
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     for (method, n), style in {("step-condensed", "1"): "ks-", ("ice", "1"): "bo-", ("ice", "3"): "r^-"}.items():
         sel = [r for r in rows if r["method"] == method and r["n_modes"] == n and r["status"] == "ok"]

@@ -2,30 +2,24 @@
 position x_C/L (bottom) and amplitude envelope (top) against time, member 0
 in black, the others in colour; the members' jumps marked.
 Arguments: folder (with member_periods.csv and members.csv), title."""
-import csv
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder, title):
     series = {}
-    with open(os.path.join(folder, "member_periods.csv")) as f:
-        for row in csv.DictReader(f):
-            m = int(row["member"])
-            s = series.setdefault(m, ([], [], []))
-            s[0].append(float(row["t_s"]))
-            s[1].append(float(row["x_over_L"]))
-            s[2].append(float(row["amplitude_over_h"]))
+    for row in read_rows(os.path.join(folder, "member_periods.csv")):
+        m = int(row["member"])
+        s = series.setdefault(m, ([], [], []))
+        s[0].append(float(row["t_s"]))
+        s[1].append(float(row["x_over_L"]))
+        s[2].append(float(row["amplitude_over_h"]))
     jumps = {}
-    with open(os.path.join(folder, "members.csv")) as f:
-        for row in csv.DictReader(f):
-            if row["jump_time_s"]:
-                jumps[int(row["member"])] = float(row["jump_time_s"])
+    for row in read_rows(os.path.join(folder, "members.csv")):
+        if row["jump_time_s"]:
+            jumps[int(row["member"])] = float(row["jump_time_s"])
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
     for m, (t, x, a) in sorted(series.items()):
         # Envelope: 0.1 s trailing mean of the per-period amplitude, and at

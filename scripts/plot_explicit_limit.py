@@ -2,18 +2,13 @@
 2/omega_N against the number of modes N, the seed's rule 2 pi/(5 omega_N) and
 the scene's time step. Arguments: report folder (with
 explicit_time_step_limit.csv), the scene's time step [s]."""
-import csv
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder, dt):
-    with open(f"{folder}/explicit_time_step_limit.csv") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(f"{folder}/explicit_time_step_limit.csv")
     n = [int(r["n_modes"]) for r in rows]
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     ax.semilogy(n, [float(r["stable_limit_s"]) for r in rows], "o-", label="stability limit 2/ω_N")

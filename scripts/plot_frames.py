@@ -14,10 +14,7 @@ import re
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plot_common import plt  # noqa: E402
 
 
 def read(path):

@@ -4,22 +4,13 @@ Reads frequency_convergence.csv and bonded_slider.csv from the report folder
 given as the only argument and writes frequency_convergence.png and
 bonded_slider.png beside them.
 """
-import csv
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder):
-    rows = read(f"{folder}/frequency_convergence.csv")
+    rows = read_rows(f"{folder}/frequency_convergence.csv")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
     for ax, supports in zip(axes, ["clamped", "elastic"]):
         modes = sorted({int(r["mode"]) for r in rows})
@@ -39,7 +30,7 @@ def main(folder):
     fig.tight_layout()
     fig.savefig(f"{folder}/frequency_convergence.png", dpi=120)
 
-    rows = read(f"{folder}/bonded_slider.csv")
+    rows = read_rows(f"{folder}/bonded_slider.csv")
     x = [float(r["x_over_L"]) for r in rows]
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(6.5, 6), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     ax.plot(x, [float(r["fe_fine_frequency_hz"]) for r in rows], "k-", label="FE, slider bonded (128 el.)")

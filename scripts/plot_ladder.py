@@ -5,25 +5,16 @@ speed against accuracy: the stated cost of one member against the
 Wasserstein distance W1 of the rung's final positions to the reference, with
 its 90 % bootstrap interval as error bar and the ensembles' own spread as a
 grey mark. Arguments: report folder, scene name."""
-import csv
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder, scene):
-    rungs = sorted(read(f"{folder}/ladder.csv"), key=lambda r: int(r["index"]))
+    rungs = sorted(read_rows(f"{folder}/ladder.csv"), key=lambda r: int(r["index"]))
     finals = defaultdict(list)
-    for r in read(f"{folder}/ladder_members.csv"):
+    for r in read_rows(f"{folder}/ladder_members.csv"):
         if r["final_x_over_L"]:
             finals[r["rung"]].append(float(r["final_x_over_L"]))
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw=dict(width_ratios=[1.3, 1]))

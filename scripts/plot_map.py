@@ -21,12 +21,9 @@ import os
 import statistics
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
 import matplotlib.colors as mcolors
 import matplotlib.patches as mpatches
-import matplotlib.pyplot as plt
+from plot_common import plt  # noqa: E402
 import numpy as np
 
 # The outcome classes in tie-breaking order, each with its fixed colour.

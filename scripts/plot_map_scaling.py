@@ -10,10 +10,7 @@ import csv
 import math
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from plot_common import plt  # noqa: E402
 from matplotlib.ticker import FuncFormatter
 
 COLUMNS = ["ranks", "cells", "wall_s", "cells_per_s", "machine"]

@@ -4,27 +4,16 @@ free_periods.csv. Top: amplitude of w(L/2) over h against x_C/L, both sweep
 branches, the Eq. 5 resonance curve and the free slider. Bottom: the
 period-averaged horizontal contact force on the slider (+ toward x = L), with
 its spread over the averaged periods."""
-import csv
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder, scene):
-    pcs = read(os.path.join(folder, "pcs.csv"))
-    resonance = read(os.path.join(folder, "resonance.csv"))
-    free = read(os.path.join(folder, "free_periods.csv"))
+    pcs = read_rows(os.path.join(folder, "pcs.csv"), missing_ok=True)
+    resonance = read_rows(os.path.join(folder, "resonance.csv"), missing_ok=True)
+    free = read_rows(os.path.join(folder, "free_periods.csv"), missing_ok=True)
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     colours = {"up": "tab:orange", "down": "tab:green"}
     labels = {"up": "prescribed, $x_C$ increasing", "down": "prescribed, $x_C$ decreasing"}

@@ -5,28 +5,17 @@ period-averaged horizontal contact force F_x (+ toward x = L) with its 95 %
 batch-means interval as error bars, and the zero-crossing intervals of
 crossings.csv as shaded spans (stable crossings only).
 Arguments: folder, other folder, label, other label."""
-import csv
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
-
-def read(path):
-    if not os.path.exists(path):
-        return []
-    with open(path) as f:
-        return list(csv.DictReader(f))
+from plot_common import plt, read_rows  # noqa: E402
 
 
 def main(folder, other, label, other_label):
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     styles = {"up": "o", "down": "s"}
     for name, path, colour, line in ((label, folder, "tab:blue", "-"), (other_label, other, "tab:red", "--")):
-        rows = read(os.path.join(path, "pcs.csv"))
+        rows = read_rows(os.path.join(path, "pcs.csv"), missing_ok=True)
         for direction in ("up", "down"):
             r = sorted((row for row in rows if row["direction"] == direction), key=lambda row: float(row["x_over_L"]))
             if not r:
@@ -37,7 +26,7 @@ def main(folder, other, label, other_label):
             ax2.errorbar(x, [float(row["mean_fx_N"]) for row in r], yerr=[float(row["mean_fx_ci95_N"]) for row in r],
                          fmt=styles[direction], ls=line, ms=3, lw=1, elinewidth=0.6, capsize=2, color=colour,
                          label=f"{name}, {direction}")
-    for row in read(os.path.join(folder, "crossings.csv")):
+    for row in read_rows(os.path.join(folder, "crossings.csv"), missing_ok=True):
         if row["stable"] == "1":
             colour = "tab:blue" if row["sweep"] == "this" else "tab:red"
             ax2.axvspan(float(row["x_low_over_L"]), float(row["x_high_over_L"]), color=colour, alpha=0.15, lw=0)

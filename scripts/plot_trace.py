@@ -16,10 +16,7 @@ are complete. No input means the run ended without a chart to draw."""
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+from plot_common import plt  # noqa: E402
 import numpy as np
 
 plot_columns = 2000
