@@ -22,6 +22,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -155,7 +156,39 @@ TEST(FEAnimation, PvdSeriesReadsBackWithTimesPointCountsAndGeometry)
             }
         }
     }
-  EXPECT_TRUE(fs::exists(dir / "frames.csv"));
+  // frames.csv, the same drawing for plots: one frame per .pvd time, at that
+  // time, and the beam drawn one thickness thick at mid-span.
+  std::ifstream frames((dir / "frames.csv").string());
+  ASSERT_TRUE(frames) << "frames.csv";
+  std::string line;
+  std::map<unsigned int, double> frame_time;
+  std::map<unsigned int, std::map<std::string, std::pair<double, double>>> mid; // part → (|x − L/2|, z)
+  while (std::getline(frames, line))
+    {
+      if (line.empty() || line[0] == '#' || line.rfind("frame,", 0) == 0)
+        continue;
+      std::stringstream row(line);
+      std::string cell;
+      std::vector<std::string> c;
+      while (std::getline(row, cell, ','))
+        c.push_back(cell);
+      ASSERT_EQ(c.size(), 7u) << line;
+      const unsigned int k = std::stoul(c[0]);
+      frame_time[k]        = std::stod(c[1]);
+      const double dx      = std::abs(std::stod(c[3]) - 0.5 * s.beam.length);
+      const auto nearest   = mid[k].find(c[2]);
+      if (nearest == mid[k].end() || dx < nearest->second.first)
+        mid[k][c[2]] = {dx, std::stod(c[4])};
+    }
+  ASSERT_EQ(frame_time.size(), times.size());
+  for (const auto &[k, t] : frame_time)
+    {
+      ASSERT_LT(k, times.size());
+      EXPECT_NEAR(t, times[k], 1e-9) << "frame " << k;
+      EXPECT_NEAR(mid[k]["beam_top"].second - mid[k]["beam_bottom"].second, s.beam.thickness,
+                  1e-3 * s.beam.thickness)
+        << "frame " << k;
+    }
   fs::remove_all(dir);
 }
 
