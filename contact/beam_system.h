@@ -12,17 +12,33 @@
 // u_free is the end velocity without contact impulses; S is the iteration
 // matrix (the mass matrix M for the explicit midpoint scheme; the effective
 // matrix M + θΔt C + θ²Δt² K_t for an implicit scheme). The Delassus matrix
-// is G = Wᵀ S⁻¹ W.
+// is G = Wᵀ S⁻¹ W. free_velocity returns a BeamStep that carries the rest of
+// the step (the solves with S, the works, the finish), so they cannot be asked
+// of a step that has not begun.
 #pragma once
 
 #include <Eigen/Dense>
 
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace beamslider
 {
   // Transverse displacement (relative to the moving base) and slope at one x,
   // with their gradients with respect to the beam coordinates.
+  // The beam's fields at sample points x (BeamSystem::sample_fields).
+  struct BeamFieldSamples
+  {
+    std::vector<double> x;           // sample positions [m]
+    std::vector<double> u;           // axial displacement [m]
+    std::vector<double> w;           // deflection relative to the base [m]
+    std::vector<double> dw;          // slope w' [-]
+    std::vector<double> curvature;   // w'' [1/m]
+    std::vector<double> axial_force; // N [N]
+  };
+
   struct BeamPointKinematics
   {
     double w  = 0;           // [m]
@@ -33,6 +49,47 @@ namespace beamslider
 
   class CheckpointWriter;
   class CheckpointReader;
+  class BeamSystem;
+
+  // One step of a beam without contact, as returned by BeamSystem::free_velocity.
+  // The step order — free velocity, then any number of iteration-matrix
+  // solves, then the step's works and its finish — is carried by this object:
+  // what needs the step (the solve with the iteration matrix the free velocity
+  // factorised, the works of its forces) can only be asked of it. It is a
+  // small value (a pointer and a serial number); using it after its beam has
+  // begun another step throws std::logic_error.
+  class BeamStep
+  {
+  public:
+    // X = S⁻¹ B for this step's iteration matrix S. X has B's size on entry
+    // (the caller's preallocated storage: blocks of fixed buffers, so that a
+    // time step allocates nothing).
+    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B, Eigen::Ref<Eigen::MatrixXd> X) const;
+
+    // Work [J] done on the beam during this step by its damping forces and by
+    // the base-excitation load, given the step's end velocity u_E (see
+    // BeamSystem::compute_step_work).
+    void work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const;
+
+    // Called with the step's start and end coordinates and the end velocity
+    // before they become the state (see BeamSystem::finish_step).
+    void finish(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, Eigen::VectorXd &u_E) const;
+
+    double time_step() const { return dt_; } // Δt [s]
+
+  private:
+    friend class BeamSystem;
+    BeamStep(const BeamSystem &beam, unsigned long serial, double dt)
+      : beam_(&beam)
+      , serial_(serial)
+      , dt_(dt)
+    {}
+    void check_current() const;
+
+    const BeamSystem *beam_;
+    unsigned long serial_;
+    double dt_;
+  };
 
   class BeamSystem
   {
@@ -48,20 +105,19 @@ namespace beamslider
     // centre once and forms w(L/2) by a dot product every step.
     virtual void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const = 0;
 
-    // End velocity of one step of size dt without contact impulses, given the
-    // midpoint time t_M, midpoint coordinates q_M and start velocity u_B.
-    // May factorise/update the iteration matrix S for solve_iteration_matrix.
-    // A model whose own solver fails (an implicit model's Newton iteration)
-    // throws a std::runtime_error saying where and why; AdaptationRun stops
-    // the run cleanly with it (RunStatus::beam_solver_failure).
-    virtual void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
-                               Eigen::VectorXd &u_free) = 0;
-
-    // X = S⁻¹ B for the iteration matrix of the last free_velocity call. X
-    // has B's size on entry (the caller's preallocated storage: blocks of
-    // fixed buffers, so that a time step allocates nothing).
-    virtual void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
-                                        Eigen::Ref<Eigen::MatrixXd> X) const = 0;
+    // Begins a step of size dt: the end velocity u_free without contact
+    // impulses, given the midpoint time t_M, midpoint coordinates q_M and start
+    // velocity u_B. The returned step solves with this step's iteration matrix
+    // and gives its works. A model whose own solver fails (an implicit model's
+    // Newton iteration) throws a std::runtime_error saying where and why;
+    // AdaptationRun stops the run cleanly with it (RunStatus::beam_solver_failure).
+    BeamStep free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                           Eigen::VectorXd &u_free)
+    {
+      ++step_serial_; // a step object of the step before is stale from here on, even if this throws
+      compute_free_velocity(t_M, q_M, u_B, dt, u_free);
+      return BeamStep(*this, step_serial_, dt);
+    }
 
     // Largest time step the scheme can take (infinity for unconditionally
     // stable schemes). The stepper refuses larger steps with a clear message.
@@ -71,29 +127,11 @@ namespace beamslider
     // for energy bookkeeping.
     virtual double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const = 0;
 
-    // Work [J] done on the beam during the last step (the one of the last
-    // free_velocity call) by its damping forces and by the base-excitation
-    // load, given that step's end velocity u_E. A midpoint step changes the
-    // kinetic energy by exactly Δt h·(u_B + u_E)/2, so the work of each part of
-    // h is its impulse times the mean velocity.
-    // Why this is in the interface: free_velocity lumps all smooth forces into
-    // u_free, and only the beam model knows which part is damping and which is
-    // the base load; the energy balance of the adaptation runs (doc/verification.md)
-    // needs them separately. A model that cannot split them may return NaN.
-    virtual void step_work(const Eigen::VectorXd & /*u_E*/, double &damping_work, double &excitation_work) const
-    {
-      damping_work    = std::numeric_limits<double>::quiet_NaN();
-      excitation_work = std::numeric_limits<double>::quiet_NaN();
-    }
-
-    // Called with the step's start and end coordinates and the end velocity
-    // before they become the state. Coordinates without mass (the FE
-    // without axial inertia) carry no momentum: their velocity is the mean
-    // over the step, (q_E − q_B)/Δt, not the midpoint rule's 2(q_E − q_B)/Δt
-    // − u_B, which flips sign every step and never decays. Others keep u_E.
-    virtual void finish_step(const Eigen::VectorXd & /*q_B*/, const Eigen::VectorXd & /*q_E*/, double /*dt*/,
-                             Eigen::VectorXd & /*u_E*/) const
-    {}
+    // The beam's fields at sample points along x for coordinates q (for
+    // animations and pictures). The default samples evaluate() at 129 points,
+    // w'' by differences of w', u = 0 and the axial force unknown (NaN); models
+    // override it with their own fields.
+    virtual BeamFieldSamples sample_fields(const Eigen::VectorXd &q) const;
 
     // Whatever the model carries from one step to the next and that changes
     // a later step's result in any bit (a reused factorisation and the point
@@ -102,5 +140,73 @@ namespace beamslider
     // bit-identically. A model without such state keeps the defaults.
     virtual void save_state(CheckpointWriter & /*out*/) const {}
     virtual void load_state(CheckpointReader & /*in*/) {}
+
+  protected:
+    // The model's part of free_velocity: u_free; may factorise/update the
+    // iteration matrix S for apply_inverse_iteration_matrix.
+    virtual void compute_free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                                       Eigen::VectorXd &u_free) = 0;
+
+    // X = S⁻¹ B for the iteration matrix of the last compute_free_velocity.
+    virtual void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                                Eigen::Ref<Eigen::MatrixXd> X) const = 0;
+
+    // Work [J] done on the beam during the last step by its damping forces
+    // and by the base-excitation load, given that step's end velocity u_E. A
+    // midpoint step changes the kinetic energy by exactly Δt h·(u_B + u_E)/2,
+    // so the work of each part of h is its impulse times the mean velocity.
+    // Why this is in the interface: free_velocity lumps all smooth forces into
+    // u_free, and only the beam model knows which part is damping and which is
+    // the base load; the energy balance of the adaptation runs (doc/verification.md)
+    // needs them separately. A model that cannot split them returns NaN.
+    virtual void compute_step_work(const Eigen::VectorXd & /*u_E*/, double &damping_work,
+                                   double &excitation_work) const
+    {
+      damping_work    = std::numeric_limits<double>::quiet_NaN();
+      excitation_work = std::numeric_limits<double>::quiet_NaN();
+    }
+
+    // Coordinates without mass (the FE without axial inertia) carry no
+    // momentum: their velocity is the mean over the step, (q_E − q_B)/Δt, not
+    // the midpoint rule's 2(q_E − q_B)/Δt − u_B, which flips sign every step
+    // and never decays. Others keep u_E.
+    virtual void finish_step(const Eigen::VectorXd & /*q_B*/, const Eigen::VectorXd & /*q_E*/, double /*dt*/,
+                             Eigen::VectorXd & /*u_E*/) const
+    {}
+
+  private:
+    friend class BeamStep;
+    unsigned long step_serial_ = 0;
   };
+
+  // w, w' from evaluate at n_samples equidistant points (n_samples ≥ 3), w''
+  // by central differences of w' (one-sided at the ends), u = 0 and the axial
+  // force NaN (a model that knows it fills it in).
+  BeamFieldSamples sample_by_evaluation(const BeamSystem &beam, const Eigen::VectorXd &q, unsigned int n_samples);
+
+  inline void BeamStep::check_current() const
+  {
+    if (serial_ != beam_->step_serial_)
+      throw std::logic_error("BeamStep used after its beam began another step (call free_velocity once per step "
+                             "and use the step it returns)");
+  }
+
+  inline void BeamStep::solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                               Eigen::Ref<Eigen::MatrixXd> X) const
+  {
+    check_current();
+    beam_->apply_inverse_iteration_matrix(B, X);
+  }
+
+  inline void BeamStep::work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
+  {
+    check_current();
+    beam_->compute_step_work(u_E, damping_work, excitation_work);
+  }
+
+  inline void BeamStep::finish(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, Eigen::VectorXd &u_E) const
+  {
+    check_current();
+    beam_->finish_step(q_B, q_E, dt_, u_E);
+  }
 } // namespace beamslider

@@ -262,7 +262,7 @@ namespace beamslider
     q_M_ = state_.q + 0.5 * dt_ * state_.u;
 
     // Free motion.
-    beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
+    const BeamStep beam_step = beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
     Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
     const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
     const double clearance = slider_.window_height - beam_.thickness();
@@ -324,7 +324,7 @@ namespace beamslider
         auto c         = c_.head(m2);
         auto P         = P_.head(m2);
         auto gamma     = gamma_B_.head(m2);
-        beam_.solve_iteration_matrix(Wb, X);
+        beam_step.solve_iteration_matrix(Wb, X);
         G.noalias() = Wb.transpose() * X;
         G.noalias() += Ws.transpose() * inv_mass.asDiagonal() * Ws;
 
@@ -388,8 +388,8 @@ namespace beamslider
       }
 
     report_.work_gravity = -slider_.mass * slider_.gravity * (s_E[1] - state_.s[1]);
-    beam_.step_work(u_E_, report_.work_damping, report_.work_excitation);
-    beam_.finish_step(state_.q, q_next_, dt_, u_E_);
+    beam_step.work(u_E_, report_.work_damping, report_.work_excitation);
+    beam_step.finish(state_.q, q_next_, u_E_);
 
     // Swapping hands the buffers over without copying or allocating.
     state_.t = t_origin_ + (steps_taken_ + 1) * dt_;

@@ -425,7 +425,7 @@ namespace beamslider
     x.noalias() -= Z_ * woodbury_v_;
   }
 
-  void FETransientBeam::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
+  void FETransientBeam::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                       const double dt, Eigen::VectorXd &u_free)
   {
     if (!(dt > 0.))
@@ -536,13 +536,13 @@ namespace beamslider
       u_E[i] = (q_E[i] - q_B[i]) / dt;
   }
 
-  void FETransientBeam::solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+  void FETransientBeam::apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
                                                Eigen::Ref<Eigen::MatrixXd> X) const
   {
     if (!factorised_)
-      throw std::logic_error("FE transient: solve_iteration_matrix called before free_velocity");
+      throw std::logic_error("FE transient: iteration matrix used before its first factorisation");
     if (X.rows() != B.rows() || X.cols() != B.cols())
-      throw std::logic_error("FE transient: solve_iteration_matrix needs X of B's size");
+      throw std::logic_error("FE transient: apply_inverse_iteration_matrix needs X of B's size");
     // All right-hand sides at once (the contact directions, up to 8): one
     // pass of the sparse triangular solves over a block, then the Woodbury
     // correction as a block.
@@ -590,7 +590,41 @@ namespace beamslider
     return 0.5 * (ud * Mu) + strain_energy(q);
   }
 
-  void FETransientBeam::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
+  BeamFieldSamples FETransientBeam::sample_fields(const Eigen::VectorXd &q) const
+  {
+    BeamFieldSamples g;
+    const FEBeam &beam = *beam_;
+    const unsigned int samples_per_element = 4;
+    const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
+    const double L = beam.length(), EA = beam.beam_data().axial_stiffness();
+    for (unsigned int i = 0; i < n_x; ++i)
+      {
+        const double x       = L * i / (n_x - 1);
+        const FEPointShape p = beam.point_shape(x);
+        double u = 0, du = 0, w = 0, dw = 0, ddw = 0;
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            const double qa = q[p.w_dofs[a]];
+            w += p.w_values[a] * qa;
+            dw += p.slope_values[a] * qa;
+            ddw += p.curvature_values[a] * qa;
+          }
+        for (unsigned int k = 0; k < p.u_dofs.size(); ++k)
+          {
+            u += p.u_values[k] * q[p.u_dofs[k]];
+            du += p.strain_values[k] * q[p.u_dofs[k]];
+          }
+        g.x.push_back(x);
+        g.u.push_back(u);
+        g.w.push_back(w);
+        g.dw.push_back(dw);
+        g.curvature.push_back(ddw);
+        g.axial_force.push_back(EA * (du + (beam.geometric_nonlinearity() ? 0.5 * dw * dw : 0.)));
+      }
+    return g;
+  }
+
+  void FETransientBeam::compute_step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
   {
     if (!have_last_)
       {

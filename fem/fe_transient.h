@@ -162,18 +162,12 @@ namespace beamslider
     // constrained DoFs.
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
 
-    // Throws TransientNewtonFailure (t_M, iteration, residual).
-    void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
-                       Eigen::VectorXd &u_free) override;
-    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
-                                Eigen::Ref<Eigen::MatrixXd> X) const override;
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
-    // Without axial inertia: the massless axial DoFs get the step's mean velocity.
-    void finish_step(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, double dt,
-                     Eigen::VectorXd &u_E) const override;
-    void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
+    // The exact FE fields, 4 samples per element: u, w, w', w'' from the shape
+    // functions, N = EA (u' + ½w'²) (u' alone without geometric nonlinearity).
+    BeamFieldSamples sample_fields(const Eigen::VectorXd &q) const override;
     void save_state(CheckpointWriter &out) const override;
     void load_state(CheckpointReader &in) override;
 
@@ -202,6 +196,17 @@ namespace beamslider
     // quadrature data, dense (for tests: it must equal M + Δt²/4 times
     // FEBeam's tangent on the free DoFs).
     Eigen::MatrixXd cached_iteration_matrix(const Eigen::VectorXd &q_bar, double dt);
+
+  protected:
+    // Throws TransientNewtonFailure (t_M, iteration, residual).
+    void compute_free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                               Eigen::VectorXd &u_free) override;
+    void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                        Eigen::Ref<Eigen::MatrixXd> X) const override;
+    // Without axial inertia: the massless axial DoFs get the step's mean velocity.
+    void finish_step(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, double dt,
+                     Eigen::VectorXd &u_E) const override;
+    void compute_step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
 
   private:
     // Factorises S₀ = M + Δt²/4 K_t(q̄) and the Woodbury terms of the damping.

@@ -3,9 +3,6 @@
 
 #include "contact/output_file.h"
 
-#include "fem/fe_beam.h"
-#include "fem/fe_transient.h"
-
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -64,83 +61,12 @@ namespace beamslider
     }
   } // namespace
 
-  BeamFrameGeometry sample_fe_beam(const FEBeam &beam, const Eigen::VectorXd &q, const unsigned int samples_per_element)
-  {
-    BeamFrameGeometry g;
-    const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
-    const double L = beam.length(), EA = beam.beam_data().axial_stiffness();
-    for (unsigned int i = 0; i < n_x; ++i)
-      {
-        const double x       = L * i / (n_x - 1);
-        const FEPointShape p = beam.point_shape(x);
-        double u = 0, du = 0, w = 0, dw = 0, ddw = 0;
-        for (unsigned int a = 0; a < 4; ++a)
-          {
-            const double qa = q[p.w_dofs[a]];
-            w += p.w_values[a] * qa;
-            dw += p.slope_values[a] * qa;
-            ddw += p.curvature_values[a] * qa;
-          }
-        for (unsigned int k = 0; k < p.u_dofs.size(); ++k)
-          {
-            u += p.u_values[k] * q[p.u_dofs[k]];
-            du += p.strain_values[k] * q[p.u_dofs[k]];
-          }
-        g.x.push_back(x);
-        g.u.push_back(u);
-        g.w.push_back(w);
-        g.dw.push_back(dw);
-        g.curvature.push_back(ddw);
-        g.axial_force.push_back(EA * (du + (beam.geometric_nonlinearity() ? 0.5 * dw * dw : 0.)));
-      }
-    g.thickness = beam.beam_data().thickness;
-    return g;
-  }
-
-  BeamFrameGeometry sample_beam_system(const BeamSystem &beam, const Eigen::VectorXd &q, const unsigned int n_samples,
-                                       const double membrane_stiffness)
-  {
-    if (n_samples < 3)
-      throw std::invalid_argument("sample_beam_system: at least 3 samples needed");
-    BeamFrameGeometry g;
-    const double L = beam.length();
-    BeamPointKinematics p;
-    for (unsigned int i = 0; i < n_samples; ++i)
-      {
-        const double x = L * i / (n_samples - 1);
-        beam.evaluate(x, q, p);
-        g.x.push_back(x);
-        g.u.push_back(0.);
-        g.w.push_back(p.w);
-        g.dw.push_back(p.dw);
-      }
-    // w'' by differences of w' (one-sided at the ends); ½∫w'² by the trapezoidal rule.
-    double stretch = 0;
-    for (unsigned int i = 0; i < n_samples; ++i)
-      {
-        const unsigned int l = i == 0 ? 0 : i - 1, r = i + 1 == n_samples ? i : i + 1;
-        g.curvature.push_back((g.dw[r] - g.dw[l]) / (g.x[r] - g.x[l]));
-        if (i > 0)
-          stretch += 0.25 * (g.dw[i] * g.dw[i] + g.dw[i - 1] * g.dw[i - 1]) * (g.x[i] - g.x[i - 1]);
-      }
-    g.axial_force.assign(n_samples, membrane_stiffness * stretch);
-    g.thickness = beam.thickness();
-    return g;
-  }
-
-  BeamFrameGeometry sample_beam(const BeamSystem &beam, const Eigen::VectorXd &q, const double membrane_stiffness)
-  {
-    if (const auto *fe = dynamic_cast<const FETransientBeam *>(&beam))
-      return sample_fe_beam(fe->beam(), q);
-    return sample_beam_system(beam, q, 129, membrane_stiffness);
-  }
-
-  AnimationFrame make_animation_frame(const MoreauStepper &stepper, BeamFrameGeometry beam_geometry)
+  AnimationFrame make_animation_frame(const MoreauStepper &stepper)
   {
     AnimationFrame f;
     const SystemState &state = stepper.state();
     f.t                      = state.t;
-    f.beam                   = std::move(beam_geometry);
+    static_cast<BeamFieldSamples &>(f.beam) = stepper.beam().sample_fields(state.q);
     f.beam.thickness         = stepper.beam().thickness();
     f.beam.base_displacement = stepper.base().displacement(state.t);
 
@@ -267,12 +193,14 @@ namespace beamslider
     auto drawn = [&](const Eigen::Vector2d &local) -> Eigen::Vector2d { return S_drawn + rot_drawn * local; };
     {
       const double top = 0.5 * R + wall, bottom = -2. * d - 0.5 * R - wall; // centroid at the centre of mass (0, −d)
-      const std::array<Eigen::Vector2d, 4> outer = {Eigen::Vector2d(-0.5 * B - wall, bottom),
-                                                    Eigen::Vector2d(0.5 * B + wall, bottom),
-                                                    Eigen::Vector2d(0.5 * B + wall, top),
-                                                    Eigen::Vector2d(-0.5 * B - wall, top)};
-      const std::array<Eigen::Vector2d, 4> window = {Eigen::Vector2d(-0.5 * B, -0.5 * R), Eigen::Vector2d(0.5 * B, -0.5 * R),
-                                                     Eigen::Vector2d(0.5 * B, 0.5 * R), Eigen::Vector2d(-0.5 * B, 0.5 * R)};
+      const std::array<Eigen::Vector2d, 4> outer = {{Eigen::Vector2d(-0.5 * B - wall, bottom),
+                                                     Eigen::Vector2d(0.5 * B + wall, bottom),
+                                                     Eigen::Vector2d(0.5 * B + wall, top),
+                                                     Eigen::Vector2d(-0.5 * B - wall, top)}};
+      const std::array<Eigen::Vector2d, 4> window = {{Eigen::Vector2d(-0.5 * B, -0.5 * R),
+                                                      Eigen::Vector2d(0.5 * B, -0.5 * R),
+                                                      Eigen::Vector2d(0.5 * B, 0.5 * R),
+                                                      Eigen::Vector2d(-0.5 * B, 0.5 * R)}};
       vtkNew<vtkPoints> points;
       points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
       vtkNew<vtkCellArray> lines;

@@ -35,20 +35,12 @@
 
 namespace beamslider
 {
-  class FEBeam;
-  class FETransientBeam;
-
-  // The beam at one instant, sampled along x.
-  struct BeamFrameGeometry
+  // The beam at one instant: its fields (BeamSystem::sample_fields), the
+  // base displacement and the thickness it is drawn with.
+  struct BeamFrameGeometry : BeamFieldSamples
   {
-    std::vector<double> x;           // sample positions [m]
-    std::vector<double> u;           // axial displacement [m]
-    std::vector<double> w;           // deflection relative to the base [m]
-    std::vector<double> dw;          // slope w' [-]
-    std::vector<double> curvature;   // w'' [1/m]
-    std::vector<double> axial_force; // N [N]
-    double base_displacement = 0;    // w0(t) [m]
-    double thickness         = 0;    // h [m]
+    double base_displacement = 0; // w0(t) [m]
+    double thickness         = 0; // h [m]
   };
 
   // The slider at one instant.
@@ -67,22 +59,11 @@ namespace beamslider
     SliderFrameGeometry slider;
   };
 
-  // Exact FE fields: u, w, w', w'' from the shape functions, N = EA (u' + ½w'²)
-  // (u' alone without geometric nonlinearity).
-  BeamFrameGeometry sample_fe_beam(const FEBeam &beam, const Eigen::VectorXd &q, unsigned int samples_per_element = 4);
-  // Any BeamSystem (e.g. the ROM): w, w' from evaluate at n_samples points,
-  // w'' by central differences of w', u = 0 and the uniform axial force of
-  // the reduced model, N = k_ax · ½∫w'² dx (axial inertia neglected,
-  // doc/physics.md §5; k_ax = membrane_stiffness, 0 without geometric nonlinearity).
-  BeamFrameGeometry sample_beam_system(const BeamSystem &beam, const Eigen::VectorXd &q, unsigned int n_samples,
-                                       double membrane_stiffness);
-  // Dispatches: the FE fields for an FETransientBeam, else the generic ones.
-  BeamFrameGeometry sample_beam(const BeamSystem &beam, const Eigen::VectorXd &q, double membrane_stiffness);
-
-  // The frame of the stepper's current state: the beam sampled by `beam_geometry`
-  // (thickness and w0 filled in here), the slider and the contact forces of
-  // the last step (corner impulses / Δt).
-  AnimationFrame make_animation_frame(const MoreauStepper &stepper, BeamFrameGeometry beam_geometry);
+  // The frame of the stepper's current state: the beam's fields as its model
+  // samples them (BeamSystem::sample_fields: the FE's own fields, the ROM's
+  // modes with its uniform membrane force), the slider and the contact forces
+  // of the last step (corner impulses / Δt).
+  AnimationFrame make_animation_frame(const MoreauStepper &stepper);
 
   class VtkAnimationWriter
   {

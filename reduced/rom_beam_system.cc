@@ -59,7 +59,7 @@ namespace beamslider
 
   double RomBeamSystem::max_stable_time_step() const { return 2. / rom_.basis().omega.maxCoeff(); }
 
-  void RomBeamSystem::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
+  void RomBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                     const double dt, Eigen::VectorXd &u_free)
   {
     const double limit = max_stable_time_step();
@@ -87,6 +87,18 @@ namespace beamslider
     last_u_B_ = u_B;
   }
 
+  BeamFieldSamples RomBeamSystem::sample_fields(const Eigen::VectorXd &q) const
+  {
+    BeamFieldSamples g = sample_by_evaluation(*this, q, 129);
+    // N = k_ax · ½∫w'² dx, the integral by the trapezoidal rule.
+    double stretch = 0;
+    for (std::size_t i = 1; i < g.x.size(); ++i)
+      stretch += 0.25 * (g.dw[i] * g.dw[i] + g.dw[i - 1] * g.dw[i - 1]) * (g.x[i] - g.x[i - 1]);
+    const double k_ax = rom_.is_nonlinear() ? rom_.basis().membrane_stiffness : 0.;
+    g.axial_force.assign(g.x.size(), k_ax * stretch);
+    return g;
+  }
+
   double RomBeamSystem::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
   {
     // Called at every period's start and end: into storage sized once, so
@@ -97,7 +109,7 @@ namespace beamslider
     return 0.5 * u.squaredNorm() + 0.5 * (w * w * q.array().square()).sum() + 0.25 * q.dot(energy_force_);
   }
 
-  void RomBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
+  void RomBeamSystem::compute_step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const
   {
     u_mean_         = 0.5 * (last_u_B_ + u_E); // into storage sized once
     damping_work    = last_dt_ * last_damping_force_.dot(u_mean_);

@@ -40,23 +40,30 @@ namespace beamslider
     // Throws std::out_of_range for x outside [0, L]: modes are not defined there.
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
 
-    // Throws std::invalid_argument for dt above max_stable_time_step().
-    void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
-                       Eigen::VectorXd &u_free) override;
-    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
-                                Eigen::Ref<Eigen::MatrixXd> X) const override
-    {
-      X = B;
-    }
-
     // 2/ω_max [s].
     double max_stable_time_step() const override;
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
-    void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
+
+    // w, w' at 129 points, w'' by differences and the uniform axial force of
+    // the reduced model, N = k_ax · ½∫w'² dx (axial inertia neglected,
+    // doc/physics.md §5; 0 without geometric nonlinearity).
+    BeamFieldSamples sample_fields(const Eigen::VectorXd &q) const override;
 
     const ReducedOrderModel &model() const { return rom_; }
     const BaseExcitation &excitation() const { return excitation_; }
+
+  protected:
+    // Throws std::invalid_argument for dt above max_stable_time_step().
+    void compute_free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                               Eigen::VectorXd &u_free) override;
+    // The explicit scheme's iteration matrix is the identity (unit modal masses).
+    void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                        Eigen::Ref<Eigen::MatrixXd> X) const override
+    {
+      X = B;
+    }
+    void compute_step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
 
   private:
     ReducedOrderModel rom_;

@@ -26,7 +26,7 @@ namespace beamslider
                                  scene.beam.thickness, BaseExcitation::from_scene(scene.excitation));
   }
 
-  void RomImplicitBeamSystem::free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
+  void RomImplicitBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                             const double dt, Eigen::VectorXd &u_free)
   {
     if (!(dt > 0.))
@@ -90,11 +90,11 @@ namespace beamslider
     throw std::runtime_error(m.str());
   }
 
-  void RomImplicitBeamSystem::solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+  void RomImplicitBeamSystem::apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
                                                      Eigen::Ref<Eigen::MatrixXd> X) const
   {
     if (!factorised_)
-      throw std::logic_error("implicit reduced model: solve_iteration_matrix called before free_velocity");
+      throw std::logic_error("implicit reduced model: iteration matrix used before its first factorisation");
     if (!structured_)
       {
         X = lu_.solve(B);
@@ -128,7 +128,7 @@ namespace beamslider
     x.noalias() = W_ * work_;
   }
 
-  void RomImplicitBeamSystem::step_work(const Eigen::VectorXd &u_E, double &damping_work,
+  void RomImplicitBeamSystem::compute_step_work(const Eigen::VectorXd &u_E, double &damping_work,
                                         double &excitation_work) const
   {
     if (last_u_B_.size() != u_E.size())

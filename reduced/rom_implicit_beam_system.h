@@ -47,15 +47,17 @@ namespace beamslider
     // The ROM of a scene on a given modal basis, stepped implicitly.
     static RomImplicitBeamSystem from_scene(const Scene &scene, ModalBasis basis);
 
-    void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
-                       Eigen::VectorXd &u_free) override;
-    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
-                                Eigen::Ref<Eigen::MatrixXd> X) const override;
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
-    void step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
 
     // Newton iterations over all steps so far (for the benchmark note).
     unsigned long newton_iterations() const { return newton_iterations_; }
+
+  protected:
+    void compute_free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                               Eigen::VectorXd &u_free) override;
+    void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                        Eigen::Ref<Eigen::MatrixXd> X) const override;
+    void compute_step_work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const override;
 
   private:
     Eigen::VectorXd c_;       // 2 D ω_n

@@ -40,19 +40,21 @@ namespace
       out.grad_w.resize(0);
       out.grad_dw.resize(0);
     }
-    void free_velocity(double, const Eigen::VectorXd &, const Eigen::VectorXd &u_B, double,
-                       Eigen::VectorXd &u_free) override
+    double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
+    double energy(const Eigen::VectorXd &, const Eigen::VectorXd &) const override { return 0.; }
+
+  protected:
+    void compute_free_velocity(double, const Eigen::VectorXd &, const Eigen::VectorXd &u_B, double,
+                               Eigen::VectorXd &u_free) override
     {
       u_free = u_B;
     }
-    void solve_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
-                                Eigen::Ref<Eigen::MatrixXd> X) const override
+    void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
+                                        Eigen::Ref<Eigen::MatrixXd> X) const override
     {
       X = B;
     }
-    double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
-    double energy(const Eigen::VectorXd &, const Eigen::VectorXd &) const override { return 0.; }
-    void step_work(const Eigen::VectorXd &, double &d, double &e) const override { d = e = 0.; }
+    void compute_step_work(const Eigen::VectorXd &, double &d, double &e) const override { d = e = 0.; }
 
   private:
     double length_, thickness_, slope_;

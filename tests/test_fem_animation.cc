@@ -3,10 +3,14 @@
 // read back with VTK's XML readers, checking point counts, time values, the
 // magnification and the drawn geometry against the state it came from.
 #include "contact/adaptation_run.h"
+#include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
 #include "fem/fe_transient.h"
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
+#include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
 
 #include <vtkDataArray.h>
@@ -88,7 +92,7 @@ TEST(FEAnimation, PvdSeriesReadsBackWithTimesPointCountsAndGeometry)
     for (unsigned int k = 0; k <= 4; ++k)
       {
         run.run_until(k * 1e-3);
-        const AnimationFrame frame = make_animation_frame(run.stepper(), sample_fe_beam(fe.beam(), run.state().q));
+        const AnimationFrame frame = make_animation_frame(run.stepper());
         writer.write(frame);
         times.push_back(run.state().t);
         BeamPointKinematics point;
@@ -192,18 +196,20 @@ TEST(FEAnimation, PvdSeriesReadsBackWithTimesPointCountsAndGeometry)
   fs::remove_all(dir);
 }
 
-TEST(FEAnimation, GenericSamplerAgreesWithTheFEFields)
+TEST(FEAnimation, GenericSamplerAndTheRomsFieldsAgreeWithTheFEFields)
 {
-  // The sampler used for the ROM (w, w' from BeamSystem::evaluate, w'' by
-  // differences, uniform N = k_ax ½∫w'²) on a static FE mode-1 shape.
+  // On a static FE mode-1 shape: the generic sampler (w, w' from
+  // BeamSystem::evaluate, w'' by differences) against the FE's own fields,
+  // and the ROM's fields on the FE's first mode (uniform N = k_ax ½∫w'²)
+  // against the FE's pointwise axial force.
   Scene s          = read_scene(scene_file);
   auto beam        = make_fe_beam_system(s);
   const auto &fe   = dynamic_cast<const FETransientBeam &>(*beam);
   Eigen::VectorXd q;
   FETransientBeam::to_eigen(fe.modes().shapes[0], q);
   q *= 1e-3 / fe.beam().deflection(fe.modes().shapes[0], 0.5 * s.beam.length); // w(L/2) = 1 mm
-  const BeamFrameGeometry a = sample_fe_beam(fe.beam(), q);
-  const BeamFrameGeometry b = sample_beam_system(*beam, q, a.x.size(), s.supports.membrane_stiffness(s.beam));
+  const BeamFieldSamples a = beam->sample_fields(q);
+  const BeamFieldSamples b = sample_by_evaluation(*beam, q, a.x.size());
   double w_max = 0, dw_err = 0, w_err = 0, k_err = 0, k_max = 0;
   for (unsigned int i = 0; i < a.x.size(); ++i)
     {
@@ -217,6 +223,19 @@ TEST(FEAnimation, GenericSamplerAgreesWithTheFEFields)
   EXPECT_LT(w_err, 1e-14);
   EXPECT_LT(dw_err, 1e-12);
   EXPECT_LT(k_err, 0.05 * k_max); // central differences on 129 points
+  EXPECT_TRUE(std::isnan(b.axial_force[0])) << "the generic sampler does not know the axial force";
+
+  // The ROM of one mode on the same mesh's first mode, at the same w(L/2).
+  const FEBeam &mesh = fe.beam();
+  RomBeamSystem rom  = RomBeamSystem::from_scene(s, make_modal_basis(mesh, compute_bending_modes(mesh, 1), 1));
+  BeamPointKinematics centre;
+  rom.evaluate(0.5 * s.beam.length, Eigen::VectorXd::Ones(1), centre);
+  const BeamFieldSamples r = rom.sample_fields(Eigen::VectorXd::Constant(1, 1e-3 / centre.w));
+  ASSERT_EQ(r.x.size(), a.x.size());
+  double rom_w_err = 0;
+  for (unsigned int i = 0; i < a.x.size(); ++i)
+    rom_w_err = std::max(rom_w_err, std::abs(a.w[i] - r.w[i]));
+  EXPECT_LT(rom_w_err, 1e-9 * w_max) << "the same mode shape (two eigensolves of the same mesh)";
   // The mode shape has u = 0: the FE axial force is EA ½w'² pointwise; its
   // mean over the beam, EA/L ½∫w'², equals the membrane force of the reduced
   // model up to the springs' compliance in k_ax.
@@ -225,7 +244,8 @@ TEST(FEAnimation, GenericSamplerAgreesWithTheFEFields)
     mean += 0.5 * (a.axial_force[i] + a.axial_force[i + 1]) * (a.x[i + 1] - a.x[i]);
   mean /= s.beam.length;
   const double k_ratio = s.supports.membrane_stiffness(s.beam) * s.beam.length / s.beam.axial_stiffness();
-  EXPECT_NEAR(b.axial_force[0] / (mean * k_ratio), 1., 1e-3);
+  EXPECT_NEAR(r.axial_force[0] / (mean * k_ratio), 1., 1e-3);
+  EXPECT_EQ(r.axial_force.front(), r.axial_force.back()) << "uniform along x";
 }
 
 TEST(AnimateCommand, RomRunWritesSeriesAndStills)

@@ -205,10 +205,10 @@ TEST(PinnedSupports, FEBackboneWithAndWithoutAxialInertia)
       const double T = crossing_period(
         [&](double &t) {
           const Eigen::VectorXd q_B = q, q_M = q + 0.5 * dt * u;
-          sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-          u = u_E;
-          q = q_M + 0.5 * dt * u;
-          sys.finish_step(q_B, q, dt, u);
+          const BeamStep step = sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
+          u                   = u_E;
+          q                   = q_M + 0.5 * dt * u;
+          step.finish(q_B, q, u);
           t += dt;
           return dt;
         },

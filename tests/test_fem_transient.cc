@@ -39,10 +39,10 @@ namespace
   {
     const Eigen::VectorXd q_B = q, q_M = q + 0.5 * dt * u;
     Eigen::VectorXd u_E;
-    sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-    u = u_E;
-    q = q_M + 0.5 * dt * u;
-    sys.finish_step(q_B, q, dt, u);
+    const BeamStep step = sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
+    u                   = u_E;
+    q                   = q_M + 0.5 * dt * u;
+    step.finish(q_B, q, u);
     t += dt;
   }
 
@@ -59,7 +59,7 @@ TEST(FETransient, IterationMatrixIsTheNewtonJacobian)
   const unsigned int n = sys.n_dofs();
   const double dt      = 2e-5;
   Eigen::VectorXd q = Eigen::VectorXd::Zero(n), u = Eigen::VectorXd::Zero(n), u_free;
-  sys.free_velocity(0.5 * dt, q, u, dt, u_free); // factorises S at q = 0
+  const BeamStep step = sys.free_velocity(0.5 * dt, q, u, dt, u_free); // factorises S at q = 0
 
   // S b = M b + Δt/2 C b + Δt²/4 K b for a random b on the free DoFs.
   Eigen::VectorXd b = Eigen::VectorXd::Random(n);
@@ -77,7 +77,7 @@ TEST(FETransient, IterationMatrixIsTheNewtonJacobian)
   Eigen::MatrixXd Sb(n, 1), X(n, 1);
   for (unsigned int i = 0; i < n; ++i)
     Sb(i, 0) = sys.beam().constraints().is_constrained(i) ? 0. : Mb[i] + 0.5 * dt * Cb[i] + 0.25 * dt * dt * Kb[i];
-  sys.solve_iteration_matrix(Sb, X);
+  step.solve_iteration_matrix(Sb, X);
   EXPECT_LT((X.col(0) - b).norm() / b.norm(), 1e-9);
 }
 

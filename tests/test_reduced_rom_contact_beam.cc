@@ -192,7 +192,7 @@ TEST(RomImplicitBeamSystem, LinearModeFollowsTheTrapezoidalRuleExactlyBeyondTheE
   EXPECT_GT(dt, RomBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 1)).max_stable_time_step());
   const double theta = 2. * std::atan(0.5 * w1 * dt);
   Eigen::VectorXd q = Eigen::VectorXd::Constant(1, 1e-4), u = Eigen::VectorXd::Zero(1), u_E;
-  for (unsigned int k = 1; k <= 200; ++k)
+  for (unsigned int k = 1; k <= 199; ++k)
     {
       const Eigen::VectorXd q_M = q + 0.5 * dt * u;
       rom.free_velocity((k - 0.5) * dt, q_M, u, dt, u_E);
@@ -201,8 +201,12 @@ TEST(RomImplicitBeamSystem, LinearModeFollowsTheTrapezoidalRuleExactlyBeyondTheE
       ASSERT_NEAR(q[0], 1e-4 * std::cos(k * theta), 1e-4 * 1e-10) << "step " << k;
     }
   // Impulses go through the same iteration matrix: S = 1 + Δt²/4 ω².
+  const Eigen::VectorXd q_M = q + 0.5 * dt * u;
+  const BeamStep last       = rom.free_velocity(199.5 * dt, q_M, u, dt, u_E);
+  q                         = q_M + 0.5 * dt * u_E;
+  EXPECT_NEAR(q[0], 1e-4 * std::cos(200 * theta), 1e-4 * 1e-10) << "step 200";
   Eigen::MatrixXd B = Eigen::MatrixXd::Ones(1, 2), X(1, 2);
-  rom.solve_iteration_matrix(B, X);
+  last.solve_iteration_matrix(B, X);
   EXPECT_NEAR(X(0, 0), 1. / (1. + 0.25 * dt * dt * w1 * w1), 1e-15);
 }
 
@@ -230,7 +234,7 @@ TEST(RomImplicitBeamSystem, StructuredSolveInvertsTheIterationMatrix)
       u_B[n] = 0.1 * q_M[n] * w[n] * (n % 3 ? 1. : -0.5);
     }
   const double t_M = 0.3e-3;
-  rom.free_velocity(t_M, q_M, u_B, dt, u_E);
+  const BeamStep step = rom.free_velocity(t_M, q_M, u_B, dt, u_E);
 
   const double a          = rom.excitation().acceleration(t_M);
   const Eigen::VectorXd q = q_M + 0.25 * dt * (u_E - u_B);
@@ -248,12 +252,36 @@ TEST(RomImplicitBeamSystem, StructuredSolveInvertsTheIterationMatrix)
       B(n, 1) = std::cos(0.7 * n);
       B(n, 2) = n == 3 ? 1. : 0.;
     }
-  rom.solve_iteration_matrix(B, X);
+  step.solve_iteration_matrix(B, X);
   // S above is at the converged q̄, the solve at the last iterate's: the
   // two differ by Newton's last correction (≤ 1e-10 relative).
   EXPECT_LT((S * X - B).norm(), 1e-8 * B.norm());
   EXPECT_GT((S.diagonal().asDiagonal().inverse() * B - X).norm(), 1e-3 * X.norm())
     << "the membrane tangent should couple the modes at this amplitude";
+}
+
+// The step order is carried by the BeamStep that free_velocity returns: a
+// step object kept past the next free_velocity is refused (its iteration
+// matrix may no longer be the one factorised), the current one works.
+TEST(BeamStep, AStepObjectOfAnEarlierStepIsRefused)
+{
+  const Scene scene = mueller_scene();
+  RomImplicitBeamSystem rom = RomImplicitBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 2));
+  const double dt           = 1e-4;
+  Eigen::VectorXd q = Eigen::VectorXd::Constant(2, 1e-9), u = Eigen::VectorXd::Zero(2), u_E; // nearly linear
+  const BeamStep first  = rom.free_velocity(0.5 * dt, q, u, dt, u_E);
+  const BeamStep second = rom.free_velocity(1.5 * dt, q, u_E, dt, u);
+  Eigen::MatrixXd B = Eigen::MatrixXd::Identity(2, 2), X(2, 2);
+  double damping = 0, excitation = 0;
+  EXPECT_THROW(first.solve_iteration_matrix(B, X), std::logic_error);
+  EXPECT_THROW(first.work(u, damping, excitation), std::logic_error);
+  EXPECT_THROW(first.finish(q, q, u), std::logic_error);
+  EXPECT_NO_THROW(second.solve_iteration_matrix(B, X));
+  EXPECT_NEAR(X(0, 0), 1. / (1. + 0.5 * dt * 2 * scene.damping_ratio * rom.model().basis().omega[0] +
+                              0.25 * dt * dt * std::pow(rom.model().basis().omega[0], 2)),
+              1e-6)
+    << "S⁻¹ of the second step (the membrane tangent is negligible at this amplitude)";
+  EXPECT_DOUBLE_EQ(second.time_step(), dt);
 }
 
 // The damped set: a ROM damping only its first mode (as the FE damps only

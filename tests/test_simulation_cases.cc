@@ -146,12 +146,14 @@ TEST(SimulationRun, BeamSolverFailureStopsCleanly)
     explicit FailingBeam(const RomBeamSystem &rom)
       : RomBeamSystem(rom)
     {}
-    void free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
-                       Eigen::VectorXd &u_free) override
+
+  protected:
+    void compute_free_velocity(double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B, double dt,
+                               Eigen::VectorXd &u_free) override
     {
       if (t_M > 0.01)
         throw std::runtime_error("Newton did not converge (test)");
-      RomBeamSystem::free_velocity(t_M, q_M, u_B, dt, u_free);
+      RomBeamSystem::compute_free_velocity(t_M, q_M, u_B, dt, u_free);
     }
   };
   const Scene scene = read_scene(mueller);

@@ -44,7 +44,6 @@ namespace beamslider
     const std::string dir = prepare_output_dir(common, scene.name, "animate");
 
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, options.model));
-    const double k_ax = scene.discretisation.geometric_nonlinearity ? scene.supports.membrane_stiffness(scene.beam) : 0.;
 
     std::cout << "animate " << scene.name << " --model " << options.model << ": " << end_time << " s at dt = " << dt
               << " s, " << static_cast<long>(n_frames) << " frames from t = " << options.start_time << " s into "
@@ -68,7 +67,7 @@ namespace beamslider
         last                 = run.run_until(t_frame);
         if (last.status != RunStatus::completed)
           break;
-        writer.write(make_animation_frame(run.stepper(), sample_beam(*beam, run.state().q, k_ax)));
+        writer.write(make_animation_frame(run.stepper()));
       }
     run.finish_trace();
     trace.flush();

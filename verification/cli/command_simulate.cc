@@ -216,7 +216,6 @@ namespace beamslider
         scene.time_stepping.time_step = setting.time_step;
       }
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, setting);
-    const double k_ax = scene.discretisation.geometric_nonlinearity ? scene.supports.membrane_stiffness(scene.beam) : 0.;
 
     const double end_time = scene.time_stepping.end_time;
     std::cout << "simulate " << scene.name << (the_case ? " --case " + the_case->name : std::string()) << ": "
@@ -304,7 +303,7 @@ namespace beamslider
             result.t_end = part.t_end;
             if (part.status != RunStatus::completed)
               break;
-            animation->write(make_animation_frame(run.stepper(), sample_beam(*beam, run.state().q, k_ax)));
+            animation->write(make_animation_frame(run.stepper()));
           }
         animation->finish();
       }

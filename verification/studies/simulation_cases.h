@@ -40,7 +40,7 @@ namespace beamslider
     std::vector<std::string> overrides; // "Section/Name=value"
     double end_time = 60.;              // [s]
     std::string published;              // the behaviour the literature reports
-    ExpectedFeatures expected;
+    ExpectedFeatures expected{}; // filled from the name by simulation_cases()
   };
 
   // All named cases, mueller2023 cases first, then the ablations.
