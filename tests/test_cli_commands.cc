@@ -84,13 +84,23 @@ TEST(Commands, BackboneWritesTheDocumentedColumnsUpToTheAskedAmplitude)
   fs::remove_all(dir);
 }
 
+// Two runs, the second with --quiet: the same bytes in every result file,
+// and nothing on standard output from the quiet one.
 TEST(Commands, SimulateWritesTheDocumentedColumnsAndIsDeterministic)
 {
   const fs::path dir = fresh_folder("cmd_simulate");
   for (const char *name : {"a", "b"})
     {
-      const CliRun run = run_beamslider({"simulate", "--end-time", "0.2", "--output", (dir / name).string()});
+      std::vector<std::string> args = {"simulate", "--end-time", "0.2", "--output", (dir / name).string()};
+      const bool quiet              = std::string(name) == "b";
+      if (quiet)
+        args.push_back("--quiet");
+      const CliRun run = run_beamslider(args);
       ASSERT_EQ(run.exit_code, 0) << run.err;
+      if (quiet)
+        EXPECT_EQ(run.out, "") << "--quiet printed";
+      else
+        EXPECT_NE(run.out.find("simulate mueller2023"), std::string::npos) << run.out;
     }
   EXPECT_EQ(first_line(dir / "a" / "trace.csv"),
             "t_s,slider_x_over_L,slider_z_m,slider_beta_rad,w_center_m,w_probe_m,amplitude_over_h");

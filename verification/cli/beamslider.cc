@@ -23,6 +23,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/console.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/multithread_info.h>
@@ -64,13 +65,17 @@ int run_command_line(int argc, char **argv)
   app.require_subcommand(1);
 
   CommonOptions common;
+  bool quiet = false;
   // The same options mean the same on every sub-command: the scene (a path or
-  // a name in meshes/, default mueller2023), --set, --output.
+  // a name in meshes/, default mueller2023), --set, --output, --quiet.
   common.scene_file = "mueller2023";
-  auto add_common = [&common](CLI::App *sub) {
+  auto add_common = [&common, &quiet](CLI::App *sub) {
     sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
     sub->add_option("--set", common.overrides, "override a parameter: \"Section/Name=value\" (repeatable)");
     sub->add_option("--output,-o", common.output_dir, "output folder (default reports/<scene>/<command>)");
+    sub->add_flag("--quiet,-q", quiet,
+                  "nothing on standard output (no progress, timing or summary); the results are in the output "
+                  "folder, errors and warnings still on standard error");
   };
 
   ModesOptions modes;
@@ -199,6 +204,7 @@ int run_command_line(int argc, char **argv)
       return 2;
     }
 
+  set_quiet(quiet);
   try
     {
       if (*modes_cmd)

@@ -18,6 +18,7 @@
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/fe_rom_study.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -45,7 +46,7 @@ namespace beamslider
 
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, options.model));
 
-    std::cout << "animate " << scene.name << " --model " << options.model << ": " << end_time << " s at dt = " << dt
+    console() << "animate " << scene.name << " --model " << options.model << ": " << end_time << " s at dt = " << dt
               << " s, " << static_cast<long>(n_frames) << " frames from t = " << options.start_time << " s into "
               << dir << std::endl;
 
@@ -76,7 +77,7 @@ namespace beamslider
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last.status != RunStatus::completed)
       std::cerr << "animate: the run stopped early (" << to_string(last.status) << "): " << last.message << "\n";
-    std::cout << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file() << " (" << wall
+    console() << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file() << " (" << wall
               << " s wall, final x_C/L = " << run.state().s[0] / scene.beam.length << ")" << std::endl;
 
     if (last.status == RunStatus::interrupted)

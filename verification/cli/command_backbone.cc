@@ -28,6 +28,7 @@
 #include "reduced/rom_operator.h"
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -117,11 +118,11 @@ namespace beamslider
     write_text_file(dir + "/summary.md", summary.str());
 
     const bool plotted = run_plot_script("plot_backbones.py", {"command", dir});
-    std::cout << "Backbone of scene '" << scene.name << "' (" << model_text << "): " << backbone.points.size()
+    console() << "Backbone of scene '" << scene.name << "' (" << model_text << "): " << backbone.points.size()
               << " points up to ŵ/h = " << a_max << " in " << backbone.seconds << " s; " << backbone.message << "\n";
     for (const auto &g : backbone.gaps)
-      std::cout << "  gap (tongue) between ŵ/h = " << g.last_amplitude / h << " and " << g.restart_amplitude / h << "\n";
-    std::cout << "Wrote " << dir << "/backbone.csv, eq4.csv, summary.md" << (plotted ? ", backbone.png" : "") << std::endl;
+      console() << "  gap (tongue) between ŵ/h = " << g.last_amplitude / h << " and " << g.restart_amplitude / h << "\n";
+    console() << "Wrote " << dir << "/backbone.csv, eq4.csv, summary.md" << (plotted ? ", backbone.png" : "") << std::endl;
     return 0;
   }
 } // namespace beamslider

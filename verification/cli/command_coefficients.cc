@@ -9,6 +9,7 @@
 #include "meshes/scene.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/console.h"
 
 #include <fstream>
 #include <iostream>
@@ -47,7 +48,7 @@ namespace beamslider
       summary << "- relative fit residual: " << r.fit.relative_fit_residual << ", largest |q_j|/a_j reached: "
               << r.fit.max_relative_response << "\n";
     write_text_file(dir + "/summary.md", summary.str());
-    std::cout << "Coefficients of scene '" << scene.name << "' by " << r.method << " (N = " << N << "): b_111 = "
+    console() << "Coefficients of scene '" << scene.name << "' by " << r.method << " (N = " << N << "): b_111 = "
               << r.fit.cubic.front().value << ", " << r.n_static_solves << " static solves, " << r.seconds << " s\n"
               << "Wrote " << dir << "/coefficients.csv and " << dir << "/summary.md\n";
     return 0;

@@ -20,6 +20,7 @@
 #include "verification/report/csv_writer.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <fstream>
@@ -105,7 +106,7 @@ namespace beamslider
     settings.model.time_step = scene.time_stepping.time_step;
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
-    std::cout << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
+    console() << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
               << settings.n_members << " members of " << settings.model.label() << ", "
               << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
               << ", into " << dir << std::endl;
@@ -113,7 +114,7 @@ namespace beamslider
     const auto start = std::chrono::steady_clock::now();
     unsigned int done = 0;
     const std::vector<EnsembleMember> members = run_ensemble(scene, settings, [&](const EnsembleMember &m) {
-      std::cout << "  member " << m.index << " (" << ++done << "/" << settings.n_members << ", "
+      console() << "  member " << m.index << " (" << ++done << "/" << settings.n_members << ", "
                 << fixed(m.wall_seconds, 1) << " s): " << m.analysis.line << std::endl;
     });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -216,7 +217,7 @@ namespace beamslider
     write_text_file(dir + "/summary.md", md.str());
     run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
                                                 " (" + settings.model.label() + ")"});
-    std::cout << md.str();
+    console() << md.str();
     for (const auto &m : members)
       if (m.result.status == RunStatus::interrupted)
         return interruption_exit_code();

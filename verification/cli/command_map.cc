@@ -27,6 +27,7 @@
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"
+#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -187,14 +188,14 @@ namespace beamslider
         if (read_whole(dir + "/timing.csv").empty())
           write_text_file(dir + "/timing.csv", "cell,rank,wall_s\n");
 
-        std::cout << "map " << base.name << ": " << n_cells << " cells";
+        console() << "map " << base.name << ": " << n_cells << " cells";
         for (const MapAxis &a : grid.axes)
-          std::cout << (&a == &grid.axes.front() ? " (" : " x ") << a.values.size() << " " << a.column;
-        std::cout << ") x " << settings.n_members << " member(s) of " << options.model << ", " << settings.end_time
+          console() << (&a == &grid.axes.front() ? " (" : " x ") << a.values.size() << " " << a.column;
+        console() << ") x " << settings.n_members << " member(s) of " << options.model << ", " << settings.end_time
                   << " s each, on " << mpi.size() << " rank(s)";
         if (n_skipped)
-          std::cout << "; " << n_skipped << " cells already in map.csv are kept";
-        std::cout << "; into " << dir << std::endl;
+          console() << "; " << n_skipped << " cells already in map.csv are kept";
+        console() << "; into " << dir << std::endl;
       }
 
     std::size_t n_done = 0;
@@ -233,7 +234,7 @@ namespace beamslider
           }
         const double elapsed = std::chrono::duration<double>(clock::now() - work_start).count();
         const double rate    = n_done / elapsed;
-        std::cout << "  cells " << n_done + n_skipped << "/" << n_cells << " (" << map_cell_key(grid, cell)
+        console() << "  cells " << n_done + n_skipped << "/" << n_cells << " (" << map_cell_key(grid, cell)
                   << " on rank " << rank << ", " << std::fixed << std::setprecision(1) << wall << " s), "
                   << std::setprecision(3) << rate * 60 << " cells/min, about "
                   << duration_text((todo.size() - n_done) / rate) << " left" << std::defaultfloat << std::endl;
@@ -271,7 +272,7 @@ namespace beamslider
     write_text_file(dir + "/summary.md", summary.str());
     if (!run_plot_script("plot_map.py", {dir, "map of " + base.name + " (" + options.model + ")"}))
       note_output_failure("map_*.png (scripts/plot_map.py)");
-    std::cout << "map: " << n_done << " cells in " << std::fixed << std::setprecision(1) << work_wall << " s on "
+    console() << "map: " << n_done << " cells in " << std::fixed << std::setprecision(1) << work_wall << " s on "
               << mpi.size() << " rank(s); " << dir << "/summary.md" << std::endl;
     return 0;
   }

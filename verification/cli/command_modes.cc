@@ -6,6 +6,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -79,12 +80,12 @@ namespace beamslider
       field_data.emplace_back("slider_x_m", x_C);
     write_beam_shapes_vtu(beam, shapes, dir + "/modes.vtu", field_data);
 
-    std::cout << "Modes of scene '" << scene.name << "' (" << beam.n_elements() << " elements, " << beam.n_dofs()
+    console() << "Modes of scene '" << scene.name << "' (" << beam.n_elements() << " elements, " << beam.n_dofs()
               << " DoFs" << (bonded ? ", slider bonded at x_C/L = " + std::to_string(*options.slider_at) : "")
               << "): " << elapsed_ms << " ms\n";
     for (unsigned int k = 0; k < modes.omega.size(); ++k)
-      std::cout << "  mode " << k + 1 << ": " << modes.omega[k] / (2 * M_PI) << " Hz\n";
-    std::cout << "Wrote " << dir << "/modes.csv and " << dir << "/modes.vtu (displacement arrays mode_k, peak 2h)\n";
+      console() << "  mode " << k + 1 << ": " << modes.omega[k] / (2 * M_PI) << " Hz\n";
+    console() << "Wrote " << dir << "/modes.csv and " << dir << "/modes.vtu (displacement arrays mode_k, peak 2h)\n";
     return 0;
   }
 } // namespace beamslider

@@ -23,6 +23,7 @@
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <filesystem>
@@ -212,13 +213,13 @@ namespace beamslider
         // The ladder is cached beside the scene's reports, keyed by its content.
         const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
         setting = choose_model(scene, *options.tolerance, cache, why);
-        std::cout << why << std::endl;
+        console() << why << std::endl;
         scene.time_stepping.time_step = setting.time_step;
       }
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, setting);
 
     const double end_time = scene.time_stepping.end_time;
-    std::cout << "simulate " << scene.name << (the_case ? " --case " + the_case->name : std::string()) << ": "
+    console() << "simulate " << scene.name << (the_case ? " --case " + the_case->name : std::string()) << ": "
               << setting.label() << ", " << end_time << " s (" << std::llround(end_time / scene.time_stepping.time_step)
               << " steps), output in " << dir << std::endl;
 
@@ -264,7 +265,7 @@ namespace beamslider
               throw OutputError("--resume: '" + file + "' cannot be cut back to the checkpoint: " + ec.message());
           }
         periods = saved.periods;
-        std::cout << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
+        console() << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
       }
     OutputFile trace_file(dir + "/trace.csv", resuming), period_file(dir + "/periods.csv", resuming);
     TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path(), !resuming);
@@ -276,7 +277,7 @@ namespace beamslider
     };
     if (verbose)
       run.on_progress = [](const RunProgress &p) {
-        std::cout << "  t = " << std::fixed << std::setprecision(1) << p.t << " / " << p.end_time
+        console() << "  t = " << std::fixed << std::setprecision(1) << p.t << " / " << p.end_time
                   << " s, x_C/L = " << std::setprecision(3) << p.slider_x_over_L << ", amplitude "
                   << p.amplitude_over_h << " h, " << std::setprecision(0) << p.steps_per_second << " steps/s"
                   << std::endl
@@ -410,7 +411,7 @@ namespace beamslider
       }
 
     if (verbose)
-      std::cout << summary.str();
+      console() << summary.str();
     outcome.periods = std::move(periods);
     return outcome;
   }

@@ -6,6 +6,7 @@
 #include "verification/cli/commands.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
+#include "verification/studies/console.h"
 
 #include <cmath>
 #include <fstream>
@@ -59,7 +60,7 @@ namespace beamslider
       std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L + 1e-9) + 1;
     const double simulated =
       2 * n_positions * (settings.sweep.settle_time + settings.sweep.average_time) + settings.free_time;
-    std::cout << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
+    console() << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
               << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
               << n_positions << " positions per direction), " << simulated << " s simulated in all (ROM: ~"
               << std::ceil(simulated / 5.) << " s wall; FE about 2 s wall per simulated second), into " << dir
@@ -80,7 +81,7 @@ namespace beamslider
       }
     write_text_file(dir + "/summary.md",
                     "# PCS sweep: scene `" + scene.name + "`, model " + settings.model + "\n\n" + text);
-    std::cout << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
+    console() << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
     const bool complete = study.up.last_run.status == RunStatus::completed &&
                           study.down.last_run.status == RunStatus::completed;
     for (const auto *branch : {&study.up, &study.down})

@@ -4,6 +4,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/report.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <fstream>
@@ -19,7 +20,7 @@ namespace beamslider
     report.scene_file = resolve_scene_path(common.scene_file);
     report.overrides  = common.overrides;
     const auto start = std::chrono::steady_clock::now();
-    std::cout << "beamslider verify: scene '" << scene.name << "', report in " << report.dir
+    console() << "beamslider verify: scene '" << scene.name << "', report in " << report.dir
               << (options.full ? " (full studies)" : " (quick studies; --full for the long ones)") << std::endl;
 
     report.text << "# beamslider verification report: scene `" << scene.name << "`\n\n"
@@ -65,7 +66,7 @@ namespace beamslider
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.text << "---\nTotal time of this report: " << seconds << " s.\n";
     flush();
-    std::cout << "Wrote " << report.dir << "/report.md (" << seconds << " s)" << std::endl;
+    console() << "Wrote " << report.dir << "/report.md (" << seconds << " s)" << std::endl;
     return 0;
   }
 } // namespace beamslider

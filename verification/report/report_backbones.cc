@@ -18,6 +18,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
 #include "verification/report/report.h"
+#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,7 +75,7 @@ namespace beamslider
   void add_backbone_section(Report &report, const Scene &scene, const bool full)
   {
     auto &md = report.text;
-    std::cout << "[verify] backbones ..." << std::endl;
+    console() << "[verify] backbones ..." << std::endl;
     const double h = scene.beam.thickness, L = scene.beam.length, pi = std::acos(-1.);
     const unsigned int n_scene = scene.discretisation.n_elements;
     // The scene's mesh for every model (the FE backbone on 32 elements takes
@@ -121,7 +122,7 @@ namespace beamslider
         rom[N] = compute_rom_backbone(model, 0.5 * L, settings);
         write_curve(curves, "rom_N" + std::to_string(N), rom[N], h);
       }
-    std::cout << "[verify] backbones: FE (" << n_elements << " elements, H = 10) ..." << std::endl;
+    console() << "[verify] backbones: FE (" << n_elements << " elements, H = 10) ..." << std::endl;
     const FEConservativeSystem fe_system = make_fe_conservative_system(beam);
     const Backbone fe                    = compute_fe_backbone(fe_system, settings);
     write_curve(curves, "fe", fe, h);
@@ -220,7 +221,7 @@ namespace beamslider
           "single-mode law can hold.\n\n";
 
     // 3.2 Harmonic truncation on ROM N = 5.
-    std::cout << "[verify] backbones: harmonic truncation ..." << std::endl;
+    console() << "[verify] backbones: harmonic truncation ..." << std::endl;
     const ReducedOrderModel rom5(make_modal_basis(beam, modes, 5), 0.);
     std::map<unsigned int, Backbone> by_h;
     for (const unsigned int H : {1u, 3u, 5u, 10u})
@@ -264,7 +265,7 @@ namespace beamslider
        << "![Harmonic truncation](backbone_harmonics.png)\n\n";
 
     // 3.4 The ideal clamp: the single-mode law of doc/physics.md §5 and the 3:1 interaction.
-    std::cout << "[verify] backbones: ideal clamp ..." << std::endl;
+    console() << "[verify] backbones: ideal clamp ..." << std::endl;
     {
       Scene ideal               = scene;
       ideal.supports.ideal_clamp = true;
@@ -353,7 +354,7 @@ namespace beamslider
       {
         // The quick report's FE mesh (16 elements) against this one, and the
         // half-period symmetry against the full harmonic set on it.
-        std::cout << "[verify] backbones: FE mesh and harmonic-set checks ..." << std::endl;
+        console() << "[verify] backbones: FE mesh and harmonic-set checks ..." << std::endl;
         const FEBeam coarse(scene, 16);
         const FEConservativeSystem coarse_system = make_fe_conservative_system(coarse);
         const Backbone fe16 = compute_fe_backbone(coarse_system, settings);

@@ -9,6 +9,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
 #include "verification/report/report.h"
+#include "verification/studies/console.h"
 
 #include <cmath>
 #include <iomanip>
@@ -27,7 +28,7 @@ namespace beamslider
   void add_coefficient_section(Report &report, const Scene &scene, const bool full)
   {
     auto &md = report.text;
-    std::cout << "[verify] cubic coefficients ..." << std::endl;
+    console() << "[verify] cubic coefficients ..." << std::endl;
     md << "## 2. Cubic modal coefficients\n\n"
        << "Seed Eq. 3 with the membrane stiffness k_ax of the supports, against the three ways of extracting the cubic "
           "modal stiffness from the FE model (doc/physics.md §5). All on the scene's FE mesh and its mass-normalised modes. "
@@ -89,7 +90,7 @@ namespace beamslider
        << ", measured " << fixed(measured, 5) << ". Condensed STEP and ICE let the membrane relax and have neither error.\n\n";
 
     // 2.2b: the coefficient the FE model implies through its own backbone.
-    std::cout << "[verify] cubic coefficients: FE-implied b_111 ..." << std::endl;
+    console() << "[verify] cubic coefficients: FE-implied b_111 ..." << std::endl;
     {
       const FEImpliedCoefficient fe_implied = fe_implied_b111(beam, modes);
       md << "### 2.2b FE-implied b_111\n\n"
@@ -124,7 +125,7 @@ namespace beamslider
           "axial equilibrium is linear in u); an ICE point is a full Newton solve with load stepping.\n\n";
 
     // 2.4: the load level.
-    std::cout << "[verify] cubic coefficients: load-level study ..." << std::endl;
+    console() << "[verify] cubic coefficients: load-level study ..." << std::endl;
     md << "### 2.4 Coefficient against the load level\n\n"
        << "Relative error of b_111 against the analytic value when the STEP amplitude or the ICE load level (given as the "
           "linear displacement it causes, in thicknesses) changes, for N = 1 and N = 3.\n\n"
@@ -152,7 +153,7 @@ namespace beamslider
               {
                 md << " failed |";
                 levels.row({CsvWriter::cell(s), method, CsvWriter::cell(basis->n_modes()), "", "failed"});
-                std::cout << "  " << method << " at " << s << " h failed: " << e.what() << std::endl;
+                console() << "  " << method << " at " << s << " h failed: " << e.what() << std::endl;
               }
           }
         md << "\n";

@@ -11,6 +11,7 @@
 #include "verification/studies/pcs_sweep.h"
 #include "verification/report/report.h"
 #include "verification/studies/simulation_cases.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -44,7 +45,7 @@ namespace beamslider
   void add_contact_section(Report &report, const Scene &scene, const bool full)
   {
     auto &md = report.text;
-    std::cout << "[verify] contact dynamics: published cases and ablations ..." << std::endl;
+    console() << "[verify] contact dynamics: published cases and ablations ..." << std::endl;
     const auto start = std::chrono::steady_clock::now();
     md << "## 4. Slider contact dynamics on the reduced model\n\n"
        << "The published cases of `mueller2023` (doc/scenes.md) and the seed's ablations applied to the signature move, run "
@@ -81,12 +82,12 @@ namespace beamslider
         options.case_name = c.name;
         if (!full && c.name != "signature-move")
           options.end_time = std::min(20., c.end_time);
-        std::cout << "  case " << c.name << " ..." << std::flush;
+        console() << "  case " << c.name << " ..." << std::flush;
         try
           {
             const SimulationOutcome o = run_simulation(common, options, false);
             const std::string differs = disagreements(o.verdict, c.expected);
-            std::cout << " " << o.wall_seconds << " s: " << o.verdict.line << std::endl;
+            console() << " " << o.wall_seconds << " s: " << o.verdict.line << std::endl;
             md << "| `" << c.name << "` | " << c.description << " | " << c.published << " | " << o.verdict.line << " | "
                << (differs.empty() ? "—" : differs) << " | " << fixed(o.wall_seconds, 1) << " |\n";
             const CaseVerdict &t = o.verdict;
@@ -102,7 +103,7 @@ namespace beamslider
           }
         catch (const std::exception &e)
           {
-            std::cout << " failed: " << e.what() << std::endl;
+            console() << " failed: " << e.what() << std::endl;
             md << "| `" << c.name << "` | " << c.description << " | " << c.published << " | failed: " << e.what()
                << " | — | — |\n";
           }

@@ -22,6 +22,7 @@
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
+#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>
@@ -125,7 +126,7 @@ namespace beamslider
       double expected              = 0;
       for (const auto &r : rungs)
         expected += expected_member_seconds(r.model, scene, end_time) * n_members / 2; // two cores
-      std::cout << "[verify] FE against ROM: error ladder, " << rungs.size() << " rungs × " << n_members
+      console() << "[verify] FE against ROM: error ladder, " << rungs.size() << " rungs × " << n_members
                 << " members over " << end_time << " s, expected about " << fixed(expected / 60, 1) << " min"
                 << std::endl;
 
@@ -141,7 +142,7 @@ namespace beamslider
       const LadderStudy study = run_ladder(
         scene, rungs, reference, end_time, n_members,
         [&](const LadderRung &rung, std::size_t) {
-          std::cout << "[verify] FE against ROM (" << seconds_since(start) << "): ladder rung " << rung.name << " ("
+          console() << "[verify] FE against ROM (" << seconds_since(start) << "): ladder rung " << rung.name << " ("
                     << rung.model.label() << ")" << std::endl;
         },
         [&](const LadderRungResult &r) {
@@ -291,7 +292,7 @@ namespace beamslider
       settings.free_time          = 0;
       settings.verbose            = false;
       settings.sweep.validate(scene);
-      std::cout << "[verify] FE against ROM: slow manifold, sweeps x_C/L " << settings.sweep.low_over_L << " … "
+      console() << "[verify] FE against ROM: slow manifold, sweeps x_C/L " << settings.sweep.low_over_L << " … "
                 << settings.sweep.high_over_L << " on the FE and the ROM" << std::endl;
 
       const std::string fe_dir = report.dir + "/slow_manifold_fe", rom_dir = report.dir + "/slow_manifold_rom";
@@ -402,6 +403,6 @@ namespace beamslider
     md << slow_manifold_subsection(report, scene, full);
     md << explicit_limit_subsection(report, scene);
     report.text << md.str();
-    std::cout << "[verify] FE against ROM: done in " << seconds_since(start) << std::endl;
+    console() << "[verify] FE against ROM: done in " << seconds_since(start) << std::endl;
   }
 } // namespace beamslider

@@ -5,6 +5,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
 #include "verification/report/report.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -83,7 +84,7 @@ namespace beamslider
   void add_frequency_section(Report &report, const Scene &scene)
   {
     auto &md = report.text;
-    std::cout << "[verify] linear frequencies: convergence studies ..." << std::endl;
+    console() << "[verify] linear frequencies: convergence studies ..." << std::endl;
     const std::vector<unsigned int> meshes{8, 16, 32, 64, 128, 256};
 
     Scene clamped                = scene;
@@ -159,7 +160,7 @@ namespace beamslider
        << n_modes << " lowest modes on the default mesh took " << fixed(ms, 1) << " ms (assembly and SLEPc; the first SLEPc call of a process adds PETSc's start-up).\n\n";
 
     // Bonded slider against Eq. 5.
-    std::cout << "[verify] linear frequencies: bonded slider against Eq. 5 ..." << std::endl;
+    console() << "[verify] linear frequencies: bonded slider against Eq. 5 ..." << std::endl;
     CsvWriter bonded_csv(report.dir + "/bonded_slider.csv",
                          {"x_over_L", "fe_frequency_hz", "fe_fine_frequency_hz", "eq5_frequency_hz", "eq5_relative_difference"});
     const FEBeam fine_beam(scene, 128);

@@ -18,6 +18,7 @@
 #include "verification/report/report.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"
+#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>
@@ -56,7 +57,7 @@ namespace beamslider
         return;
       }
     const auto start = std::chrono::steady_clock::now();
-    std::cout << "  section 6: operating-range map" << std::endl;
+    console() << "  section 6: operating-range map" << std::endl;
 
     // Around the first natural frequency with the slider bonded at its start.
     const FEBeam beam(scene);
@@ -78,7 +79,7 @@ namespace beamslider
     const std::vector<std::vector<MapMember>> cells =
       run_map_cells(report.scene_file, report.overrides, grid, settings, [](const std::size_t done, const std::size_t n) {
         if (done % 10 == 0 || done == n)
-          std::cout << "    map: " << done << "/" << n << " cells" << std::endl;
+          console() << "    map: " << done << "/" << n << " cells" << std::endl;
       });
     if (interruption_requested())
       {

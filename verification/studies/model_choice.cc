@@ -3,6 +3,7 @@
 
 #include "contact/output_file.h"
 #include "verification/studies/error_ladder.h"
+#include "verification/studies/console.h"
 
 #include <cmath>
 #include <cstdint>
@@ -122,12 +123,12 @@ namespace beamslider
       {
         std::size_t reference = 0;
         const auto rungs      = default_ladder(scene, false, reference);
-        std::cout << "simulate --model auto: no cached error ladder for this scene; running it (" << rungs.size()
+        console() << "simulate --model auto: no cached error ladder for this scene; running it (" << rungs.size()
                   << " models × " << ladder_members << " members over " << ladder_end_time
                   << " s, a few minutes, the FE most of it) ..." << std::endl;
         const LadderStudy study = run_ladder(scene, rungs, reference, ladder_end_time, ladder_members,
                                              [](const LadderRung &rung, std::size_t) {
-                                               std::cout << "  " << rung.name << " (" << rung.model.label() << ")"
+                                               console() << "  " << rung.name << " (" << rung.model.label() << ")"
                                                          << std::endl;
                                              });
         for (std::size_t i = 0; i < study.rungs.size(); ++i)

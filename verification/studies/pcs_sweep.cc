@@ -15,6 +15,7 @@
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
 #include "verification/report/csv_writer.h"
+#include "verification/studies/console.h"
 
 #include <chrono>
 #include <cmath>
@@ -101,13 +102,13 @@ namespace beamslider
                    std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
           ++done;
           if (settings.verbose && (done % 10 == 0 || done == n_positions))
-            std::cout << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
+            console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
                       << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
                       << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
         };
         PcsBranch branch = run_pcs_branch(scene, *beam, settings.sweep, direction, on_point);
         if (branch.last_run.status != RunStatus::completed)
-          std::cout << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
+          console() << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
                     << "): " << branch.last_run.message << std::endl;
         (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
       }
@@ -134,7 +135,7 @@ namespace beamslider
         };
         if (settings.verbose)
           run.on_progress = [](const RunProgress &p) {
-            std::cout << "  free slider: t = " << fixed(p.t, 1) << " / " << fixed(p.end_time, 1)
+            console() << "  free slider: t = " << fixed(p.t, 1) << " / " << fixed(p.end_time, 1)
                       << " s, x_C/L = " << fixed(p.slider_x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
                       << " h" << std::endl;
           };
@@ -156,7 +157,7 @@ namespace beamslider
                                                  analysis.level_before_jump, analysis.envelope[later]};
           }
         if (study.free_run.status != RunStatus::completed)
-          std::cout << "  free slider stopped early (" << to_string(study.free_run.status)
+          console() << "  free slider stopped early (" << to_string(study.free_run.status)
                     << "): " << study.free_run.message << std::endl;
       }
 
@@ -221,7 +222,7 @@ namespace beamslider
         settings.free_time         = std::min(20., scene.time_stepping.end_time);
       }
     settings.verbose = true;
-    std::cout << "Prescribed slider position sweeps (ROM, N = " << scene.discretisation.n_modes << ", x_C/L "
+    console() << "Prescribed slider position sweeps (ROM, N = " << scene.discretisation.n_modes << ", x_C/L "
               << settings.sweep.low_over_L << " … " << settings.sweep.high_over_L << " in steps of "
               << settings.sweep.step_over_L << ")" << std::endl;
     const PcsStudy study = run_pcs_sweep(scene, settings, report.dir);
