@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -192,5 +195,83 @@ TEST(Commands, SceneTemplateIsAValidScene)
   run = run_beamslider({"simulate", (dir / "template.prm").string(), "--end-time", "0.01", "--output",
                         (dir / "out").string()});
   EXPECT_EQ(run.exit_code, 0) << run.err;
+  fs::remove_all(dir);
+}
+
+// The ladder alone: two rungs of 3 members over a short run. Each rung's W₁
+// to the reference in ladder.csv is recomputed here from ladder_members.csv
+// (equal sizes: W₁ is the mean distance of the sorted samples), and a rung
+// name that does not exist is refused with the list of rungs.
+TEST(Commands, LadderWritesRungsWhoseDistancesFollowFromTheMembers)
+{
+  const fs::path dir = fresh_folder("cmd_ladder");
+  CliRun run = run_beamslider({"ladder", "--rung", "ROM N=10", "--members", "3", "--end-time", "0.3", "--quiet",
+                               "--output", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out, "");
+  EXPECT_TRUE(starts_with(first_line(dir / "ladder.csv"), "index,rung,family,n_modes,n_elements,integrator,time_step_s"));
+  EXPECT_EQ(first_line(dir / "ladder_members.csv"),
+            "rung,member,perturbation,status,jump_time_s,final_x_over_L,final_amplitude_over_h,wall_s,outcome");
+  // final_x_over_L of each rung's members, and the rung's W₁ column.
+  std::map<std::string, std::vector<double>> finals;
+  {
+    std::ifstream in(dir / "ladder_members.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string c; std::getline(s, c, ',');)
+          cells.push_back(c);
+        ASSERT_GE(cells.size(), 6u) << line;
+        finals[cells[0]].push_back(std::stod(cells[5]));
+      }
+  }
+  ASSERT_EQ(finals.size(), 2u) << "the asked rung and the reference";
+  ASSERT_EQ(finals["ROM N=10"].size(), 3u);
+  ASSERT_EQ(finals["FE Δt/4"].size(), 3u);
+  double w1 = 0;
+  std::sort(finals["ROM N=10"].begin(), finals["ROM N=10"].end());
+  std::sort(finals["FE Δt/4"].begin(), finals["FE Δt/4"].end());
+  for (unsigned int k = 0; k < 3; ++k)
+    w1 += std::abs(finals["ROM N=10"][k] - finals["FE Δt/4"][k]) / 3;
+  bool found = false;
+  {
+    std::ifstream in(dir / "ladder.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line))
+      {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string c; std::getline(s, c, ',');)
+          cells.push_back(c);
+        if (cells.size() < 26 || cells[1] != "ROM N=10")
+          continue;
+        found = true;
+        EXPECT_NEAR(std::stod(cells[25]), w1, 1e-5 + 1e-4 * w1) << "w1_to_reference (6 digits in the CSV)";
+      }
+  }
+  EXPECT_TRUE(found) << "no ROM N=10 row in ladder.csv";
+  EXPECT_NE(read_file(dir / "summary.md").find("| ROM N=10 |"), std::string::npos);
+
+  run = run_beamslider({"ladder", "--rung", "ROM N=11", "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--rung 'ROM N=11' is not a rung"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("'FE Δt/4'"), std::string::npos) << "the error lists the rungs: " << run.err;
+  fs::remove_all(dir);
+}
+
+// verify --section writes only the sections asked for, and says so.
+TEST(Commands, VerifySectionWritesOnlyThatSection)
+{
+  const fs::path dir = fresh_folder("cmd_verify_section");
+  const CliRun run   = run_beamslider({"verify", "--section", "1", "--quiet", "--output", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string report = read_file(dir / "report.md");
+  EXPECT_NE(report.find("\n## 1. "), std::string::npos);
+  EXPECT_EQ(report.find("\n## 2. "), std::string::npos);
+  EXPECT_NE(report.find("Only section(s) 1"), std::string::npos);
   fs::remove_all(dir);
 }

@@ -180,16 +180,3 @@ TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
   std::filesystem::remove_all(two);
 }
 
-// Report section 6 on its own (minutes: a benchmark-like driver, disabled in
-// the suite): BEAMSLIDER_SECTION6_OUTPUT=dir build/tests/test_cli_map
-// --gtest_also_run_disabled_tests --gtest_filter='*Section6*'
-TEST(MapReport, DISABLED_Section6Alone)
-{
-  const char *dir_env = std::getenv("BEAMSLIDER_SECTION6_OUTPUT");
-  Report report;
-  report.dir        = dir_env ? dir_env : "/tmp/section6";
-  report.scene_file = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
-  std::filesystem::create_directories(report.dir);
-  add_map_section(report, read_scene(report.scene_file), true);
-  std::ofstream(report.dir + "/section6.md") << report.text.str();
-}

@@ -215,24 +215,6 @@ TEST(FEAgainstROM, TenModeIceRomFollowsTheFEBeamWithinTheTruncationAndTimeStepBu
   EXPECT_LT(std::abs(t_10.rows.back().slider_x_over_L - 0.3), 1e-2);
 }
 
-// Report section 5 alone (run with --gtest_also_run_disabled_tests
-// --gtest_filter='*Section5*'): BEAMSLIDER_SECTION5_OUTPUT the folder
-// (default /tmp/section5), BEAMSLIDER_SECTION5_FULL=1 for `verify --full`'s
-// long studies. Writes section5.md there besides the CSV and PNG files.
-TEST(FEAgainstROMReport, DISABLED_Section5Alone)
-{
-  const char *dir_env = std::getenv("BEAMSLIDER_SECTION5_OUTPUT");
-  const char *full    = std::getenv("BEAMSLIDER_SECTION5_FULL");
-  Report report;
-  report.dir = dir_env ? dir_env : "/tmp/section5";
-  std::filesystem::create_directories(report.dir);
-  const auto start = std::chrono::steady_clock::now();
-  add_fe_rom_section(report, read_scene(scene_file), full && std::string(full) == "1");
-  std::ofstream(report.dir + "/section5.md") << report.text.str();
-  std::cout << "section 5 (" << (full ? "full" : "quick") << "): "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s wall\n";
-}
-
 // --model auto ranks the ladder's rungs by a stated cost model, never by a
 // wall clock: the same settings must get the same costs on any machine and load,
 // halving Δt must double a cost exactly, more modes or elements must cost

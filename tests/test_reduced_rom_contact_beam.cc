@@ -2,8 +2,8 @@
 // the shared contact code: the stability limit 2/ω_max, free vibration
 // against the modal solution, force directions against finite differences of
 // the gaps, the energy balance without friction and damping, and the end stop
-// at a support. A disabled smoke test runs the mueller2023 numbers and
-// measures steps per second (run with --gtest_also_run_disabled_tests).
+// at a support; the implicit variant and the BeamStep protocol. Speed is
+// measured by the RomContact benchmark, not here.
 //
 // The modal basis is built here from the analytic clamped–clamped modes
 // (β_n L roots of cos βL cosh βL = 1, mass-normalised, K'_jk and γ_n by

@@ -181,6 +181,20 @@ int run_command_line(int argc, char **argv)
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
   verify_cmd->add_flag("--full", verify.full, "run the long studies too");
+  verify_cmd->add_option("--section", verify.sections, "write only this section (1-6; repeatable)")
+    ->check(integer_in(1, 6));
+
+  LadderOptions ladder;
+  auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
+                                                  "as ensembles against the FE reference");
+  add_common(ladder_cmd);
+  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
+  ladder_cmd->add_option("--rung", ladder.rungs,
+                         "run only this rung of the full ladder, by name (repeatable; the reference FE Δt/4 always runs)");
+  ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
+    ->check(integer_in(2, 1000));
+  ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")
+    ->check(finite_positive());
 
   auto *template_cmd = app.add_subcommand("scene-template", "print a scene file with every parameter, its unit and range");
 
@@ -233,6 +247,8 @@ int run_command_line(int argc, char **argv)
         return run_map(common, map);
       if (*verify_cmd)
         return run_verify(common, verify);
+      if (*ladder_cmd)
+        return run_ladder_command(common, ladder);
       if (*template_cmd)
         {
           std::cout << scene_template();

@@ -6,7 +6,9 @@
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <fstream>
 #include <iostream>
 
@@ -26,6 +28,13 @@ namespace beamslider
     report.text << "# beamslider verification report: scene `" << scene.name << "`\n\n"
                 << "Written by `beamslider verify`. Every number below is computed by this run; CSV files with the same data "
                    "sit beside this file.\n\n";
+    if (!options.sections.empty())
+      {
+        std::string list;
+        for (const unsigned int k : options.sections)
+          list += (list.empty() ? "" : ", ") + std::to_string(k);
+        report.text << "_Only section(s) " << list << " (`--section`); the others were not run._\n\n";
+      }
     // Each section appends to report.md and is flushed to disk before the
     // next starts, so a failure late in the report keeps the earlier ones.
     auto flush = [&report] { write_text_file(report.dir + "/report.md", report.text.str()); };
@@ -39,29 +48,25 @@ namespace beamslider
       flush();
       return true;
     };
-    add_frequency_section(report, scene);
-    flush();
-    if (interrupted())
-      return interruption_exit_code();
-    add_coefficient_section(report, scene, options.full);
-    flush();
-    if (interrupted())
-      return interruption_exit_code();
-    add_backbone_section(report, scene, options.full);
-    flush();
-    if (interrupted())
-      return interruption_exit_code();
-    add_contact_section(report, scene, options.full);
-    flush();
-    if (interrupted())
-      return interruption_exit_code();
-    add_fe_rom_section(report, scene, options.full);
-    flush();
-    if (interrupted())
-      return interruption_exit_code();
-    add_map_section(report, scene, options.full);
-    if (interrupted())
-      return interruption_exit_code();
+    // The sections in order; --section picks some (a section alone takes
+    // what it needs from the scene, none reads another's results).
+    const std::vector<std::function<void()>> sections = {
+      [&] { add_frequency_section(report, scene); },
+      [&] { add_coefficient_section(report, scene, options.full); },
+      [&] { add_backbone_section(report, scene, options.full); },
+      [&] { add_contact_section(report, scene, options.full); },
+      [&] { add_fe_rom_section(report, scene, options.full); },
+      [&] { add_map_section(report, scene, options.full); }};
+    for (std::size_t k = 0; k < sections.size(); ++k)
+      {
+        if (!options.sections.empty() &&
+            std::find(options.sections.begin(), options.sections.end(), k + 1) == options.sections.end())
+          continue;
+        sections[k]();
+        flush();
+        if (interrupted())
+          return interruption_exit_code();
+      }
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.text << "---\nTotal time of this report: " << seconds << " s.\n";

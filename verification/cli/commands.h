@@ -30,6 +30,7 @@ namespace beamslider
   struct VerifyOptions
   {
     bool full = false; // the long studies (minutes to hours)
+    std::vector<unsigned int> sections; // only these sections (1–6); empty = all
   };
   int run_verify(const CommonOptions &common, const VerifyOptions &options);
 
@@ -102,6 +103,17 @@ namespace beamslider
     std::string integrator = "explicit"; // rom: explicit | implicit (the FE's scheme)
   };
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
+
+  // `beamslider ladder`: the error ladder alone (report section 5.1–5.2),
+  // with a choice of rungs, members and end time (command_ladder.cc).
+  struct LadderOptions
+  {
+    bool full = false;              // the rungs of `verify --full` (default: those of the quick report)
+    std::vector<std::string> rungs; // names of rungs of the full ladder; the reference always runs
+    std::optional<unsigned int> members; // default 4 (quick) or 8 (full)
+    std::optional<double> end_time;      // [s], default 25 (quick) or 40 (full)
+  };
+  int run_ladder_command(const CommonOptions &common, const LadderOptions &options);
 
   // `beamslider map`: the adaptation over a grid of scene parameters, on MPI
   // ranks when started by mpirun (command_map.cc).

@@ -1,0 +1,80 @@
+// `beamslider ladder`: the error ladder of report section 5 on its own. Each
+// rung is a model setting run as an ensemble; every rung is compared with
+// the reference (the FE at a quarter of the scene's time step) and with the
+// rung before it. Writes ladder.csv, ladder_members.csv, ladder_steps.csv,
+// ladder.png and summary.md (the same tables and verdict as the report).
+#include "meshes/scene.h"
+#include "verification/cli/commands.h"
+#include "verification/report/report_ladder.h"
+#include "verification/studies/console.h"
+#include "verification/studies/error_ladder.h"
+
+#include "contact/output_file.h"
+
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    // The rungs asked for by name, in ladder order, with the reference.
+    std::vector<LadderRung> pick_rungs(const std::vector<LadderRung> &full, const std::size_t full_reference,
+                                       const std::vector<std::string> &names, std::size_t &reference)
+    {
+      for (const std::string &name : names)
+        {
+          bool known = false;
+          for (const LadderRung &r : full)
+            known = known || r.name == name;
+          if (!known)
+            {
+              std::string list;
+              for (const LadderRung &r : full)
+                list += (list.empty() ? "'" : ", '") + r.name + "'";
+              throw InputError("--rung '" + name + "' is not a rung of this scene's ladder; the rungs are " + list);
+            }
+        }
+      std::vector<LadderRung> picked;
+      for (std::size_t i = 0; i < full.size(); ++i)
+        {
+          bool wanted = i == full_reference;
+          for (const std::string &name : names)
+            wanted = wanted || full[i].name == name;
+          if (!wanted)
+            continue;
+          if (i == full_reference)
+            reference = picked.size();
+          picked.push_back(full[i]);
+        }
+      return picked;
+    }
+  } // namespace
+
+  int run_ladder_command(const CommonOptions &common, const LadderOptions &options)
+  {
+    const Scene scene = read_command_scene(common, "");
+    const bool full   = options.full || !options.rungs.empty();
+    std::size_t reference = 0;
+    std::vector<LadderRung> rungs = default_ladder(scene, full, reference);
+    if (!options.rungs.empty())
+      rungs = pick_rungs(rungs, reference, options.rungs, reference);
+
+    LadderRunSettings settings;
+    settings.members         = options.members.value_or(options.full ? 8 : 4);
+    settings.end_time        = options.end_time.value_or(options.full ? 40. : 25.);
+    settings.quick_ladder    = !full;
+    settings.progress_prefix = "ladder: ";
+    const std::string dir = prepare_output_dir(common, scene.name, "ladder");
+
+    std::ostringstream md;
+    md << "# Error ladder of scene `" << scene.name << "`\n\n"
+       << "Written by `beamslider ladder`" << (options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
+       << settings.members << " members over " << settings.end_time << " s. The same study as report section 5.1–5.2 "
+       << "(doc/verification.md §6).\n\n";
+    md << run_and_describe_ladder(dir, scene, rungs, reference, settings);
+    write_text_file(dir + "/summary.md", md.str());
+    console() << "wrote " << dir << "/summary.md, ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png"
+              << std::endl;
+    return 0;
+  }
+} // namespace beamslider

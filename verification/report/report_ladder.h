@@ -1,0 +1,57 @@
+// The error ladder as report section 5.1–5.2 and the `beamslider ladder`
+// command show it: run_and_describe_ladder runs the rungs, writes the files
+// and returns the Markdown. The CSV files are written as the rungs finish (so
+// a ladder that is interrupted keeps the rungs it completed):
+//   ladder.csv          one row per rung (index = place in the ladder):
+//                       settings, cost, outcome statistics, W₁ to the reference
+//   ladder_members.csv  one row per rung and member (the trace analysis)
+//   ladder_steps.csv    each step of the ladder: rung i−1 against rung i
+//   ladder.png          final x_C/L of every member per rung; speed against
+//                       accuracy (cost against W₁ with its interval)
+// Columns are listed in doc/verification.md §6.
+#pragma once
+
+#include "verification/report/csv_writer.h"
+#include "verification/studies/error_ladder.h"
+
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  class LadderFiles
+  {
+  public:
+    // Creates ladder.csv and ladder_members.csv in `dir` with their headers.
+    explicit LadderFiles(const std::string &dir);
+
+    // The rows of one finished rung; `index` is its place in the ladder.
+    void add_rung(const LadderRungResult &rung, std::size_t index, bool is_reference);
+
+    // ladder_steps.csv of a finished ladder.
+    void write_steps(const LadderStudy &study) const;
+
+  private:
+    std::string dir_;
+    CsvWriter rungs_, members_;
+  };
+
+  struct LadderRunSettings
+  {
+    double end_time      = 25.; // [s] simulated per member
+    unsigned int members = 4;
+    // The rungs are the quick ladder: the text says what `verify --full` adds.
+    bool quick_ladder = false;
+    // Heading numbers: "5." gives "### 5.1 …" and "### 5.2 …" (the report),
+    // "" gives "## …" (a summary of its own).
+    std::string numbering;
+    std::string progress_prefix; // before each progress line on the console
+  };
+
+  // Runs `rungs` (reference: rungs[reference]) as ensembles into `dir`
+  // (LadderFiles and ladder.png) and returns the Markdown: the headline table
+  // of every rung against the reference, the verdict on the end state, and
+  // what each step of the ladder contributes (computed from this run).
+  std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                                      std::size_t reference, const LadderRunSettings &settings);
+} // namespace beamslider
