@@ -173,4 +173,10 @@ namespace beamslider
   // Writes a complete, commented scene file with every parameter, its default,
   // unit and allowed range.
   std::string scene_template();
+
+  // The same complete scene file with the values of `scene` (every number in
+  // the shortest form that reads back exactly): the effective parameters a
+  // run writes into its output folder, so that read_scene of this text gives
+  // the same scene, bit for bit.
+  std::string scene_file_text(const Scene &scene);
 } // namespace beamslider

@@ -8,7 +8,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -26,19 +28,21 @@ namespace beamslider
     using dealii::Patterns::Integer;
     using dealii::Patterns::Selection;
 
+    // The shortest text that reads back to the same double (so that a scene
+    // written by scene_file_text reads back bit for bit).
     std::string num(const double x)
     {
-      std::ostringstream s;
-      s.precision(10);
-      s << x;
-      return s.str();
+      std::array<char, 32> buffer;
+      const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
+      return std::string(buffer.data(), result.ptr);
     }
 
-    // One function per subsection declares its entries; a matching one reads
-    // them. The defaults are those of the default scene (mueller2023).
-    void declare(ParameterHandler &prm)
+    // Declares every entry with the values of `d` as defaults: Scene{} (the
+    // default scene, mueller2023) for reading and the template, a run's own
+    // scene for the effective parameters it writes (scene_file_text). parse()
+    // below reads the same entries back.
+    void declare(ParameterHandler &prm, const Scene &d)
     {
-      const Scene d;
 
       prm.enter_subsection("Beam");
       prm.declare_entry("Length", num(d.beam.length), Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
@@ -49,7 +53,7 @@ namespace beamslider
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
-      prm.declare_entry("Type", "elastic", Selection("elastic|clamped|pinned|clamped-pinned"),
+      prm.declare_entry("Type", d.supports.type(), Selection("elastic|clamped|pinned|clamped-pinned"),
                         "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
                         "clamped: the ideal clamp w = w' = u = 0; pinned: immovable hinges w = u = 0, w' free; "
                         "clamped-pinned: clamped at x = 0, pinned at x = L (the springs below are used by elastic only)");
@@ -94,7 +98,7 @@ namespace beamslider
       prm.declare_entry("Axial degree", std::to_string(d.discretisation.axial_degree), Integer(1, 6), "polynomial degree of the axial displacement u");
       prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 40),
                         "N, bending modes of the reduced model (and modes the FE damps); the explicit ROM step needs Delta t <= 2/omega_N");
-      prm.declare_entry("Geometric nonlinearity", "true", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
+      prm.declare_entry("Geometric nonlinearity", d.discretisation.geometric_nonlinearity ? "true" : "false", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
       prm.leave_subsection();
 
       prm.enter_subsection("Time stepping");
@@ -441,7 +445,7 @@ namespace beamslider
     check_overrides_unique(overrides);
 
     ParameterHandler prm;
-    declare(prm);
+    declare(prm, Scene());
     try
       {
         std::istringstream in(text);
@@ -463,10 +467,12 @@ namespace beamslider
     return s;
   }
 
-  std::string scene_template()
+  std::string scene_template() { return scene_file_text(Scene()); }
+
+  std::string scene_file_text(const Scene &scene)
   {
     ParameterHandler prm;
-    declare(prm);
+    declare(prm, scene);
     std::ostringstream out;
     prm.print_parameters(out, ParameterHandler::PRM);
     return out.str();

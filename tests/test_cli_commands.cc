@@ -275,3 +275,36 @@ TEST(Commands, VerifySectionWritesOnlyThatSection)
   EXPECT_NE(report.find("Only section(s) 1"), std::string::npos);
   fs::remove_all(dir);
 }
+
+// Every output folder holds what repeats its run: parameters.prm (the scene
+// after --set and --case) and run.txt (command line, version, revision).
+// Running simulate on the folder's parameters.prm alone gives the same trace.
+TEST(Commands, ARunRepeatsFromItsOutputFolderAlone)
+{
+  const fs::path dir = fresh_folder("cmd_repeat");
+  CliRun run = run_beamslider({"simulate", "--case", "signature-move", "--set", "Contact/Restitution=0.45",
+                               "--end-time", "0.15", "--quiet", "--output", (dir / "first").string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string record = read_file(dir / "first" / "run.txt");
+  EXPECT_NE(record.find("simulate --case signature-move --set Contact/Restitution=0.45 --end-time 0.15"),
+            std::string::npos)
+    << record;
+  EXPECT_NE(record.find("revision:  "), std::string::npos) << record;
+  const std::string parameters = read_file(dir / "first" / "parameters.prm");
+  const auto restitution       = parameters.find("set Restitution");
+  ASSERT_NE(restitution, std::string::npos);
+  EXPECT_EQ(parameters.substr(restitution, parameters.find('\n', restitution) - restitution).substr(
+              parameters.substr(restitution).find('=') + 2),
+            "0.45");
+
+  run = run_beamslider({"simulate", (dir / "first" / "parameters.prm").string(), "--quiet", "--output",
+                        (dir / "again").string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(read_file(dir / "again" / "trace.csv"), read_file(dir / "first" / "trace.csv"));
+  // The same parameters (the first line names the scene: 'parameters' now).
+  auto without_first_line = [](const std::string &text) { return text.substr(text.find('\n') + 1); };
+  EXPECT_EQ(without_first_line(read_file(dir / "again" / "parameters.prm")),
+            without_first_line(read_file(dir / "first" / "parameters.prm")))
+    << "the repeated run's scene is the same, parameter for parameter";
+  fs::remove_all(dir);
+}

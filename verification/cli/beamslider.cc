@@ -46,6 +46,7 @@ int main(int argc, char **argv)
   // own task parallelism stays on one thread (runs parallelise by process).
   dealii::MultithreadInfo::set_thread_limit(1);
   install_interruption_handlers();
+  beamslider::record_command_line(argc, argv);
   int status = run_command_line(argc, argv);
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written

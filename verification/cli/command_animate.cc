@@ -42,7 +42,7 @@ namespace beamslider
     if (n_frames > 20000)
       throw InputError("animate would write " + std::to_string(static_cast<long>(n_frames)) +
                        " frames; lower --frame-rate or shorten the window (--start-time, --end-time)");
-    const std::string dir = prepare_output_dir(common, scene.name, "animate");
+    const std::string dir = prepare_output_dir(common, scene, "animate");
 
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, options.model));
 

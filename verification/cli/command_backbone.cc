@@ -43,7 +43,7 @@ namespace beamslider
     const Scene scene     = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     const unsigned int N  = options.n_modes ? options.n_modes : scene.discretisation.n_modes;
     require_mesh_for_modes(scene.discretisation.n_elements, N, "--modes");
-    const std::string dir = prepare_output_dir(common, scene.name, "backbone");
+    const std::string dir = prepare_output_dir(common, scene, "backbone");
     const double L = scene.beam.length, h = scene.beam.thickness, pi = std::acos(-1.);
     const auto t0 = std::chrono::steady_clock::now();
 

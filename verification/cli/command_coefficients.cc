@@ -22,7 +22,7 @@ namespace beamslider
     const Scene scene     = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     const unsigned int N  = options.n_modes ? options.n_modes : scene.discretisation.n_modes;
     require_mesh_for_modes(scene.discretisation.n_elements, N, "--modes");
-    const std::string dir = prepare_output_dir(common, scene.name, "coefficients");
+    const std::string dir = prepare_output_dir(common, scene, "coefficients");
 
     const FEBeam beam(scene);
     const FEModes modes     = compute_bending_modes(beam, N);

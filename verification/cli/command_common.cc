@@ -4,8 +4,10 @@
 #include "verification/cli/commands.h"
 #include "verification/studies/simulation_cases.h"
 
+#include <ctime>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 namespace beamslider
 {
@@ -23,8 +25,58 @@ namespace beamslider
                      std::string(BEAMSLIDER_SOURCE_DIR) + "/meshes/)");
   }
 
-  std::string prepare_output_dir(const CommonOptions &common, const std::string &scene_name, const std::string &command)
+  namespace
   {
+    std::vector<std::string> &command_line()
+    {
+      static std::vector<std::string> words;
+      return words;
+    }
+
+    // A word of the command line as a POSIX shell would need it written to
+    // give the same word back (only for display in run.txt: nothing here
+    // ever runs it).
+    std::string shell_quoted(const std::string &word)
+    {
+      if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                                                  "_-+=/.,:@%") == std::string::npos)
+        return word;
+      std::string quoted = "'";
+      for (const char c : word)
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+      return quoted + "'";
+    }
+
+    void write_run_record(const std::string &dir, const Scene &scene)
+    {
+      write_text_file(dir + "/parameters.prm",
+                      "# The scene '" + scene.name + "' as this run used it (after --set and --case), written by "
+                      "beamslider. Repeat the run with the command line in run.txt and this file as the scene.\n" +
+                        scene_file_text(scene));
+      std::ostringstream run;
+      const std::time_t now = std::time(nullptr);
+      char when[32];
+      std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+      std::error_code ec;
+      run << "command:   ";
+      for (std::size_t i = 0; i < command_line().size(); ++i)
+        run << (i ? " " : "") << shell_quoted(command_line()[i]);
+      run << "\nworking directory: " << fs::current_path(ec).string() << "\nstarted:   " << when
+          << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
+          << " (git describe of the source tree when the build was configured)\n"
+          << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
+      write_text_file(dir + "/run.txt", run.str());
+    }
+  } // namespace
+
+  void record_command_line(const int argc, const char *const *argv)
+  {
+    command_line().assign(argv, argv + argc);
+  }
+
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command)
+  {
+    const std::string &scene_name = scene.name;
     const fs::path dir = !common.output_dir.empty() ? fs::path(common.output_dir)
                          : command.empty()           ? fs::path("reports") / scene_name
                                                      : fs::path("reports") / scene_name / command;
@@ -34,6 +86,7 @@ namespace beamslider
       throw OutputError("output folder '" + dir.string() + "' cannot be created: " + ec.message());
     if (!fs::is_directory(dir, ec))
       throw OutputError("output folder '" + dir.string() + "' is not a folder");
+    write_run_record(dir.string(), scene);
     return dir.string();
   }
 

@@ -94,7 +94,7 @@ namespace beamslider
       throw InputError("--perturbation " + std::to_string(options.perturbation) +
                        " moves the last member's start beyond the beam");
     const std::string dir =
-      prepare_output_dir(common, scene.name, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
+      prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
 
     EnsembleSettings settings;
     settings.model.family    = options.model;

@@ -64,7 +64,7 @@ namespace beamslider
     settings.end_time        = options.end_time.value_or(options.full ? 40. : 25.);
     settings.quick_ladder    = !full;
     settings.progress_prefix = "ladder: ";
-    const std::string dir = prepare_output_dir(common, scene.name, "ladder");
+    const std::string dir = prepare_output_dir(common, scene, "ladder");
 
     std::ostringstream md;
     md << "# Error ladder of scene `" << scene.name << "`\n\n"

@@ -143,7 +143,7 @@ namespace beamslider
     std::size_t n_skipped = 0;
     if (root)
       {
-        dir     = prepare_output_dir(common, base.name, "map");
+        dir     = prepare_output_dir(common, base, "map");
         map_csv = dir + "/map.csv";
         // What this map is; a restart into the same folder must be the same map.
         std::ostringstream what;

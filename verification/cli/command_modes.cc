@@ -24,7 +24,7 @@ namespace beamslider
         if (!(s >= 0 && s <= 1))
           throw InputError("--slider-at = " + std::to_string(s) + " is not allowed: x_C/L must lie in [0, 1]");
       }
-    const std::string dir = prepare_output_dir(common, scene.name, "modes");
+    const std::string dir = prepare_output_dir(common, scene, "modes");
 
     const auto start = std::chrono::steady_clock::now();
     require_mesh_for_modes(options.n_elements ? options.n_elements : scene.discretisation.n_elements, options.n_modes,

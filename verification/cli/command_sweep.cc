@@ -55,7 +55,7 @@ namespace beamslider
         other_label   = (at == std::string::npos ? std::string() : title.substr(at + 8) + " ") + "'" + options.against + "'";
       }
 
-    const std::string dir = prepare_output_dir(common, scene.name, "sweep");
+    const std::string dir = prepare_output_dir(common, scene, "sweep");
     const double n_positions =
       std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L + 1e-9) + 1;
     const double simulated =

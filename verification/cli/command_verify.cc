@@ -18,7 +18,7 @@ namespace beamslider
   {
     const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     Report report;
-    report.dir        = prepare_output_dir(common, scene.name, "");
+    report.dir        = prepare_output_dir(common, scene, "");
     report.scene_file = resolve_scene_path(common.scene_file);
     report.overrides  = common.overrides;
     const auto start = std::chrono::steady_clock::now();

@@ -146,9 +146,18 @@ namespace beamslider
   // scene's own N), so that the eigensolver has the DoFs to find them.
   void require_mesh_for_modes(unsigned int n_elements, unsigned int n_modes, const std::string &option);
 
-  // Creates (if needed) and returns the output folder for a command; throws
-  // OutputError if it cannot.
-  std::string prepare_output_dir(const CommonOptions &common, const std::string &scene_name, const std::string &command);
+  // Creates (if needed) and returns the output folder for a command, and
+  // writes into it what repeats the run from the folder alone:
+  //   parameters.prm  the scene as this run uses it (after --set and --case),
+  //                   complete, in the scene-file format (read_scene reads it
+  //                   back bit for bit);
+  //   run.txt         the command line, working directory, time (UTC),
+  //                   beamslider version and source revision.
+  // Throws OutputError if the folder or either file cannot be written.
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command);
+
+  // The process's command line, for run.txt (main() records it first).
+  void record_command_line(int argc, const char *const *argv);
   // Runs a plotting script from scripts/ with Debian's python3 + matplotlib,
   // as a child process with an argument vector (no shell). A chart that could
   // not be drawn is a result not written: it is recorded (note_output_failure)
