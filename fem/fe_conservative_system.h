@@ -5,7 +5,7 @@
 // axial DoFs keep their inertia: this is the full model the ROM condenses.
 //
 // Cost of a mode-1 backbone to ŵ/h = 4 with H = 10 (compute_fe_backbone,
-// measured on the mueller2023 beam, one core): 16 elements (65 DoFs) 1.5 s,
+// measured 2026-11 on the mueller2023 beam, one core): 16 elements (65 DoFs) 1.5 s,
 // 32 elements (129 DoFs) 5–7 s with the half-period symmetry; the full
 // harmonic set on 16 elements 5.4 s. Tested in tests/test_fem_backbone.cc
 // (linear limit, Eq. 4, against the ROM, symmetry, axial inertia).

@@ -51,18 +51,9 @@
 // round-off, tested), written straight into S₀'s value array through a
 // per-cell map of local entries; M, r, U are Eigen objects; the contact
 // kinematics evaluate the Hermite shape functions of the cell directly.
-// Measured on the default mesh (32 elements, 131 DoFs), signature move
-// (124 Hz, 14 m/s², x_C/L = 0.3, Δt = 1e-5 s, first 0.2 s; the benchmark
-// FeContact/32 on one core): 2.06 Newton iterations, 1.1 iteration-matrix
-// solves and 0.022 refactorisations per step, 12.5 µs per step (before:
-// FEBeam's tangent, deal.II vectors and max_contraction = 0.1: 3.4
-// iterations, 24 µs). Where the 12.5 µs go: two sparse LDLᵀ solves (~1.7 µs
-// each) and the contact block solve (~2 µs), two f(q̄) (~1.1 µs each), the
-// residual's products (~0.7 µs per iteration), the contact kinematics and
-// the stepper. A solve of this size should take ~0.3 µs with a band solver
-// tuned for small bandwidths (an optimised BLAS, or a fixed-bandwidth
-// kernel): that, and the contact block solved once per change of the
-// active set, are what would come next.
+// What a step costs and where the time goes is measured by the FeContact
+// benchmark (verification/benchmarks) and recorded, with its date, in the
+// README's benchmark table.
 // Constrained DoFs (the supports) stay zero: their rows of M carry a diagonal
 // filler and every right-hand side is zero there.
 //

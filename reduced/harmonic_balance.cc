@@ -749,4 +749,21 @@ namespace beamslider
                                   std::to_string(thickness) + ")");
     return 0.75 * b_111 * thickness * thickness / (phi_1_at_output * phi_1_at_output * omega_1 * omega_1);
   }
+  unsigned int count_amplitude_folds(const Backbone &backbone, const bool include_tongues)
+  {
+    std::vector<const BackbonePoint *> kept;
+    for (const BackbonePoint &p : backbone.points)
+      if (include_tongues || !p.tongue)
+        kept.push_back(&p);
+    unsigned int folds = 0;
+    for (std::size_t i = 2; i < kept.size(); ++i)
+      {
+        const BackbonePoint &before = *kept[i - 2], &a = *kept[i - 1], &b = *kept[i];
+        if (before.segment != b.segment || a.segment != b.segment)
+          continue;
+        if ((a.amplitude - before.amplitude) * (b.amplitude - a.amplitude) < 0)
+          ++folds;
+      }
+    return folds;
+  }
 } // namespace beamslider

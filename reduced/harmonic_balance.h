@@ -27,9 +27,11 @@
 // cᵀQ_1 = a (the first-harmonic amplitude of the output y = cᵀq, e.g. w(L/2)
 // [m]) or the pseudo-arclength condition (Keller 1977; Seydel, "Practical
 // Bifurcation and Stability Analysis", 2010), which follows folds and loops
-// of the backbone in amplitude. Reference implementation compared against:
-// NLvib (Krack & Gross, "Harmonic Balance for Nonlinear Vibration Problems",
-// Springer 2019), which the seed used for its NMA (H = 10, N = 7).
+// of the backbone in amplitude. The method is the one of Krack & Gross,
+// "Harmonic Balance for Nonlinear Vibration Problems" (Springer 2019), whose
+// NLvib the seed used for its NMA (H = 10, N = 7); this code is checked
+// against exact Duffing periods and the seed's published backbone numbers
+// (tests/test_reduced_backbone.cc), not against NLvib itself.
 //
 // Cost: the Newton matrix is dense of size n|𝓗|+1; for n = 300, H = 10 (full
 // set) that is 3301² and one LU is seconds: use odd harmonics, the per-DoF
@@ -196,6 +198,14 @@ namespace beamslider
   // (amplitude, ω, residual). Throws std::invalid_argument for bad settings and
   // std::runtime_error if even the first point fails.
   Backbone compute_backbone(const ConservativeSystem &system, const BackboneSettings &settings);
+
+  // Folds in amplitude along a computed backbone: the points where the
+  // first-harmonic amplitude turns from growing to shrinking or back, within
+  // each segment (a restart past a tongue is not a fold). A loop of the
+  // backbone has two. With include_tongues = false the points past a
+  // tongue's exit (BackbonePoint::tongue) are left out: the folds of the
+  // mode-1 backbone itself.
+  unsigned int count_amplitude_folds(const Backbone &backbone, bool include_tongues = true);
 
   // The mode-1 backbone of a beam model as the reports and the `backbone`
   // command use it: output y = w(L/2) [m], amplitude range in thicknesses,

@@ -335,7 +335,12 @@ namespace beamslider
                 "that converges to the backbone. The seed reports agreement of Eq. 4 and its NMA up to ŵ/h ≈ 2.6 and a "
                 "loop near 4 on its System 1; on this beam the single-mode law holds to within "
              << (w25 ? sci(std::abs(std::sqrt(1 + 6.25 * ic) / (*w25 / iw1) - 1), 1) : std::string("?"))
-             << " at ŵ/h = 2.5, the 3:1 interaction at ≈ 2.7 interrupts the backbone, and no loop appears up to 4.";
+             << " at ŵ/h = 2.5, the 3:1 interaction at ŵ/h ≈ " << fixed(g.last_amplitude / h, 2)
+             << " interrupts the backbone, and the FE backbone has "
+             << (count_amplitude_folds(ib["FE"], false) == 0
+                   ? std::string("no fold in amplitude (no loop) outside the tongue")
+                   : std::to_string(count_amplitude_folds(ib["FE"], false)) + " fold(s) in amplitude outside the tongue")
+             << (ib["FE"].completed ? " up to ŵ/h = 4." : " on the part computed.");
         }
       else
         md << "No internal-resonance tongue up to ŵ/h = 4 on the FE backbone.";
