@@ -308,3 +308,53 @@ TEST(Commands, ARunRepeatsFromItsOutputFolderAlone)
     << "the repeated run's scene is the same, parameter for parameter";
   fs::remove_all(dir);
 }
+
+// The README's tour runs as written: every line of its block, split into
+// words (no shell), with options appended that only shorten it (end time,
+// positions, sections) and an output folder. Each must exit 0 and draw the
+// picture or write the file the README names on that line.
+TEST(Commands, ReadmeTourRunsAsWritten)
+{
+  const std::string readme = read_file(BEAMSLIDER_SOURCE_DIR "/README.md");
+  const auto begin         = readme.find("<!-- tour:");
+  const auto end           = readme.find("<!-- end of tour -->");
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  std::istringstream block(readme.substr(begin, end - begin));
+  const std::map<std::string, std::vector<std::string>> shorter = {
+    {"simulate", {"--end-time", "0.2"}},
+    {"sweep", {"--from", "0.30", "--to", "0.31", "--step", "0.01", "--settle-time", "0.05", "--average-time", "0.05",
+               "--free-time", "0.1"}},
+    {"backbone", {"--max-amplitude", "1"}},
+    {"verify", {"--section", "1"}}};
+  const std::map<std::string, std::string> drawn = {{"modes", "modes.vtu"},         {"coefficients", "summary.md"},
+                                                    {"backbone", "backbone.png"}, {"simulate", "trace.png"},
+                                                    {"sweep", "pcs.png"},         {"verify", "report.md"}};
+  const fs::path dir = fresh_folder("cmd_tour");
+  unsigned int n_lines = 0;
+  for (std::string line; std::getline(block, line);)
+    {
+      if (!starts_with(line, "build/beamslider "))
+        continue;
+      std::istringstream words(line.substr(0, line.find('#')));
+      std::vector<std::string> args;
+      std::string word;
+      words >> word; // build/beamslider
+      while (words >> word)
+        args.push_back(word);
+      ASSERT_FALSE(args.empty()) << line;
+      const std::string command = args.front();
+      if (shorter.count(command))
+        for (const auto &a : shorter.at(command))
+          args.push_back(a);
+      const fs::path out = dir / std::to_string(n_lines++);
+      args.insert(args.end(), {"--quiet", "--output", out.string()});
+      const CliRun run = run_beamslider(args);
+      EXPECT_EQ(run.exit_code, 0) << line << "\n" << run.err;
+      ASSERT_TRUE(drawn.count(command)) << "a tour line with a command this test does not know: " << line;
+      EXPECT_NE(line.find(drawn.at(command)), std::string::npos) << "the README line names what it writes: " << line;
+      EXPECT_TRUE(fs::exists(out / drawn.at(command))) << line;
+    }
+  EXPECT_EQ(n_lines, 6u) << "modes, coefficients, backbone, simulate, sweep, verify";
+  fs::remove_all(dir);
+}
