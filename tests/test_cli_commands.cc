@@ -45,6 +45,24 @@ namespace
   }
 
   bool starts_with(const std::string &text, const std::string &prefix) { return text.rfind(prefix, 0) == 0; }
+
+  // Rows after the header, as text cells (for CSVs with names and empty cells).
+  std::vector<std::vector<std::string>> text_rows(const fs::path &file)
+  {
+    std::ifstream in(file);
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line))
+      {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string c; std::getline(s, c, ',');)
+          cells.push_back(c);
+        rows.push_back(cells);
+      }
+    return rows;
+  }
 } // namespace
 
 TEST(Commands, ModesWithoutSceneArgumentUsesTheDefaultScene)
@@ -214,20 +232,11 @@ TEST(Commands, LadderWritesRungsWhoseDistancesFollowFromTheMembers)
             "rung,member,perturbation,status,jump_time_s,final_x_over_L,final_amplitude_over_h,wall_s,outcome");
   // final_x_over_L of each rung's members, and the rung's W₁ column.
   std::map<std::string, std::vector<double>> finals;
-  {
-    std::ifstream in(dir / "ladder_members.csv");
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line))
-      {
-        std::vector<std::string> cells;
-        std::stringstream s(line);
-        for (std::string c; std::getline(s, c, ',');)
-          cells.push_back(c);
-        ASSERT_GE(cells.size(), 6u) << line;
-        finals[cells[0]].push_back(std::stod(cells[5]));
-      }
-  }
+  for (const auto &cells : text_rows(dir / "ladder_members.csv"))
+    {
+      ASSERT_GE(cells.size(), 6u);
+      finals[cells[0]].push_back(std::stod(cells[5]));
+    }
   ASSERT_EQ(finals.size(), 2u) << "the asked rung and the reference";
   ASSERT_EQ(finals["ROM N=10"].size(), 3u);
   ASSERT_EQ(finals["FE Δt/4"].size(), 3u);
@@ -237,22 +246,12 @@ TEST(Commands, LadderWritesRungsWhoseDistancesFollowFromTheMembers)
   for (unsigned int k = 0; k < 3; ++k)
     w1 += std::abs(finals["ROM N=10"][k] - finals["FE Δt/4"][k]) / 3;
   bool found = false;
-  {
-    std::ifstream in(dir / "ladder.csv");
-    std::string line;
-    std::getline(in, line);
-    while (std::getline(in, line))
+  for (const auto &cells : text_rows(dir / "ladder.csv"))
+    if (cells.size() >= 26 && cells[1] == "ROM N=10")
       {
-        std::vector<std::string> cells;
-        std::stringstream s(line);
-        for (std::string c; std::getline(s, c, ',');)
-          cells.push_back(c);
-        if (cells.size() < 26 || cells[1] != "ROM N=10")
-          continue;
         found = true;
         EXPECT_NEAR(std::stod(cells[25]), w1, 1e-5 + 1e-4 * w1) << "w1_to_reference (6 digits in the CSV)";
       }
-  }
   EXPECT_TRUE(found) << "no ROM N=10 row in ladder.csv";
   EXPECT_NE(read_file(dir / "summary.md").find("| ROM N=10 |"), std::string::npos);
 

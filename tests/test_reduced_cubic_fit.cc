@@ -68,15 +68,22 @@ namespace
       }
     throw std::runtime_error("static_solve: Newton did not converge");
   }
+
+  // The analytic ROM of the clamped beam's first three modes, whose cubic
+  // tensor (exact) the methods must recover, and its largest entry.
+  struct ThreeModeRom
+  {
+    ClampedBeam beam;
+    decltype(beam.modes(3)) modes = beam.modes(3);
+    ReducedOrderModel rom{modes.basis, 0.};
+    std::vector<CubicTerm> exact = rom.analytic_cubic_terms();
+    double scale                 = max_abs(exact);
+  };
 } // namespace
 
 TEST(StiffnessEvaluation, RecoversTheExactCubicTensorOfThreeModes)
 {
-  const ClampedBeam beam;
-  const auto modes = beam.modes(3);
-  const ReducedOrderModel rom(modes.basis, 0.);
-  const auto exact = rom.analytic_cubic_terms();
-  const double scale = max_abs(exact);
+  const auto &[beam, modes, rom, exact, scale] = ThreeModeRom();
 
   StepSettings settings;
   settings.amplitudes = step_amplitudes(max_abs_phi(modes.basis), beam.h);
@@ -173,11 +180,7 @@ TEST(StiffnessEvaluation, PlainStepOverPredictsByTheMembraneRelaxationFactor)
 
 TEST(ImplicitCondensation, RecoversTheCubicTensorOfThreeModesWithAnExactStaticSolve)
 {
-  const ClampedBeam beam;
-  const auto modes = beam.modes(3);
-  const ReducedOrderModel rom(modes.basis, 0.);
-  const auto exact   = rom.analytic_cubic_terms();
-  const double scale = max_abs(exact);
+  const auto &[beam, modes, rom, exact, scale] = ThreeModeRom();
 
   IceSettings settings;
   settings.omega      = modes.basis.omega;

@@ -105,6 +105,28 @@ namespace
     scene.supports.ideal_clamp = true;
     return scene;
   }
+
+  // The mueller2023 beam left to itself: no damping (D given), no base
+  // motion, no geometric nonlinearity — a linear free vibration.
+  Scene linear_free_scene(const double damping_ratio = 0.)
+  {
+    Scene scene                                 = mueller_scene();
+    scene.damping_ratio                         = damping_ratio;
+    scene.excitation.acceleration_amplitude     = 0.;
+    scene.discretisation.geometric_nonlinearity = false;
+    return scene;
+  }
+
+  // One smooth step without contact in the stepper's midpoint structure,
+  // from time t: q_M = q + Δt/2 u, u ← u_free, q ← q_M + Δt/2 u.
+  void free_step(BeamSystem &beam, const double t, const double dt, Eigen::VectorXd &q, Eigen::VectorXd &u)
+  {
+    const Eigen::VectorXd q_M = q + 0.5 * dt * u;
+    Eigen::VectorXd u_E;
+    beam.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
+    q = q_M + 0.5 * dt * u_E;
+    u = u_E;
+  }
 } // namespace
 
 TEST(AnalyticClampedBasis, IsMassNormalisedWithKnownFrequencies)
@@ -154,22 +176,14 @@ TEST(RomBeamSystem, FreeVibrationOfOneModeMatchesCosine)
 {
   // Linear (no cubic term), undamped, unforced: q_1(t) = q0 cos ω_1 t. The
   // explicit midpoint (leapfrog) step has a phase error (ωΔt)²/24 per radian.
-  Scene scene                                = mueller_scene();
-  scene.damping_ratio                        = 0.;
-  scene.excitation.acceleration_amplitude    = 0.;
-  scene.discretisation.geometric_nonlinearity = false;
+  const Scene scene = linear_free_scene();
   RomBeamSystem rom = RomBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 3));
   const double w1 = rom.model().basis().omega[0], dt = 1e-6;
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(3), u = Eigen::VectorXd::Zero(3), u_E;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(3), u = Eigen::VectorXd::Zero(3);
   q[0]               = 1e-4;
   const unsigned int n = std::lround(2 * M_PI / w1 / dt); // one period
   for (unsigned int k = 0; k < n; ++k)
-    {
-      const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-      rom.free_velocity((k + 0.5) * dt, q_M, u, dt, u_E);
-      q = q_M + 0.5 * dt * u_E;
-      u = u_E;
-    }
+    free_step(rom, k * dt, dt, q, u);
   const double t = n * dt;
   EXPECT_NEAR(q[0], 1e-4 * std::cos(w1 * t), 1e-4 * 1e-4);
   EXPECT_NEAR(u[0], -1e-4 * w1 * std::sin(w1 * t), 1e-4 * w1 * 1e-4);
@@ -183,10 +197,7 @@ TEST(RomBeamSystem, FreeVibrationOfOneModeMatchesCosine)
 // limit of 2, where the explicit ROM refuses the step.
 TEST(RomImplicitBeamSystem, LinearModeFollowsTheTrapezoidalRuleExactlyBeyondTheExplicitLimit)
 {
-  Scene scene                                 = mueller_scene();
-  scene.damping_ratio                         = 0.;
-  scene.excitation.acceleration_amplitude     = 0.;
-  scene.discretisation.geometric_nonlinearity = false;
+  const Scene scene = linear_free_scene();
   RomImplicitBeamSystem rom = RomImplicitBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 1));
   const double w1 = rom.model().basis().omega[0], dt = 3. / w1;
   EXPECT_GT(dt, RomBeamSystem::from_scene(scene, clamped_clamped_basis(scene.beam, 1)).max_stable_time_step());
@@ -194,10 +205,7 @@ TEST(RomImplicitBeamSystem, LinearModeFollowsTheTrapezoidalRuleExactlyBeyondTheE
   Eigen::VectorXd q = Eigen::VectorXd::Constant(1, 1e-4), u = Eigen::VectorXd::Zero(1), u_E;
   for (unsigned int k = 1; k <= 199; ++k)
     {
-      const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-      rom.free_velocity((k - 0.5) * dt, q_M, u, dt, u_E);
-      q = q_M + 0.5 * dt * u_E;
-      u = u_E;
+      free_step(rom, (k - 1) * dt, dt, q, u);
       ASSERT_NEAR(q[0], 1e-4 * std::cos(k * theta), 1e-4 * 1e-10) << "step " << k;
     }
   // Impulses go through the same iteration matrix: S = 1 + Δt²/4 ω².
@@ -290,27 +298,19 @@ TEST(BeamStep, AStepObjectOfAnEarlierStepIsRefused)
 // step: no numerical damping).
 TEST(RomImplicitBeamSystem, OnlyTheDampedSetDecays)
 {
-  Scene scene                                 = mueller_scene();
-  scene.damping_ratio                         = 0.02;
-  scene.excitation.acceleration_amplitude     = 0.;
-  scene.discretisation.geometric_nonlinearity = false;
+  const Scene scene = linear_free_scene(0.02);
   ReducedOrderModel model(clamped_clamped_basis(scene.beam, 3), scene.damping_ratio, false);
   model.set_damped_modes(1);
   EXPECT_EQ(model.n_damped_modes(), 1u);
   RomImplicitBeamSystem rom(std::move(model), scene.beam.thickness, BaseExcitation::from_scene(scene.excitation));
   const Eigen::VectorXd w = rom.model().basis().omega;
   const double dt         = 0.01 / w[2];
-  Eigen::VectorXd q = Eigen::VectorXd::Constant(3, 1e-4), u = Eigen::VectorXd::Zero(3), u_E;
+  Eigen::VectorXd q = Eigen::VectorXd::Constant(3, 1e-4), u = Eigen::VectorXd::Zero(3);
   auto energy       = [&](const unsigned int n) { return 0.5 * (u[n] * u[n] + w[n] * w[n] * q[n] * q[n]); };
   const double E0[3] = {energy(0), energy(1), energy(2)};
   const long steps   = std::lround(20. * 2. * M_PI / w[0] / dt); // 20 periods of mode 1
   for (long k = 0; k < steps; ++k)
-    {
-      const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-      rom.free_velocity((k + 0.5) * dt, q_M, u, dt, u_E);
-      q = q_M + 0.5 * dt * u_E;
-      u = u_E;
-    }
+    free_step(rom, k * dt, dt, q, u);
   const double t = steps * dt;
   // Energy decays as e^{−2Dωt} up to the oscillating part of O(D).
   EXPECT_NEAR(std::log(energy(0) / E0[0]) / (-2. * scene.damping_ratio * w[0] * t), 1., 0.05);
@@ -337,7 +337,7 @@ TEST(RomImplicitBeamSystem, AgreesWithTheExplicitRomOnTheBeamAloneToSecondOrder)
   const double t_end = 12. / scene.excitation.frequency_hz;
   auto run = [&](BeamSystem &beam, const double dt) {
     const unsigned int n = beam.n_dofs();
-    Eigen::VectorXd q = Eigen::VectorXd::Zero(n), u = Eigen::VectorXd::Zero(n), u_E;
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(n), u = Eigen::VectorXd::Zero(n);
     BeamPointKinematics centre;
     beam.evaluate(0.5 * scene.beam.length, Eigen::VectorXd::Unit(n, 0), centre);
     q[0] = scene.beam.thickness / centre.w; // w(L/2) = h at the start
@@ -345,10 +345,7 @@ TEST(RomImplicitBeamSystem, AgreesWithTheExplicitRomOnTheBeamAloneToSecondOrder)
     const long steps = std::lround(t_end / dt);
     for (long k = 0; k < steps; ++k)
       {
-        const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-        beam.free_velocity((k + 0.5) * dt, q_M, u, dt, u_E);
-        q = q_M + 0.5 * dt * u_E;
-        u = u_E;
+        free_step(beam, k * dt, dt, q, u);
         if ((k + 1) % std::lround(1e-4 / dt) == 0) // every 0.1 ms
           {
             beam.evaluate(0.5 * scene.beam.length, q, centre);
@@ -389,20 +386,24 @@ TEST(ContactGeometry, NormalForceDirectionsAreGapGradients)
   const Eigen::Vector3d s(0.06, -4e-3, 0.01);
   const double t = 1.3e-3;
   CornerKinematics k0, kp, km;
+  // Central difference of a corner's gap in entry j of x (the beam's q or the
+  // slider's s), the corner evaluated by `at`.
+  auto gap_slope = [&](auto x, const int j, const double e, const auto &at) {
+    auto xp = x, xm = x;
+    xp[j] += e;
+    xm[j] -= e;
+    at(xp, kp);
+    at(xm, km);
+    return (kp.gap - km.gap) / (2 * e);
+  };
   for (unsigned int corner = 0; corner < n_slider_corners; ++corner)
     {
       geometry.evaluate(corner, t, rom, base, q, s, k0);
+      auto at_q = [&](const Eigen::VectorXd &x, CornerKinematics &k) { geometry.evaluate(corner, t, rom, base, x, s, k); };
+      auto at_s = [&](const Eigen::Vector3d &x, CornerKinematics &k) { geometry.evaluate(corner, t, rom, base, q, x, k); };
       for (int j = 0; j < 5; ++j)
-        {
-          const double e = 1e-7;
-          Eigen::VectorXd qp = q, qm = q;
-          qp[j] += e;
-          qm[j] -= e;
-          geometry.evaluate(corner, t, rom, base, qp, s, kp);
-          geometry.evaluate(corner, t, rom, base, qm, s, km);
-          EXPECT_NEAR((kp.gap - km.gap) / (2 * e), k0.beam_normal[j], 1e-6 * k0.beam_normal.norm())
-            << "corner " << corner << " mode " << j;
-        }
+        EXPECT_NEAR(gap_slope(q, j, 1e-7, at_q), k0.beam_normal[j], 1e-6 * k0.beam_normal.norm())
+          << "corner " << corner << " mode " << j;
       // Bound of the neglected term ∂g/∂w' · w'' ∂x_P/∂s_j with
       // |∂g/∂w'| ≤ |w'| (|Δz| + h/2) and |∂x_P/∂s| ≤ 1 + |r_z|.
       BeamPointKinematics bp, bm, b0;
@@ -415,16 +416,8 @@ TEST(ContactGeometry, NormalForceDirectionsAreGapGradients)
       const double neglected =
         std::abs(b0.dw * curvature) * (std::abs(dz) + 0.5 * scene.beam.thickness) * (1. + std::abs(r[1]));
       for (int j = 0; j < 3; ++j)
-        {
-          const double e = 1e-8;
-          Eigen::Vector3d sp = s, sm = s;
-          sp[j] += e;
-          sm[j] -= e;
-          geometry.evaluate(corner, t, rom, base, q, sp, kp);
-          geometry.evaluate(corner, t, rom, base, q, sm, km);
-          EXPECT_NEAR((kp.gap - km.gap) / (2 * e), k0.slider_normal[j], neglected + 1e-7 * k0.slider_normal.norm())
-            << "corner " << corner << " slider coordinate " << j;
-        }
+        EXPECT_NEAR(gap_slope(s, j, 1e-8, at_s), k0.slider_normal[j], neglected + 1e-7 * k0.slider_normal.norm())
+          << "corner " << corner << " slider coordinate " << j;
       const double e = 1e-8;
       geometry.evaluate(corner, t + e, rom, base, q, s, kp);
       geometry.evaluate(corner, t - e, rom, base, q, s, km);
