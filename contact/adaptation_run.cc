@@ -43,6 +43,8 @@ namespace beamslider
     o.output_rate = scene.time_stepping.output_rate;
     o.solver.method = scene.contact.solver == "exact-local" ? ProxSolverSettings::Method::exact_local
                                                             : ProxSolverSettings::Method::projected;
+    o.solver.tolerance      = scene.solvers.contact_tolerance;
+    o.solver.max_iterations = scene.solvers.contact_sweeps;
     return o;
   }
 

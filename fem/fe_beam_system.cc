@@ -9,7 +9,10 @@ namespace beamslider
                                                   const bool axial_inertia)
   {
     FETransientSettings settings;
-    settings.axial_inertia = axial_inertia;
+    settings.axial_inertia      = axial_inertia;
+    settings.relative_tolerance = scene.solvers.newton_relative_tolerance;
+    settings.absolute_tolerance = scene.solvers.newton_absolute_tolerance;
+    settings.max_iterations     = scene.solvers.newton_iterations;
     return std::make_unique<FETransientBeam>(scene, BaseExcitation::from_scene(scene.excitation), n_elements,
                                              settings);
   }

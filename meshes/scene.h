@@ -130,6 +130,17 @@ namespace beamslider
     double output_rate = 1000.; // samples per second written to trace.csv [1/s]
   };
 
+  // The numerical settings of the solvers inside a time step (not physics:
+  // they decide how exactly each step's equations are solved).
+  struct SolverData
+  {
+    double contact_tolerance        = 1e-10; // contact impulses: relative change of ξ = G P + c per sweep [-]
+    unsigned int contact_sweeps     = 5000;  // cap on the Gauss–Seidel sweeps of one contact solve
+    double newton_relative_tolerance = 1e-8; // FE step: Newton's correction relative to the velocity [-]
+    double newton_absolute_tolerance = 1e-13; // FE step: ... or below this [m/s]
+    unsigned int newton_iterations  = 30;    // FE step: cap per step, refactorisations included
+  };
+
   struct Scene
   {
     std::string name; // file stem, e.g. "mueller2023"
@@ -143,6 +154,7 @@ namespace beamslider
     InitialStateData   initial;
     DiscretisationData discretisation;
     TimeSteppingData   time_stepping;
+    SolverData         solvers;
 
     double slider_mass() const { return slider.mass * slider.mass_factor; }
     double slider_inertia() const { return slider.inertia * slider.mass_factor; }

@@ -106,6 +106,22 @@ namespace beamslider
       prm.declare_entry("End time", num(d.time_stepping.end_time), Double(0), "[s], at most 1e11 time steps");
       prm.declare_entry("Output rate", num(d.time_stepping.output_rate), Double(0), "samples per second in trace.csv [1/s]");
       prm.leave_subsection();
+
+      prm.enter_subsection("Solvers");
+      prm.declare_entry("Contact tolerance", num(d.solvers.contact_tolerance), Double(1e-16, 1e-2),
+                        "contact impulses of a step: converged when the relative change of G P + c per sweep is below "
+                        "this [-], in [1e-16, 1e-2]");
+      prm.declare_entry("Contact sweeps", std::to_string(d.solvers.contact_sweeps), Integer(1, 10000000),
+                        "cap on the Gauss-Seidel sweeps of one contact solve; a solve that reaches it stops the run "
+                        "with a message");
+      prm.declare_entry("Newton relative tolerance", num(d.solvers.newton_relative_tolerance), Double(1e-15, 1e-2),
+                        "FE time step: Newton's correction relative to the end velocity [-], in [1e-15, 1e-2]");
+      prm.declare_entry("Newton absolute tolerance", num(d.solvers.newton_absolute_tolerance), Double(0, 1),
+                        "FE time step: or a correction below this [m/s], in [0, 1]");
+      prm.declare_entry("Newton iterations", std::to_string(d.solvers.newton_iterations), Integer(1, 1000),
+                        "FE time step: cap on Newton iterations per step, refactorisations included; a step that "
+                        "reaches it stops the run with a message");
+      prm.leave_subsection();
     }
 
     // ParameterHandler::get_double refuses a value that underflows (a
@@ -190,6 +206,14 @@ namespace beamslider
       s.time_stepping.time_step   = get_double(prm, "Time stepping", "Time step");
       s.time_stepping.end_time    = get_double(prm, "Time stepping", "End time");
       s.time_stepping.output_rate = get_double(prm, "Time stepping", "Output rate");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Solvers");
+      s.solvers.contact_tolerance         = get_double(prm, "Solvers", "Contact tolerance");
+      s.solvers.contact_sweeps            = prm.get_integer("Contact sweeps");
+      s.solvers.newton_relative_tolerance = get_double(prm, "Solvers", "Newton relative tolerance");
+      s.solvers.newton_absolute_tolerance = get_double(prm, "Solvers", "Newton absolute tolerance");
+      s.solvers.newton_iterations         = prm.get_integer("Newton iterations");
       prm.leave_subsection();
       return s;
     }

@@ -5,6 +5,7 @@
 // fails stops the run cleanly with time and place.
 #include "contact/adaptation_run.h"
 #include "fem/fe_beam.h"
+#include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "reduced/rom_beam_system.h"
@@ -16,6 +17,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 
 using namespace beamslider;
 
@@ -173,4 +175,31 @@ TEST(SimulationRun, BeamSolverFailureStopsCleanly)
   EXPECT_NEAR(rows.back().t, result.t_end, 1e-12);
   for (const TraceRow &r : rows)
     EXPECT_TRUE(std::isfinite(r.w_center) && std::isfinite(r.slider_x_over_L));
+}
+
+// The scene's Solvers settings reach the solvers: with a cap of one sweep
+// per contact solve the ROM run stops at its first contact that needs more,
+// and with one Newton iteration per step the FE step cannot converge (two
+// are the floor of its test); the same runs complete with the defaults.
+TEST(SimulationRun, SolverSettingsOfTheSceneReachTheSolvers)
+{
+  auto run_for = [](const std::vector<std::string> &overrides, const bool fe) {
+    const Scene scene = read_scene(mueller, overrides);
+    const FEBeam mesh(scene);
+    std::unique_ptr<BeamSystem> beam =
+      fe ? make_fe_beam_system(scene)
+         : std::make_unique<RomBeamSystem>(
+             RomBeamSystem::from_scene(scene, make_modal_basis(mesh, compute_bending_modes(mesh, 5), 5)));
+    RunOptions options        = RunOptions::from_scene(scene);
+    options.end_time          = fe ? 0.002 : 0.2;
+    options.progress_interval = 1e9;
+    AdaptationRun run(scene, *beam, options);
+    return run.run();
+  };
+  EXPECT_EQ(run_for({}, false).status, RunStatus::completed);
+  const RunResult capped = run_for({"Solvers/Contact sweeps=1", "Contact/Solver=projected"}, false);
+  EXPECT_EQ(capped.status, RunStatus::contact_solver_failure) << capped.message;
+  EXPECT_EQ(run_for({}, true).status, RunStatus::completed);
+  const RunResult newton = run_for({"Solvers/Newton iterations=1"}, true);
+  EXPECT_EQ(newton.status, RunStatus::beam_solver_failure) << newton.message;
 }

@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <thread>
@@ -43,6 +44,85 @@ namespace beamslider
     bool adapted(const AdaptationClass c)
     {
       return c == AdaptationClass::signature_move || c == AdaptationClass::trivial_adaption;
+    }
+
+    // "2 cores, <CPU model>" for the scaling chart's title.
+    std::string machine_description()
+    {
+      std::string model = "unknown CPU";
+      std::ifstream cpuinfo("/proc/cpuinfo");
+      for (std::string line; std::getline(cpuinfo, line);)
+        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+          {
+            model = line.substr(line.find(':') + 2);
+            break;
+          }
+      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
+    }
+
+    // Strong scaling of `beamslider map` on MPI. The same small map (24
+    // ROM cells of 10 s) run by this executable as one process and under
+    // `mpirun -np 2`, each as a child process started with an argument
+    // vector; wall time around the whole command, start-up included.
+    std::string scaling_subsection(const std::string &dir, const std::string &scene_file,
+                                   const std::vector<std::string> &overrides)
+    {
+      std::error_code ec;
+      const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+      if (ec)
+        return "Strong scaling not measured: the path of this executable is unknown (" + ec.message() + ").\n\n";
+      const std::vector<std::string> map = {"map", scene_file, "--frequency", "100:135:5", "--acceleration", "8:18:5",
+                                            "--end-time", "10", "--quiet"};
+      const std::string machine = machine_description();
+      std::ostringstream csv, md;
+      csv << "ranks,cells,wall_s,cells_per_s,machine\n";
+      const unsigned int n_cells = 8 * 3;
+      std::vector<std::pair<unsigned int, double>> points;
+      std::string failures;
+      for (const unsigned int ranks : {1u, 2u})
+        {
+          const std::string out = dir + "/ranks_" + std::to_string(ranks);
+          std::filesystem::remove_all(out, ec);
+          std::vector<std::string> argv;
+          if (ranks > 1)
+            argv = {"mpirun", "-np", std::to_string(ranks)};
+          argv.push_back(self);
+          argv.insert(argv.end(), map.begin(), map.end());
+          for (const std::string &o : overrides)
+            argv.insert(argv.end(), {"--set", o});
+          argv.insert(argv.end(), {"--output", out});
+          console() << "    scaling: " << ranks << " rank(s)" << std::endl;
+          const auto start         = std::chrono::steady_clock::now();
+          const ChildResult result = run_child(argv);
+          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          if (!result.succeeded())
+            {
+              failures += " " + std::to_string(ranks) + " rank(s): " +
+                          (result.error.empty() ? "exit " + std::to_string(result.exit_code) : result.error) +
+                          (ranks > 1 ? " (is Open MPI's mpirun on PATH? As root it needs "
+                                       "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)"
+                                     : "") +
+                          ".";
+              continue;
+            }
+          points.emplace_back(ranks, wall);
+          csv << ranks << "," << n_cells << "," << wall << "," << n_cells / wall << ",\"" << machine << "\"\n";
+        }
+      write_text_file(dir + "/scaling.csv", csv.str());
+      md << "### Strong scaling on MPI\n\nThe same map of " << n_cells
+         << " ROM cells (100–135 Hz × 8–18 m/s², 10 s each) by `beamslider map` as one process and under `mpirun -np "
+            "2` (" << machine << "); wall time of the whole command, start-up included.\n\n"
+         << "| ranks | wall [s] | cells per second | efficiency |\n|---|---|---|---|\n";
+      for (const auto &[ranks, wall] : points)
+        md << "| " << ranks << " | " << fixed(wall, 1) << " | " << fixed(n_cells / wall, 2) << " | "
+           << (points.front().first == 1 ? fixed(points.front().second / (ranks * wall) * 100, 0) + " %" : "–") << " |\n";
+      if (!failures.empty())
+        md << "\nNot measured:" << failures << "\n";
+      if (points.size() > 1 && run_plot_script("plot_map_scaling.py", {dir + "/scaling.csv", dir + "/map_scaling.png"}))
+        md << "\n![Strong scaling](map_scaling/map_scaling.png)\n";
+      md << "\nFiles: map_scaling/scaling.csv, map_scaling/ranks_*/ (each run's own folder). On a cluster: "
+            "scripts/map_hostfile.example and scripts/slurm_map.sh (README).\n\n";
+      return md.str();
     }
   } // namespace
 
@@ -201,5 +281,9 @@ namespace beamslider
          << "![Final slider position](map/map_final_position_frequency_hz_acceleration_m_s2.png)\n\n"
          << "![Late amplitude](map/map_late_amplitude_frequency_hz_acceleration_m_s2.png)\n\n";
     md << "Files: map/map.csv (the columns of `beamslider map`), map/published_cases.csv, map/map_*.png.\n\n";
+
+    const std::string scaling_dir = report.dir + "/map_scaling";
+    std::filesystem::create_directories(scaling_dir);
+    md << scaling_subsection(scaling_dir, report.scene_file, report.overrides);
   }
 } // namespace beamslider

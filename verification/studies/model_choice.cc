@@ -85,7 +85,9 @@ namespace beamslider
       << s.excitation.frequency_hz << ' ' << s.excitation.acceleration_amplitude << ' '
       << s.initial.slider_position_over_L << ' ' << s.discretisation.n_elements << ' ' << s.discretisation.axial_degree
       << ' ' << s.discretisation.n_modes << ' ' << s.discretisation.geometric_nonlinearity << ' '
-      << s.time_stepping.time_step << ' ' << ladder_members << ' ' << ladder_end_time
+      << s.time_stepping.time_step << ' ' << s.solvers.contact_tolerance << ' ' << s.solvers.contact_sweeps << ' '
+      << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
+      << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
       << " ladder-2"; // the ladder's rungs: version 2 has the FE reference at Δt/4
     std::uint64_t hash = 14695981039346656037ull; // FNV-1a, 64 bit
     for (const unsigned char byte : c.str())
