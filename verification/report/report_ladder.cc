@@ -148,8 +148,8 @@ namespace beamslider
     const LadderStudy study = run_ladder(
       scene, rungs, reference, end_time, n_members,
       [&](const LadderRung &rung, std::size_t) {
-        console() << settings.progress_prefix << "(" << seconds_since(start) << "): ladder rung " << rung.name << " ("
-                  << rung.model.label() << ")" << std::endl;
+        console() << settings.progress_prefix << "ladder rung " << rung.name << " (" << rung.model.label() << ") at "
+                  << seconds_since(start) << std::endl;
       },
       [&](const LadderRungResult &r) {
         std::size_t index = 0;
