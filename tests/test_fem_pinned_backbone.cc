@@ -22,6 +22,7 @@
 #include "reduced/rom_beam_system.h"
 
 #include "tests/duffing_period.h"
+#include "tests/free_step.h"
 
 #include <gtest/gtest.h>
 
@@ -50,6 +51,7 @@ namespace
   constexpr double first_order_hb_at_1 = 1.089725, first_order_hb_at_5 = 2.384848;
 
   using beamslider::testing::duffing_period;
+  using beamslider::testing::free_step;
 
   // Mean period of w(x) from its zero crossings over `periods` periods of a
   // free vibration stepped by `step(t, q, u)`.
@@ -155,16 +157,13 @@ TEST(PinnedSupports, ReducedModelBackboneIsTheExactSingleModeOne)
   // rest at a/r = 2: the period of mode 1 alone, the others stay at rest.
   RomBeamSystem rom(ReducedOrderModel(basis, 0., true), h, BaseExcitation{0., 0.});
   const double q0 = 2. * r / phi[0], dt = 2e-6;
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(N), u = Eigen::VectorXd::Zero(N), u_E;
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(N), u = Eigen::VectorXd::Zero(N);
   q[0]              = q0;
   BeamPointKinematics p;
   const double T_exact = duffing_period(omega0, b111, q0);
   const double T       = crossing_period(
     [&](double &t) {
-      const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-      rom.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-      u = u_E;
-      q = q_M + 0.5 * dt * u;
+      free_step(rom, t, dt, q, u);
       t += dt;
       return dt;
     },
@@ -198,17 +197,13 @@ TEST(PinnedSupports, FEBackboneWithAndWithoutAxialInertia)
       Eigen::VectorXd phi;
       FETransientBeam::to_eigen(sys.modes().shapes[0], phi);
       Eigen::VectorXd q = 2. * r / sys.beam().deflection(sys.modes().shapes[0], 0.5 * L) * phi;
-      Eigen::VectorXd u = Eigen::VectorXd::Zero(sys.n_dofs()), u_E;
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(sys.n_dofs());
       BeamPointKinematics p;
       sys.evaluate(0.5 * L, q, p);
       const double T_guess = 2 * M_PI / (exact_ratio[1] * omega0);
       const double T = crossing_period(
         [&](double &t) {
-          const Eigen::VectorXd q_B = q, q_M = q + 0.5 * dt * u;
-          const BeamStep step = sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-          u                   = u_E;
-          q                   = q_M + 0.5 * dt * u;
-          step.finish(q_B, q, u);
+          free_step(sys, t, dt, q, u);
           t += dt;
           return dt;
         },

@@ -20,6 +20,7 @@
 #include "tests/fem_test_loads.h"
 
 #include "tests/duffing_period.h"
+#include "tests/free_step.h"
 
 #include <gtest/gtest.h>
 
@@ -34,18 +35,7 @@ namespace
 {
   const std::string scene_file = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
 
-  // One smooth step without contact, in the stepper's midpoint structure.
-  void free_step(FETransientBeam &sys, double &t, Eigen::VectorXd &q, Eigen::VectorXd &u, const double dt)
-  {
-    const Eigen::VectorXd q_B = q, q_M = q + 0.5 * dt * u;
-    Eigen::VectorXd u_E;
-    const BeamStep step = sys.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-    u                   = u_E;
-    q                   = q_M + 0.5 * dt * u;
-    step.finish(q_B, q, u);
-    t += dt;
-  }
-
+  using beamslider::testing::free_step;
   using beamslider::testing::duffing_period;
 } // namespace
 
@@ -193,14 +183,18 @@ TEST(FETransientLinearForcedResponse, AmplitudeAndPhaseMatchTheModalSolution)
   double t = 0;
   const auto start = std::chrono::steady_clock::now();
   while (t < t_fit)
-    free_step(sys, t, q, u, dt);
+    {
+      free_step(sys, t, dt, q, u);
+      t += dt;
+    }
   // Least squares w ≈ a cos Ωt + b sin Ωt over whole periods; the undamped
   // modes' free ringing (ω_6 ≫ Ω) projects out.
   Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
   Eigen::Vector2d rhs = Eigen::Vector2d::Zero();
   for (unsigned int k = 0; k < n_fit; ++k)
     {
-      free_step(sys, t, q, u, dt);
+      free_step(sys, t, dt, q, u);
+      t += dt;
       const double w = point.grad_w.dot(q);
       const Eigen::Vector2d phi(std::cos(Omega * t), std::sin(Omega * t));
       A += phi * phi.transpose();
@@ -281,7 +275,8 @@ TEST(FETransientBackbone, LargeAmplitudePeriodMatchesSingleModeOscillator)
   const double E0 = sys.energy(q, u);
   while (crossings.size() < 21 && t < 30 * T_exact)
     {
-      free_step(sys, t, q, u, dt);
+      free_step(sys, t, dt, q, u);
+      t += dt;
       const double w = point.grad_w.dot(q);
       if ((w_prev > 0) != (w > 0))
         crossings.push_back(t - dt * w / (w - w_prev));
@@ -374,7 +369,8 @@ TEST(FETransientStaticMembrane, AxialForcesVanishAtEveryStepEnd)
       double t = 0, max_axial = 0, max_drive = 0;
       for (unsigned int step = 0; step < 400; ++step)
         {
-          free_step(sys, t, q, u, dt);
+          free_step(sys, t, dt, q, u);
+          t += dt;
           // The axial force at the step's end, against the one the same
           // deflection drives with no axial displacement (½EA w'² alone).
           Eigen::VectorXd q_bending = q;

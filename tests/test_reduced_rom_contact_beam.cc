@@ -12,6 +12,7 @@
 #include "contact/moreau_stepper.h"
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"
+#include "tests/free_step.h"
 
 #include <gtest/gtest.h>
 
@@ -117,16 +118,8 @@ namespace
     return scene;
   }
 
-  // One smooth step without contact in the stepper's midpoint structure,
-  // from time t: q_M = q + Δt/2 u, u ← u_free, q ← q_M + Δt/2 u.
-  void free_step(BeamSystem &beam, const double t, const double dt, Eigen::VectorXd &q, Eigen::VectorXd &u)
-  {
-    const Eigen::VectorXd q_M = q + 0.5 * dt * u;
-    Eigen::VectorXd u_E;
-    beam.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-    q = q_M + 0.5 * dt * u_E;
-    u = u_E;
-  }
+
+  using beamslider::testing::free_step;
 } // namespace
 
 TEST(AnalyticClampedBasis, IsMassNormalisedWithKnownFrequencies)
