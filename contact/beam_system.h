@@ -26,8 +26,6 @@
 
 namespace beamslider
 {
-  // Transverse displacement (relative to the moving base) and slope at one x,
-  // with their gradients with respect to the beam coordinates.
   // The beam's fields at sample points x (BeamSystem::sample_fields).
   struct BeamFieldSamples
   {
@@ -39,6 +37,8 @@ namespace beamslider
     std::vector<double> axial_force; // N [N]
   };
 
+  // Transverse displacement (relative to the moving base) and slope at one x,
+  // with their gradients with respect to the beam coordinates.
   struct BeamPointKinematics
   {
     double w  = 0;           // [m]

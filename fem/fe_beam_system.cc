@@ -5,6 +5,12 @@
 
 namespace beamslider
 {
+  // The scene's Solvers defaults (meshes/scene.h) are the FE step's own.
+  static_assert(SolverData{}.newton_relative_tolerance == FETransientSettings{}.relative_tolerance &&
+                  SolverData{}.newton_absolute_tolerance == FETransientSettings{}.absolute_tolerance &&
+                  SolverData{}.newton_iterations == FETransientSettings{}.max_iterations,
+                "the default scene's Newton settings differ from FETransientSettings' defaults");
+
   std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, const unsigned int n_elements,
                                                   const bool axial_inertia)
   {

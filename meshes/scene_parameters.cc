@@ -43,7 +43,6 @@ namespace beamslider
     // below reads the same entries back.
     void declare(ParameterHandler &prm, const Scene &d)
     {
-
       prm.enter_subsection("Beam");
       prm.declare_entry("Length", num(d.beam.length), Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
       prm.declare_entry("Width", num(d.beam.width), Double(0), "b, beam width [m]");

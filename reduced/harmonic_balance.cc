@@ -749,6 +749,7 @@ namespace beamslider
                                   std::to_string(thickness) + ")");
     return 0.75 * b_111 * thickness * thickness / (phi_1_at_output * phi_1_at_output * omega_1 * omega_1);
   }
+
   unsigned int count_amplitude_folds(const Backbone &backbone, const bool include_tongues)
   {
     std::vector<const BackbonePoint *> kept;

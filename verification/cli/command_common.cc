@@ -76,10 +76,9 @@ namespace beamslider
 
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command)
   {
-    const std::string &scene_name = scene.name;
     const fs::path dir = !common.output_dir.empty() ? fs::path(common.output_dir)
-                         : command.empty()           ? fs::path("reports") / scene_name
-                                                     : fs::path("reports") / scene_name / command;
+                         : command.empty()           ? fs::path("reports") / scene.name
+                                                     : fs::path("reports") / scene.name / command;
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)

@@ -5,6 +5,7 @@
 
 #include "meshes/scene.h"
 
+#include <chrono>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -34,6 +35,11 @@ namespace beamslider
     std::ostringstream s;
     s << std::fixed << std::setprecision(digits) << x;
     return s.str();
+  }
+  // Wall time since `start`, as "12 s", for the report's timing lines.
+  inline std::string seconds_since(const std::chrono::steady_clock::time_point &start)
+  {
+    return fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0) + " s";
   }
   // With its sign always written: a shift or a difference.
   inline std::string signed_fixed(const double x, const int digits = 3)

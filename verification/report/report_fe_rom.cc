@@ -37,11 +37,6 @@ namespace beamslider
   {
     using clock = std::chrono::steady_clock;
 
-    std::string seconds_since(const clock::time_point &start)
-    {
-      return fixed(std::chrono::duration<double>(clock::now() - start).count(), 0) + " s";
-    }
-
     // 5.1 and 5.2: the ladder.
     std::string ladder_subsections(Report &report, const Scene &scene, const bool full)
     {

@@ -18,11 +18,6 @@ namespace beamslider
   {
     using clock = std::chrono::steady_clock;
 
-    std::string seconds_since(const clock::time_point &start)
-    {
-      return fixed(std::chrono::duration<double>(clock::now() - start).count(), 0) + " s";
-    }
-
     // "0.331 [0.330, 0.332]", or a dash for an outcome no member had.
     std::string median_range(const OutcomeStatistics &s, const int digits)
     {
@@ -53,7 +48,6 @@ namespace beamslider
     {
       return cost_per_simulated_second(s, scene) * end_time * 0.6e-6;
     }
-
   } // namespace
 
   LadderFiles::LadderFiles(const std::string &dir)

@@ -20,6 +20,4 @@ namespace beamslider
   std::ostream &console() { return quiet_ ? discarding_stream() : std::cout; }
 
   void set_quiet(const bool quiet) { quiet_ = quiet; }
-
-  bool is_quiet() { return quiet_; }
 } // namespace beamslider

@@ -13,5 +13,4 @@ namespace beamslider
   std::ostream &console();
 
   void set_quiet(bool quiet);
-  bool is_quiet();
 } // namespace beamslider
