@@ -98,7 +98,12 @@ namespace beamslider
 
     virtual unsigned int n_dofs() const = 0;
     virtual double length() const       = 0; // L [m]
-    virtual double thickness() const    = 0; // h [m]
+    // h [m]: the beam's thickness, its thickest section's if it varies (the
+    // reference for R/h and for amplitudes in thicknesses).
+    virtual double thickness() const    = 0;
+    // The thickness at x [m], where the slider's corners meet the surfaces
+    // ±h(x)/2; constant along a uniform beam.
+    virtual double thickness_at(double /*x*/) const { return thickness(); }
 
     // w, w' and gradients at x ∈ [0, L] for coordinates q. w and w' are
     // linear in q (w = grad_w · q): AdaptationRun takes the gradient at the

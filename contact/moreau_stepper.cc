@@ -265,7 +265,6 @@ namespace beamslider
     const BeamStep beam_step = beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
     Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
     const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
-    const double clearance = slider_.window_height - beam_.thickness();
 
     // Active set and force directions at the midpoint. All storage below is
     // sized once for the four corners (constructor); a step works on its
@@ -275,6 +274,7 @@ namespace beamslider
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
         geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, false);
+        const double clearance = slider_.window_height - beam_.thickness_at(corner_.x);
         if (corner_.gap < -clearance)
           {
             std::ostringstream msg;

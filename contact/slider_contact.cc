@@ -43,7 +43,6 @@ namespace beamslider
 
   SliderGeometry::SliderGeometry(const SliderParameters &slider, const double beam_thickness)
     : slider_(slider)
-    , thickness_(beam_thickness)
   {
     slider_.validate(beam_thickness);
   }
@@ -92,13 +91,16 @@ namespace beamslider
     const double x_P         = s[0] + r[0];
     const double z_P         = s[1] + r[1];
     beam.evaluate(x_P, q, point_);
+    // The surface the corner meets is at ±h(x_P)/2; h is constant on each
+    // element, so its slope does not enter the force directions.
+    const double thickness = beam.thickness_at(x_P);
 
     const double w = point_.w, dw = point_.dw;
     const double c  = 1. / std::sqrt(1. + dw * dw); // cos α
     const double dz = z_P - f.base_displacement - w;
 
     out.x   = x_P;
-    out.gap = zeta * c * dz - 0.5 * thickness_ / c;
+    out.gap = zeta * c * dz - 0.5 * thickness / c;
     if (!directions_if_open && out.gap > 0.)
       return;
 
@@ -108,10 +110,10 @@ namespace beamslider
 
     // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
     const double dg_dw  = -zeta * c;
-    const double dg_ddw = -dw * c * (zeta * dz * c * c + 0.5 * thickness_);
+    const double dg_ddw = -dw * c * (zeta * dz * c * c + 0.5 * thickness);
     out.beam_normal     = dg_dw * point_.grad_w + dg_ddw * point_.grad_dw;
     // Beam part of W_T = −t·v_B with v_B = (−ζ(h/2) ẇ', ẇ) (+ the base part).
-    out.beam_tangent = (zeta * 0.5 * thickness_ * t_x) * point_.grad_dw - t_z * point_.grad_w;
+    out.beam_tangent = (zeta * 0.5 * thickness * t_x) * point_.grad_dw - t_z * point_.grad_w;
 
     // Slider part: v_P = (ẋ_C − β̇ r_z, ż_C + β̇ r_x).
     out.slider_normal  = Eigen::Vector3d(n_x, n_z, -r[1] * n_x + r[0] * n_z);

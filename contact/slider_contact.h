@@ -13,6 +13,9 @@
 //   n   = ζ(−sin α, cos α),  t = ζ(−cos α, −sin α)
 //   r_B = (x_P, w0 + w) + ζ (h/2)(−w', 1)
 //   g_N = n·(r_P − r_B) = ζ c (z_P − w0 − w) − (h/2)/c             [m]
+// with h = h(x_P), the thickness under the corner (BeamSystem::thickness_at;
+// constant per element, so a step of a mesh beam between the corners is not
+// a contact point of the model).
 // Force directions: W_N = (∂g_N/∂(q, s))ᵀ, and the explicit time dependence
 // ∂g_N/∂t = −n_z ẇ0 (the imposed velocity). The tangential direction has no
 // gap function; W_T is the tangential relative velocity of the two material
@@ -92,6 +95,7 @@ namespace beamslider
   class SliderGeometry
   {
   public:
+    // beam_thickness: the beam's largest thickness, which the window must clear.
     SliderGeometry(const SliderParameters &slider, double beam_thickness);
 
     // Position of corner k relative to the centre of mass, in absolute axes,
@@ -121,7 +125,6 @@ namespace beamslider
 
   private:
     SliderParameters slider_;
-    double thickness_;
     mutable BeamPointKinematics point_; // scratch, avoids allocations per step
   };
 } // namespace beamslider

@@ -7,11 +7,14 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria_description.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <stdexcept>
 
 namespace beamslider
 {
@@ -39,7 +42,41 @@ namespace beamslider
 
   void FEBeam::make_grid_and_dofs(const unsigned int n_elements)
   {
-    GridGenerator::subdivided_hyper_cube(triangulation, n_elements, 0., beam.length);
+    if (!beam.from_mesh())
+      {
+        sections = {beam.uniform_section()};
+        GridGenerator::subdivided_hyper_cube(triangulation, n_elements, 0., beam.length);
+      }
+    else
+      {
+        // The mesh's elements, each split into equal parts, with the index
+        // of its section as material id.
+        const auto n_mesh = static_cast<unsigned int>(beam.mesh_cells.size());
+        if (n_elements % n_mesh != 0)
+          throw std::invalid_argument("FE beam: " + std::to_string(n_elements) +
+                                      " elements requested on a mesh of " + std::to_string(n_mesh) +
+                                      " elements; a mesh beam takes a whole multiple of its mesh's elements");
+        const unsigned int parts = n_elements / n_mesh;
+        std::map<unsigned int, types::material_id> index_of_tag;
+        for (const auto &[tag, section] : beam.sections)
+          {
+            index_of_tag[tag] = sections.size();
+            sections.push_back(section);
+          }
+        std::vector<Point<1>> vertices{Point<1>(0.)};
+        std::vector<CellData<1>> cells;
+        for (const BeamMeshCell &c : beam.mesh_cells)
+          for (unsigned int k = 0; k < parts; ++k)
+            {
+              vertices.emplace_back(k + 1 == parts ? c.x_end : c.x_begin + (c.x_end - c.x_begin) * (k + 1) / parts);
+              CellData<1> cell;
+              cell.vertices    = {static_cast<unsigned int>(vertices.size() - 2),
+                                  static_cast<unsigned int>(vertices.size() - 1)};
+              cell.material_id = index_of_tag.at(c.tag);
+              cells.push_back(cell);
+            }
+        triangulation.create_triangulation(vertices, cells, SubCellData());
+      }
     dof_handler.distribute_dofs(fe);
 
     // Identify, once, which local DoF plays which role. For the FE_Q(1) bases
@@ -129,10 +166,10 @@ namespace beamslider
     FullMatrix<double> cell_M(n, n);
     std::vector<global_dof_index> dofs(n);
     std::array<double, 4> N, dN, ddN;
-    const double rhoA = beam.mass_per_length();
 
     for (const auto &cell : ordered_cells)
       {
+        const double rhoA = section(cell).mass_per_length();
         fe_values.reinit(cell);
         cell_M           = 0;
         const double h   = cell->diameter();
@@ -152,6 +189,11 @@ namespace beamslider
         cell->get_dof_indices(dofs);
         c.distribute_local_to_global(cell_M, dofs, M);
       }
+
+    // Point bodies: m N_a N_b on w and J N_a' N_b' on w' at their position
+    // (rows of support DoFs keep the diagonal the constraints put there).
+    for (const PointMass &body : beam.point_masses)
+      add_point_inertia(body.position, body.mass, body.rotary_inertia, M);
   }
 
   void FEBeam::assemble_internal_force(const Vector<double> &q, Vector<double> *f, SparseMatrix<double> *K_t,
@@ -172,10 +214,10 @@ namespace beamslider
     std::vector<global_dof_index> dofs(n);
     std::vector<double> q_local(n);
     std::array<double, 4> N, dN, ddN;
-    const double EA = beam.axial_stiffness(), EI = beam.bending_stiffness();
 
     for (const auto &cell : ordered_cells)
       {
+        const double EA = section(cell).axial_stiffness(), EI = section(cell).bending_stiffness();
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
         for (unsigned int i = 0; i < n; ++i)
@@ -273,8 +315,14 @@ namespace beamslider
           {
             hermite_shape((fe_values.quadrature_point(qp)[0] - x_0) / h, h, N, dN, ddN);
             for (unsigned int a = 0; a < 4; ++a)
-              r[dofs[hermite_local[a]]] -= beam.mass_per_length() * N[a] * fe_values.JxW(qp);
+              r[dofs[hermite_local[a]]] -= section(cell).mass_per_length() * N[a] * fe_values.JxW(qp);
           }
+      }
+    for (const PointMass &body : beam.point_masses)
+      {
+        const FEPointShape s = point_shape(body.position);
+        for (unsigned int a = 0; a < 4; ++a)
+          r[s.w_dofs[a]] -= body.mass * s.w_values[a];
       }
     support_constraints.set_zero(r);
   }
@@ -307,6 +355,16 @@ namespace beamslider
         s.strain_values.push_back(fe.shape_grad_component(i, p, 0)[0] / h);
       }
     return s;
+  }
+
+  const BeamSection &FEBeam::section_at(const double x) const
+  {
+    const double tol = 1e-12 * beam.length;
+    AssertThrow(x >= -tol && x <= beam.length + tol,
+                ExcMessage("FE beam section asked at x = " + std::to_string(x) + " m, outside the beam"));
+    auto it = std::upper_bound(ordered_cells.begin(), ordered_cells.end(), x,
+                               [](const double x, const auto &cell) { return x < cell->vertex(0)[0]; });
+    return section(*(it == ordered_cells.begin() ? it : std::prev(it)));
   }
 
   namespace

@@ -4,7 +4,13 @@
 //
 //   ε = u' + ½ w'²  (u' alone without geometric nonlinearity),   κ = w'' ,
 //   Π(u, w) = ∫ ½ EA ε² + ½ EI κ² dx + Σ_ends ½ k_r w'² + ½ (2 k_t) u² ,
-//   T       = ∫ ½ ρA (u̇² + ẇ²) dx ,       base load  -∫ ρA ẅ0 δw dx .
+//   T       = ∫ ½ ρA (u̇² + ẇ²) dx + Σ_bodies ½ (m ẇ² + J ẇ'²)(x_p) ,
+//   base load  -(∫ ρA δw dx + Σ_bodies m δw(x_p)) ẅ0 .
+//
+// EA, EI and ρA are those of each element's section: constant along a
+// uniform beam, per physical tag on a beam read from a mesh (meshes/beam_mesh.h).
+// Point bodies (Point masses in the scene) add their mass and rotary inertia
+// at their position.
 //
 // Discretisation. The bending energy needs C¹ continuity of w, and deal.II
 // 9.4 has no Hermite element. We use deal.II's DoFHandler, quadrature and
@@ -59,8 +65,10 @@ namespace beamslider
   class FEBeam
   {
   public:
-    // The beam of `scene` with `n_elements` equal elements (0: take the
-    // scene's discretisation).
+    // The beam of `scene` with `n_elements` elements (0: take the scene's
+    // discretisation). A uniform beam gets equal elements; a beam from a
+    // mesh gets each mesh element split into n_elements / (mesh elements)
+    // equal parts, which must be a whole number (else std::invalid_argument).
     explicit FEBeam(const Scene &scene, unsigned int n_elements = 0);
 
     unsigned int n_dofs() const { return dof_handler.n_dofs(); }
@@ -70,6 +78,21 @@ namespace beamslider
     const SupportData &support_data() const { return supports; }
     bool geometric_nonlinearity() const { return nonlinear; }
 
+    // The section of a cell of the mesh (EA, EI, ρA and h are constant on each).
+    const BeamSection &section(const typename dealii::DoFHandler<1>::active_cell_iterator &cell) const
+    {
+      return sections[cell->material_id()];
+    }
+    // The section at x and its thickness [m] (at an element boundary, the
+    // element to the right).
+    const BeamSection &section_at(double x) const;
+    double thickness_at(const double x) const { return section_at(x).thickness; }
+    // The cells from x = 0 to x = L.
+    const std::vector<typename dealii::DoFHandler<1>::active_cell_iterator> &cells_in_order() const
+    {
+      return ordered_cells;
+    }
+
     // Homogeneous constraints of the supports (w = 0; θ = u = 0 if clamped).
     const dealii::AffineConstraints<double> &constraints() const { return support_constraints; }
     // The support constraints plus u = 0 everywhere: on the flat beam the
@@ -78,8 +101,9 @@ namespace beamslider
     const dealii::SparsityPattern &sparsity_pattern() const { return sparsity; }
     const dealii::DoFHandler<1> &get_dof_handler() const { return dof_handler; }
 
-    // Consistent mass matrix ∫ρA(u δu + w δw); constrained rows hold the
-    // diagonal entry that `constraints` puts there.
+    // Consistent mass matrix ∫ρA(u δu + w δw) plus the point bodies of the
+    // scene; constrained rows hold the diagonal entry that `constraints`
+    // puts there.
     void assemble_mass_matrix(dealii::SparseMatrix<double> &M,
                               const dealii::AffineConstraints<double> &c) const;
     // Internal force f(q) = ∂Π/∂q and/or tangent K_t(q) = ∂f/∂q (either pointer
@@ -87,7 +111,7 @@ namespace beamslider
     void assemble_internal_force(const dealii::Vector<double> &q, dealii::Vector<double> *f,
                                  dealii::SparseMatrix<double> *K_t,
                                  const dealii::AffineConstraints<double> &c) const;
-    // r with the base-excitation load r ẅ0(t): r = -∫ρA N_w dx.
+    // r with the base-excitation load r ẅ0(t): r = -∫ρA N_w dx - Σ m N_w(x_p).
     void assemble_base_load(dealii::Vector<double> &r) const;
 
     // Adds a rigid body bonded at x: mass m on w(x) and rotary inertia J on
@@ -113,6 +137,8 @@ namespace beamslider
     BeamData beam;
     SupportData supports;
     bool nonlinear;
+    // The sections the cells' material ids point to (one for a uniform beam).
+    std::vector<BeamSection> sections;
 
     dealii::Triangulation<1> triangulation;
     dealii::FESystem<1> fe;

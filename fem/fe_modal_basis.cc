@@ -2,6 +2,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -13,8 +14,9 @@ namespace beamslider
     // element of the uniform mesh: enough to evaluate φ and φ' anywhere.
     struct ElementTable
     {
-      double length = 0, h = 0;
+      double length = 0;
       unsigned int n_elements = 0, n_modes = 0;
+      std::vector<double> vertices;     // x of the element boundaries, increasing [m]
       std::vector<double> coefficients; // [element][mode][4]
 
       void evaluate(const double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) const
@@ -22,9 +24,12 @@ namespace beamslider
         if (!(x >= 0 && x <= length))
           throw std::out_of_range("modal basis evaluated at x = " + std::to_string(x) + " m, outside [0, " +
                                   std::to_string(length) + "] m");
-        const unsigned int e = std::min(static_cast<unsigned int>(x / h), n_elements - 1);
+        // The element whose left vertex is the last one at or before x.
+        const auto it      = std::upper_bound(vertices.begin(), vertices.end(), x);
+        const unsigned int e = std::min<unsigned int>(std::max<long>(it - vertices.begin() - 1, 0), n_elements - 1);
+        const double h     = vertices[e + 1] - vertices[e];
         std::array<double, 4> N, dN, ddN;
-        hermite_shape((x - e * h) / h, h, N, dN, ddN);
+        hermite_shape((x - vertices[e]) / h, h, N, dN, ddN);
         phi.resize(n_modes);
         dphi.resize(n_modes);
         const double *c = &coefficients[4 * n_modes * e];
@@ -70,12 +75,15 @@ namespace beamslider
     auto table        = std::make_shared<ElementTable>();
     table->length     = beam.length();
     table->n_elements = beam.n_elements();
-    table->h          = beam.length() / beam.n_elements();
     table->n_modes    = n_modes;
     table->coefficients.resize(4 * n_modes * table->n_elements);
+    table->vertices.push_back(0.);
     for (unsigned int e = 0; e < table->n_elements; ++e)
       {
-        const FEPointShape s = beam.point_shape((e + 0.5) * table->h);
+        const auto &cell = beam.cells_in_order()[e];
+        const double x_0 = cell->vertex(0)[0], x_1 = cell->vertex(1)[0];
+        table->vertices.push_back(e + 1 == table->n_elements ? beam.length() : x_1);
+        const FEPointShape s = beam.point_shape(0.5 * (x_0 + x_1));
         for (unsigned int n = 0; n < n_modes; ++n)
           for (unsigned int a = 0; a < 4; ++a)
             table->coefficients[4 * (n_modes * e + n) + a] = modes.shapes[n][s.w_dofs[a]];
@@ -86,11 +94,14 @@ namespace beamslider
     const dealii::QGauss<1> gauss(3);
     Eigen::VectorXd phi, dphi;
     for (unsigned int e = 0; e < table->n_elements; ++e)
-      for (unsigned int q = 0; q < gauss.size(); ++q)
-        {
-          table->evaluate((e + gauss.point(q)[0]) * table->h, phi, dphi);
-          basis.stretch += gauss.weight(q) * table->h * dphi * dphi.transpose();
-        }
+      {
+        const double x_0 = table->vertices[e], h = table->vertices[e + 1] - x_0;
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            table->evaluate(x_0 + gauss.point(q)[0] * h, phi, dphi);
+            basis.stretch += gauss.weight(q) * h * dphi * dphi.transpose();
+          }
+      }
 
     basis.evaluate = [table](double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) { table->evaluate(x, phi, dphi); };
     return basis;
@@ -106,15 +117,18 @@ namespace beamslider
     return peak;
   }
 
-  double integral_slope_fourth_power(const FEBeam &beam, const dealii::Vector<double> &phi)
+  double axial_weighted_slope_fourth_power(const FEBeam &beam, const dealii::Vector<double> &phi)
   {
     // φ'⁴ has degree 8 per element: 5 Gauss points are exact.
     const dealii::QGauss<1> gauss(5);
-    const double h = beam.length() / beam.n_elements();
     double integral = 0;
-    for (unsigned int e = 0; e < beam.n_elements(); ++e)
-      for (unsigned int q = 0; q < gauss.size(); ++q)
-        integral += gauss.weight(q) * h * std::pow(beam.slope(phi, (e + gauss.point(q)[0]) * h), 4);
+    for (const auto &cell : beam.cells_in_order())
+      {
+        const double x_0 = cell->vertex(0)[0], h = cell->vertex(1)[0] - x_0;
+        const double EA = beam.section(cell).axial_stiffness();
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          integral += gauss.weight(q) * h * EA * std::pow(beam.slope(phi, x_0 + gauss.point(q)[0] * h), 4);
+      }
     return integral;
   }
 } // namespace beamslider

@@ -128,6 +128,8 @@ namespace beamslider
         CellData data;
         data.x0 = cell->vertex(0)[0];
         data.h  = cell->diameter();
+        data.EA = beam.section(cell).axial_stiffness();
+        data.EI = beam.section(cell).bending_stiffness();
         cells_.push_back(std::move(data));
       }
     std::sort(cells_.begin(), cells_.end(), [](const CellData &a, const CellData &b) { return a.x0 < b.x0; });
@@ -199,9 +201,9 @@ namespace beamslider
     // springs; cell by cell, the cell's DoF values gathered once.
     f.setZero(q.size());
     const bool nonlinear = beam_->geometric_nonlinearity();
-    const double EA = beam_->beam_data().axial_stiffness(), EI = beam_->beam_data().bending_stiffness();
     for (const CellData &cell : cells_)
       {
+        const double EA = cell.EA, EI = cell.EI;
         std::array<double, 4> qw, fw{};
         std::array<double, max_axial_dofs> qu, fu{};
         gather(cell, q, qw, qu);
@@ -249,12 +251,12 @@ namespace beamslider
     //   K_uu = ∫ EA u_i' u_j',   K_uw = ∫ EA w' u_i' N_b',
     //   K_ww = ∫ (EA w'² + N) N_a' N_b' + EI N_a'' N_b''.
     const bool nonlinear = beam_->geometric_nonlinearity();
-    const double EA = beam_->beam_data().axial_stiffness(), EI = beam_->beam_data().bending_stiffness();
     const double scale = 0.25 * dt * dt;
     double *values = S0_.valuePtr();
     Eigen::Map<Eigen::VectorXd>(values, S0_.nonZeros()) = M_in_S0_;
     for (const CellData &cell : cells_)
       {
+        const double EA = cell.EA, EI = cell.EI;
         const unsigned int n_local = 4 + cell.n_u;
         std::array<double, max_cell_dofs * max_cell_dofs> K{};
         std::array<double, 4> qw;
@@ -594,12 +596,17 @@ namespace beamslider
   {
     BeamFieldSamples g;
     const FEBeam &beam = *beam_;
+    // Four samples per element, so that every element boundary (where a
+    // mesh beam's section may change) is a sample.
     const unsigned int samples_per_element = 4;
-    const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
-    const double L = beam.length(), EA = beam.beam_data().axial_stiffness();
-    for (unsigned int i = 0; i < n_x; ++i)
+    std::vector<double> xs;
+    for (const CellData &cell : cells_)
+      for (unsigned int k = 0; k < samples_per_element; ++k)
+        xs.push_back(cell.x0 + cell.h * k / samples_per_element);
+    xs.push_back(beam.length());
+    for (const double x : xs)
       {
-        const double x       = L * i / (n_x - 1);
+        const double EA      = beam.section_at(x).axial_stiffness();
         const FEPointShape p = beam.point_shape(x);
         double u = 0, du = 0, w = 0, dw = 0, ddw = 0;
         for (unsigned int a = 0; a < 4; ++a)

@@ -148,6 +148,7 @@ namespace beamslider
     unsigned int n_dofs() const override { return beam_->n_dofs(); }
     double length() const override { return beam_->length(); }
     double thickness() const override { return beam_->beam_data().thickness; }
+    double thickness_at(const double x) const override { return beam_->thickness_at(x); }
 
     // Throws std::out_of_range outside [0, L]. Gradients are dense, zero on
     // constrained DoFs.
@@ -259,7 +260,8 @@ namespace beamslider
       std::array<unsigned int, 4> w_dofs{};
       std::array<unsigned int, max_axial_dofs> u_dofs{};
       unsigned int n_u = 0, first_qp = 0, n_qp = 0;
-      double x0 = 0, h = 0; // left vertex and length [m]
+      double x0 = 0, h = 0;   // left vertex and length [m]
+      double EA = 0, EI = 0;  // the section's stiffnesses [N], [N m^2]
       std::vector<std::ptrdiff_t> entry; // (4 + n_u)² indices into S0_'s values
     };
     // Shape data at one quadrature point: ε = u' + ½w'², κ = w''.

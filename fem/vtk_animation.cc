@@ -66,8 +66,27 @@ namespace beamslider
     AnimationFrame f;
     const SystemState &state = stepper.state();
     f.t                      = state.t;
-    static_cast<BeamFieldSamples &>(f.beam) = stepper.beam().sample_fields(state.q);
-    f.beam.thickness         = stepper.beam().thickness();
+    const BeamSystem &beam = stepper.beam();
+    const BeamFieldSamples samples = beam.sample_fields(state.q);
+    // Each sample with the thickness to its right; where the thickness
+    // changes at a sample (a step of a mesh beam at an element boundary), the
+    // sample is repeated with the thickness to its left, so that the drawn
+    // surface has the step instead of a ramp.
+    for (std::size_t i = 0; i < samples.x.size(); ++i)
+      {
+        const double h = beam.thickness_at(samples.x[i]);
+        const bool step = i > 0 && h != f.beam.thickness.back();
+        for (int copy = step ? 1 : 0; copy >= 0; --copy)
+          {
+            f.beam.x.push_back(samples.x[i]);
+            f.beam.u.push_back(samples.u[i]);
+            f.beam.w.push_back(samples.w[i]);
+            f.beam.dw.push_back(samples.dw[i]);
+            f.beam.curvature.push_back(samples.curvature[i]);
+            f.beam.axial_force.push_back(samples.axial_force[i]);
+            f.beam.thickness.push_back(copy == 1 ? f.beam.thickness.back() : h);
+          }
+      }
     f.beam.base_displacement = stepper.base().displacement(state.t);
 
     const SliderParameters &p = stepper.slider();
@@ -133,10 +152,9 @@ namespace beamslider
     const unsigned int index = times_.size();
     const double m           = magnification_;
     const BeamFrameGeometry &b = frame.beam;
-    const double h           = b.thickness;
     const unsigned int n_x   = b.x.size();
     if (n_x < 2 || b.w.size() != n_x || b.dw.size() != n_x || b.u.size() != n_x || b.curvature.size() != n_x ||
-        b.axial_force.size() != n_x)
+        b.axial_force.size() != n_x || b.thickness.size() != n_x)
       throw std::invalid_argument("animation: beam samples of inconsistent length");
 
     // Beam: bottom and top surface points of the drawn axis.
@@ -150,7 +168,7 @@ namespace beamslider
       std::vector<Eigen::Vector2d> top, bottom;
       for (unsigned int i = 0; i < n_x; ++i)
         {
-          const double z_axis = m * (b.base_displacement + b.w[i]), slope = m * b.dw[i];
+          const double z_axis = m * (b.base_displacement + b.w[i]), slope = m * b.dw[i], h = b.thickness[i];
           const double c = 1. / std::sqrt(1. + slope * slope);
           for (const double zeta : {-1., 1.})
             {

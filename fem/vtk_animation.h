@@ -40,7 +40,7 @@ namespace beamslider
   struct BeamFrameGeometry : BeamFieldSamples
   {
     double base_displacement = 0; // w0(t) [m]
-    double thickness         = 0; // h [m]
+    std::vector<double> thickness; // h at each sample x [m]; a step is two samples at one x
   };
 
   // The slider at one instant.

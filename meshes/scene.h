@@ -10,7 +10,10 @@
 // rigid slider with clearance, base excitation w0 = (a/Ω²) cos Ωt).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +28,67 @@ namespace beamslider
     using std::runtime_error::runtime_error;
   };
 
+  // The cross-section and material of (a part of) the beam.
+  struct BeamSection
+  {
+    double width          = 0; // b [m]
+    double thickness      = 0; // h [m]
+    double youngs_modulus = 0; // E [Pa]
+    double density        = 0; // rho [kg/m^3]
+
+    double area() const { return width * thickness; }                                        // A [m^2]
+    double second_moment() const { return width * thickness * thickness * thickness / 12.; } // I [m^4]
+    double mass_per_length() const { return density * area(); }                              // rho A [kg/m]
+    double bending_stiffness() const { return youngs_modulus * second_moment(); }            // EI [N m^2]
+    double axial_stiffness() const { return youngs_modulus * area(); }                       // EA [N]
+  };
+
+  // One element of a beam read from a mesh file: it spans [x_begin, x_end]
+  // [m] and has the section of its physical tag.
+  struct BeamMeshCell
+  {
+    double x_begin   = 0;
+    double x_end     = 0;
+    unsigned int tag = 0;
+  };
+
+  // A rigid body fixed to the beam at x: mass on w(x), rotary inertia on w'(x).
+  struct PointMass
+  {
+    double position       = 0; // x [m]
+    double mass           = 0; // [kg]
+    double rotary_inertia = 0; // about its own centre of mass [kg m^2]
+  };
+
+  // The thickness along the beam, constant on each element: what the slider's
+  // corners touch (the surfaces are at ±h(x)/2).
+  struct ThicknessProfile
+  {
+    std::vector<double> x_end;     // right end of each piece [m], increasing
+    std::vector<double> thickness; // h on each piece [m]
+
+    ThicknessProfile(double uniform_thickness = 0) // NOLINT: a uniform beam is a profile of one piece
+      : x_end{std::numeric_limits<double>::infinity()}
+      , thickness{uniform_thickness}
+    {}
+    // h at x [m]; at a step, the piece to the right.
+    double at(const double x) const
+    {
+      if (thickness.size() == 1)
+        return thickness[0];
+      const auto it = std::upper_bound(x_end.begin(), x_end.end(), x);
+      return thickness[std::min<std::size_t>(it - x_end.begin(), thickness.size() - 1)];
+    }
+    double largest() const { return *std::max_element(thickness.begin(), thickness.end()); }
+  };
+
+  // The beam. Without a mesh file it is uniform: the section (width,
+  // thickness, E, rho) below along the whole length, and the FE mesh is
+  // generated. With a mesh file (doc/scenes.md, "Beams from a mesh"), the
+  // elements and their sections come from the mesh and the scene's Sections
+  // table; `length` is the mesh's length and the uniform section fields hold
+  // the thickest section, the reference to which R/h and amplitudes "in
+  // thicknesses" refer.
   struct BeamData
   {
     double length        = 0.14;    // L [m]
@@ -33,12 +97,67 @@ namespace beamslider
     double youngs_modulus = 210e9;  // E [Pa]
     double density       = 7683.;   // rho [kg/m^3]
 
-    double area() const { return width * thickness; }                        // A [m^2]
-    double second_moment() const { return width * thickness * thickness * thickness / 12.; } // I [m^4]
-    double mass_per_length() const { return density * area(); }              // rho A [kg/m]
-    double bending_stiffness() const { return youngs_modulus * second_moment(); } // EI [N m^2]
-    double axial_stiffness() const { return youngs_modulus * area(); }       // EA [N]
+    std::string mesh_file;                        // Gmsh file, absolute path; empty: uniform generated beam
+    std::vector<BeamMeshCell> mesh_cells;         // the mesh's elements from x = 0 to L
+    std::map<unsigned int, BeamSection> sections; // by physical tag
+    std::vector<PointMass> point_masses;          // rigid bodies fixed to the beam
+
+    bool from_mesh() const { return !mesh_cells.empty(); }
+    BeamSection uniform_section() const { return {width, thickness, youngs_modulus, density}; }
+    // The section of the element that contains x (at a node: the one to the right).
+    BeamSection section_at(double x) const;
+    ThicknessProfile thickness_profile() const;
+    // ∫₀ᴸ dx / EA(x) [m/N]: the beam's axial compliance (L/EA when uniform).
+    double axial_compliance() const;
+
+    // The uniform (or reference) section's properties.
+    double area() const { return uniform_section().area(); }                           // A [m^2]
+    double second_moment() const { return uniform_section().second_moment(); }         // I [m^4]
+    double mass_per_length() const { return uniform_section().mass_per_length(); }     // rho A [kg/m]
+    double bending_stiffness() const { return uniform_section().bending_stiffness(); } // EI [N m^2]
+    double axial_stiffness() const { return uniform_section().axial_stiffness(); }     // EA [N]
   };
+
+  inline BeamSection BeamData::section_at(const double x) const
+  {
+    if (!from_mesh())
+      return uniform_section();
+    const auto it = std::upper_bound(mesh_cells.begin(), mesh_cells.end(), x,
+                                     [](const double x, const BeamMeshCell &c) { return x < c.x_end; });
+    const BeamMeshCell &cell = it == mesh_cells.end() ? mesh_cells.back() : *it;
+    return sections.at(cell.tag);
+  }
+
+  inline ThicknessProfile BeamData::thickness_profile() const
+  {
+    if (!from_mesh())
+      return ThicknessProfile(thickness);
+    ThicknessProfile p;
+    p.x_end.clear();
+    p.thickness.clear();
+    for (const BeamMeshCell &c : mesh_cells)
+      {
+        const double h = sections.at(c.tag).thickness;
+        if (!p.thickness.empty() && p.thickness.back() == h)
+          p.x_end.back() = c.x_end; // merge elements of equal thickness
+        else
+          {
+            p.x_end.push_back(c.x_end);
+            p.thickness.push_back(h);
+          }
+      }
+    return p;
+  }
+
+  inline double BeamData::axial_compliance() const
+  {
+    if (!from_mesh())
+      return length / axial_stiffness();
+    double compliance = 0;
+    for (const BeamMeshCell &c : mesh_cells)
+      compliance += (c.x_end - c.x_begin) / sections.at(c.tag).axial_stiffness();
+    return compliance;
+  }
 
   // Both ends carry w = 0, a rotational spring on w' and an axial spring on u.
   // "clamped" is the limit of infinite springs and is imposed by constraints.
@@ -75,12 +194,13 @@ namespace beamslider
 
     // Stiffness of the membrane in series with the clamping: the axial force
     // of a beam stretched by Δ is N = k_ax Δ with
-    //   k_ax = (L/(EA) + 1/k_t)^-1      (elastic supports, k_t in total),
-    //   k_ax = EA/L                     (ideal clamp, pinned: immovable ends).
+    //   k_ax = (∫₀ᴸ dx/EA(x) + 1/k_t)^-1   (elastic supports, k_t in total),
+    //   k_ax = (∫₀ᴸ dx/EA(x))^-1           (ideal clamp, pinned: immovable ends),
+    // ∫dx/EA = L/EA for a uniform beam. Without axial inertia N is uniform
+    // along x even where EA varies (N' = 0), so the series rule is exact.
     double membrane_stiffness(const BeamData &beam) const
     {
-      const double beam_compliance = beam.length / beam.axial_stiffness();
-      return 1. / (beam_compliance + (elastic() ? 1. / axial_stiffness : 0.));
+      return 1. / (beam.axial_compliance() + (elastic() ? 1. / axial_stiffness : 0.));
     }
   };
 

@@ -5,6 +5,8 @@
 // inequalities, relations between parameters) are checked in validate_scene().
 #include "scene.h"
 
+#include "meshes/beam_mesh.h"
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
@@ -16,16 +18,20 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
+#include <tuple>
 
 namespace beamslider
 {
   namespace
   {
     using dealii::ParameterHandler;
+    using dealii::Patterns::Anything;
     using dealii::Patterns::Bool;
     using dealii::Patterns::Double;
     using dealii::Patterns::Integer;
+    using dealii::Patterns::Map;
     using dealii::Patterns::Selection;
 
     // The shortest text that reads back to the same double (so that a scene
@@ -49,6 +55,43 @@ namespace beamslider
       prm.declare_entry("Thickness", num(d.beam.thickness), Double(0), "h, beam thickness [m], > 0 and < L/20 (Euler-Bernoulli)");
       prm.declare_entry("Young's modulus", num(d.beam.youngs_modulus), Double(1e6, 1e13), "E [Pa], in [1e6, 1e13] (soft polymers to diamond)");
       prm.declare_entry("Density", num(d.beam.density), Double(1, 1e5), "rho [kg/m^3], in [1, 1e5]");
+      prm.declare_entry("Mesh file", d.beam.mesh_file, Anything(),
+                        "a Gmsh line mesh (.msh, format 2 or 4) of the beam, a path relative to the scene file: "
+                        "line elements along x from 0 to L, each with a physical tag whose section the subsection "
+                        "Sections gives. Empty: a uniform beam of the section above, meshed with Number of elements. "
+                        "With a mesh, Length is the mesh's and Width, Thickness, Young's modulus and Density are the "
+                        "thickest section's (R/h and amplitudes in thicknesses refer to it): leave them unset");
+      prm.leave_subsection();
+
+      // Tables "tag: value, tag: value" of a mesh beam's sections.
+      prm.enter_subsection("Sections");
+      const auto table = [&](const char *name, double BeamSection::*field, const char *doc) {
+        std::string text;
+        for (const auto &[tag, section] : d.beam.sections)
+          text += (text.empty() ? "" : ", ") + std::to_string(tag) + ": " + num(section.*field);
+        prm.declare_entry(name, text, Map(Integer(0), Double(0), 0, Map::max_int_value, ",", ":"), doc);
+      };
+      table("Width", &BeamSection::width, "b per physical tag of the mesh, 'tag: value, ...' [m] (mesh beams only)");
+      table("Thickness", &BeamSection::thickness, "h per physical tag [m], each > 0 and < L/20");
+      table("Young's modulus", &BeamSection::youngs_modulus, "E per physical tag [Pa], in [1e6, 1e13]");
+      table("Density", &BeamSection::density, "rho per physical tag [kg/m^3], in [1, 1e5]");
+      prm.leave_subsection();
+
+      // Rigid bodies fixed to the beam, "x: value, ..." with x in metres.
+      prm.enter_subsection("Point masses");
+      {
+        std::string masses, inertias;
+        for (const PointMass &m : d.beam.point_masses)
+          {
+            masses += (masses.empty() ? "" : ", ") + num(m.position) + ": " + num(m.mass);
+            inertias += (inertias.empty() ? "" : ", ") + num(m.position) + ": " + num(m.rotary_inertia);
+          }
+        prm.declare_entry("Masses", masses, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
+                          "point masses on the beam, 'x: m, ...': position x in [0, L] [m], mass [kg] (on w(x))");
+        prm.declare_entry("Rotary inertias", inertias, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
+                          "rotary inertias of the bodies, 'x: J, ...' [m: kg m^2] (on w'(x)); a position without "
+                          "a mass is a body of rotary inertia only");
+      }
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
@@ -146,7 +189,41 @@ namespace beamslider
         }
     }
 
-    Scene parse(ParameterHandler &prm)
+    // The tables of a scene, as read: the sections by tag and the point
+    // bodies by position, assembled into the beam by build_beam().
+    struct SceneTables
+    {
+      std::map<std::string, std::map<unsigned int, double>> sections; // "Width" -> tag -> value
+      std::map<double, double> masses, inertias;                      // x -> m, x -> J
+    };
+
+    // A "key: value, ..." table of the current subsection.
+    template <typename Key>
+    std::map<Key, double> read_table(const ParameterHandler &prm, const std::string &section, const std::string &name)
+    {
+      const std::string text = prm.get(name);
+      std::map<Key, double> table;
+      std::istringstream entries(text);
+      std::string entry;
+      while (std::getline(entries, entry, ','))
+        {
+          if (entry.find_first_not_of(" \t") == std::string::npos)
+            continue;
+          const auto colon = entry.find(':');
+          Key key{};
+          double value = 0;
+          std::istringstream k(entry.substr(0, colon)), v(colon == std::string::npos ? "" : entry.substr(colon + 1));
+          if (!(k >> key) || !(v >> value) || !std::isfinite(value) || !std::isfinite(double(key)))
+            throw InputError("Parameter '" + section + "/" + name + "' = '" + text + "' is not allowed: the entry '" +
+                             entry + "' is not 'key: value' with two finite numbers");
+          if (!table.emplace(key, value).second)
+            throw InputError("Parameter '" + section + "/" + name + "' = '" + text + "' is not allowed: it gives a "
+                             "value for " + entry.substr(0, colon) + " twice");
+        }
+      return table;
+    }
+
+    Scene parse(ParameterHandler &prm, SceneTables &tables)
     {
       Scene s;
       prm.enter_subsection("Beam");
@@ -155,6 +232,17 @@ namespace beamslider
       s.beam.thickness      = get_double(prm, "Beam", "Thickness");
       s.beam.youngs_modulus = get_double(prm, "Beam", "Young's modulus");
       s.beam.density        = get_double(prm, "Beam", "Density");
+      s.beam.mesh_file      = prm.get("Mesh file");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Sections");
+      for (const char *name : {"Width", "Thickness", "Young's modulus", "Density"})
+        tables.sections[name] = read_table<unsigned int>(prm, "Sections", name);
+      prm.leave_subsection();
+
+      prm.enter_subsection("Point masses");
+      tables.masses   = read_table<double>(prm, "Point masses", "Masses");
+      tables.inertias = read_table<double>(prm, "Point masses", "Rotary inertias");
       prm.leave_subsection();
 
       prm.enter_subsection("Supports");
@@ -300,7 +388,7 @@ namespace beamslider
     // scene that sets a parameter twice is almost always an editing slip, so
     // it is refused. Also refuses a file without any `set`: it would run the
     // built-in defaults under the file's name.
-    void check_entries_unique(const std::string &filename, const std::string &text)
+    std::set<std::string> check_entries_unique(const std::string &filename, const std::string &text)
     {
       std::istringstream in(text);
       std::vector<std::string> sections;
@@ -341,12 +429,128 @@ namespace beamslider
       if (n_entries == 0)
         throw InputError("Scene file '" + filename + "' sets no parameter (no 'set Name = value' line); "
                          "see `beamslider scene-template`");
+      std::set<std::string> keys;
+      for (const auto &[key, line] : first_line)
+        keys.insert(key);
+      return keys;
+    }
+
+    std::string tag_list(const std::set<unsigned int> &tags)
+    {
+      std::string text;
+      for (const unsigned int t : tags)
+        text += (text.empty() ? "" : ", ") + std::to_string(t);
+      return text;
+    }
+
+    // Completes the beam from the tables: its point bodies and, with a mesh
+    // file (taken relative to the scene file), its elements, its sections
+    // and the length and reference section they imply. `set_keys` are the
+    // parameters the file or an override sets: with a mesh, an entry of the
+    // uniform section that says something else than the mesh is refused.
+    void build_beam(Scene &s, const SceneTables &t, const std::string &scene_file, const std::set<std::string> &set_keys)
+    {
+      BeamData &b = s.beam;
+      for (const auto &[x, m] : t.masses)
+        b.point_masses.push_back({x, m, t.inertias.count(x) ? t.inertias.at(x) : 0.});
+      for (const auto &[x, J] : t.inertias)
+        if (!t.masses.count(x))
+          b.point_masses.push_back({x, 0., J});
+      std::sort(b.point_masses.begin(), b.point_masses.end(),
+                [](const PointMass &l, const PointMass &r) { return l.position < r.position; });
+
+      if (b.mesh_file.empty())
+        {
+          for (const auto &[name, table] : t.sections)
+            if (!table.empty())
+              throw InputError("Parameter 'Sections/" + name + "' is set, but 'Beam/Mesh file' is empty: sections "
+                               "belong to a beam read from a mesh (set Beam/Mesh file, or remove the Sections entries)");
+          return;
+        }
+
+      namespace fs = std::filesystem;
+      fs::path mesh(b.mesh_file);
+      if (mesh.is_relative())
+        mesh = fs::absolute(fs::path(scene_file).parent_path() / mesh);
+      b.mesh_file  = mesh.lexically_normal().string();
+      b.mesh_cells = read_beam_mesh(b.mesh_file);
+
+      std::set<unsigned int> tags;
+      for (const BeamMeshCell &c : b.mesh_cells)
+        tags.insert(c.tag);
+      for (const auto &[name, table] : t.sections)
+        {
+          for (const unsigned int tag : tags)
+            if (!table.count(tag))
+              throw InputError("Parameter 'Sections/" + name + "' has no value for physical tag " + std::to_string(tag) +
+                               " of the mesh '" + b.mesh_file + "' (its tags: " + tag_list(tags) +
+                               "); give 'tag: value' for every tag");
+          for (const auto &entry : table)
+            if (!tags.count(entry.first))
+              throw InputError("Parameter 'Sections/" + name + "' gives a value for tag " + std::to_string(entry.first) +
+                               ", which no element of the mesh '" + b.mesh_file + "' carries (its tags: " +
+                               tag_list(tags) + ")");
+        }
+      for (const unsigned int tag : tags)
+        b.sections[tag] = {t.sections.at("Width").at(tag), t.sections.at("Thickness").at(tag),
+                           t.sections.at("Young's modulus").at(tag), t.sections.at("Density").at(tag)};
+
+      // Length and the reference (thickest) section follow from the mesh.
+      BeamSection thickest = b.sections.begin()->second;
+      for (const auto &[tag, section] : b.sections)
+        if (section.thickness > thickest.thickness)
+          thickest = section;
+      const std::array<std::tuple<const char *, double *, double>, 5> derived{
+        {{"Length", &b.length, b.mesh_cells.back().x_end},
+         {"Width", &b.width, thickest.width},
+         {"Thickness", &b.thickness, thickest.thickness},
+         {"Young's modulus", &b.youngs_modulus, thickest.youngs_modulus},
+         {"Density", &b.density, thickest.density}}};
+      for (const auto &[name, field, value] : derived)
+        {
+          if (set_keys.count(std::string("Beam/") + name) && *field != value)
+            throw InputError("Parameter 'Beam/" + std::string(name) + "' = " + num(*field) +
+                             " is not allowed with 'Beam/Mesh file': a mesh beam's " + name + " is " +
+                             (std::string(name) == "Length" ? "the mesh's length, " : "its thickest section's, ") +
+                             num(value) + "; remove the entry");
+          *field = value;
+        }
+      if (!set_keys.count("Discretisation/Number of elements"))
+        s.discretisation.n_elements = b.mesh_cells.size();
     }
 
     void require(const bool condition, const std::string &parameter, const double value, const std::string &allowed)
     {
       if (!condition)
         throw InputError("Parameter '" + parameter + "' = " + num(value) + " is not allowed: " + allowed);
+    }
+  } // namespace
+
+  namespace
+  {
+    // The conditions on a beam read from a mesh: every section a physical
+    // one, and the elements a whole multiple of the mesh's.
+    void validate_mesh_beam(const Scene &s)
+    {
+      const BeamData &b = s.beam;
+      for (const auto &[tag, section] : b.sections)
+        {
+          const std::string t = " of tag " + std::to_string(tag);
+          require(section.width > 0, "Sections/Width" + t, section.width, "must be > 0 m");
+          require(section.thickness > 0 && section.thickness < b.length / 20., "Sections/Thickness" + t,
+                  section.thickness, "must be in (0, L/20 = " + num(b.length / 20.) + ") m for Euler-Bernoulli theory");
+          require(section.youngs_modulus >= 1e6 && section.youngs_modulus <= 1e13, "Sections/Young's modulus" + t,
+                  section.youngs_modulus, "must be in [1e6, 1e13] Pa");
+          require(section.density >= 1 && section.density <= 1e5, "Sections/Density" + t, section.density,
+                  "must be in [1, 1e5] kg/m^3");
+          for (const double value : {section.bending_stiffness(), section.axial_stiffness(), section.mass_per_length()})
+            require(std::isnormal(value), "Sections/Width" + t, section.width,
+                    "with its thickness it gives a stiffness or mass per length outside the doubles of normal size");
+        }
+      const auto n_cells = static_cast<unsigned int>(b.mesh_cells.size());
+      require(s.discretisation.n_elements % n_cells == 0, "Discretisation/Number of elements", s.discretisation.n_elements,
+              "with a mesh file it must be a multiple of the mesh's " + std::to_string(n_cells) +
+                " elements (each is split into equal parts); leave it unset to take the mesh as it is");
     }
   } // namespace
 
@@ -399,8 +603,21 @@ namespace beamslider
                            " are not allowed: they give the " + name + " = " + num(value) +
                            ", outside the doubles of normal size [2.2e-308, 1.8e308]");
     }
+    if (s.beam.from_mesh())
+      validate_mesh_beam(s);
+    for (const PointMass &m : s.beam.point_masses)
+      {
+        require(m.position >= 0 && m.position <= s.beam.length, "Point masses (position)", m.position,
+                "a body must sit on the beam, x in [0, L = " + num(s.beam.length) + "] m");
+        require(std::isfinite(m.mass) && m.mass >= 0, "Point masses/Masses", m.mass, "must be >= 0 kg");
+        require(std::isfinite(m.rotary_inertia) && m.rotary_inertia >= 0, "Point masses/Rotary inertias",
+                m.rotary_inertia, "must be >= 0 kg m^2");
+      }
     require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
-            "R/h must be > 1: the slider's window must be taller than the beam is thick");
+            s.beam.from_mesh()
+              ? "R/h must be > 1, h = " + num(s.beam.thickness) + " m being the beam's thickest section: the slider "
+                "travels along the whole beam, so its window must clear the largest thickness it can meet"
+              : "R/h must be > 1: the slider's window must be taller than the beam is thick");
     require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
     require(s.slider.window_width < s.beam.length, "Slider/Window width", s.slider.window_width,
             "the slider must be narrower than the beam length L = " + num(s.beam.length) + " m");
@@ -464,8 +681,10 @@ namespace beamslider
   Scene read_scene(const std::string &filename, const std::vector<std::string> &overrides)
   {
     const std::string text = read_scene_text(filename);
-    check_entries_unique(filename, text);
+    std::set<std::string> set_keys = check_entries_unique(filename, text);
     check_overrides_unique(overrides);
+    for (const auto &o : overrides)
+      set_keys.insert(override_path(o));
 
     ParameterHandler prm;
     declare(prm, Scene());
@@ -481,7 +700,9 @@ namespace beamslider
     for (const auto &o : overrides)
       apply_override(prm, o);
 
-    Scene s = parse(prm);
+    SceneTables tables;
+    Scene s = parse(prm, tables);
+    build_beam(s, tables, filename, set_keys);
     const auto slash = filename.find_last_of('/');
     s.name           = filename.substr(slash == std::string::npos ? 0 : slash + 1);
     if (const auto dot = s.name.rfind(".prm"); dot != std::string::npos)

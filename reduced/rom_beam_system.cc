@@ -6,9 +6,9 @@
 
 namespace beamslider
 {
-  RomBeamSystem::RomBeamSystem(ReducedOrderModel rom, const double thickness, const BaseExcitation excitation)
+  RomBeamSystem::RomBeamSystem(ReducedOrderModel rom, ThicknessProfile thickness, const BaseExcitation excitation)
     : rom_(std::move(rom))
-    , thickness_(thickness)
+    , thickness_(std::move(thickness))
     , excitation_(excitation)
   {
     const ModalBasis &basis = rom_.basis();
@@ -22,10 +22,10 @@ namespace beamslider
         m << "reduced model: beam length L = " << basis.length << " m must be positive";
         throw std::invalid_argument(m.str());
       }
-    if (!(thickness_ > 0.))
+    if (!(thickness_.largest() > 0.))
       {
         std::ostringstream m;
-        m << "reduced model: beam thickness h = " << thickness_ << " m must be positive";
+        m << "reduced model: beam thickness h = " << thickness_.largest() << " m must be positive";
         throw std::invalid_argument(m.str());
       }
     if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
@@ -39,7 +39,7 @@ namespace beamslider
   {
     return RomBeamSystem(ReducedOrderModel(std::move(basis), scene.damping_ratio,
                                            scene.discretisation.geometric_nonlinearity),
-                         scene.beam.thickness, BaseExcitation::from_scene(scene.excitation));
+                         scene.beam.thickness_profile(), BaseExcitation::from_scene(scene.excitation));
   }
 
   void RomBeamSystem::evaluate(const double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const

@@ -26,8 +26,8 @@ namespace beamslider
   class RomBeamSystem : public BeamSystem
   {
   public:
-    // thickness h [m] of the beam (for the contact surfaces).
-    RomBeamSystem(ReducedOrderModel rom, double thickness, BaseExcitation excitation);
+    // thickness h(x) [m] of the beam (for the contact surfaces; a number for a uniform beam).
+    RomBeamSystem(ReducedOrderModel rom, ThicknessProfile thickness, BaseExcitation excitation);
 
     // The ROM of a scene on a given modal basis: damping ratio, geometric
     // nonlinearity switch, thickness and excitation from the scene.
@@ -35,7 +35,8 @@ namespace beamslider
 
     unsigned int n_dofs() const override { return rom_.n_modes(); }
     double length() const override { return rom_.basis().length; }
-    double thickness() const override { return thickness_; }
+    double thickness() const override { return thickness_.largest(); }
+    double thickness_at(const double x) const override { return thickness_.at(x); }
 
     // Throws std::out_of_range for x outside [0, L]: modes are not defined there.
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
@@ -67,7 +68,7 @@ namespace beamslider
 
   private:
     ReducedOrderModel rom_;
-    double thickness_;
+    ThicknessProfile thickness_; // h(x), piecewise constant [m]
     BaseExcitation excitation_;
 
     // Kept from the last free_velocity call, for step_work.

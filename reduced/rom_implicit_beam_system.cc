@@ -10,9 +10,9 @@
 
 namespace beamslider
 {
-  RomImplicitBeamSystem::RomImplicitBeamSystem(ReducedOrderModel rom, const double thickness,
+  RomImplicitBeamSystem::RomImplicitBeamSystem(ReducedOrderModel rom, ThicknessProfile thickness,
                                                BaseExcitation excitation)
-    : RomBeamSystem(std::move(rom), thickness, excitation)
+    : RomBeamSystem(std::move(rom), std::move(thickness), excitation)
   {
     const Eigen::ArrayXd w = model().basis().omega.array();
     c_                     = model().damping_coefficients();
@@ -23,7 +23,7 @@ namespace beamslider
   {
     return RomImplicitBeamSystem(ReducedOrderModel(std::move(basis), scene.damping_ratio,
                                                    scene.discretisation.geometric_nonlinearity),
-                                 scene.beam.thickness, BaseExcitation::from_scene(scene.excitation));
+                                 scene.beam.thickness_profile(), BaseExcitation::from_scene(scene.excitation));
   }
 
   void RomImplicitBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,

@@ -42,7 +42,7 @@ namespace beamslider
   class RomImplicitBeamSystem : public RomBeamSystem
   {
   public:
-    RomImplicitBeamSystem(ReducedOrderModel rom, double thickness, BaseExcitation excitation);
+    RomImplicitBeamSystem(ReducedOrderModel rom, ThicknessProfile thickness, BaseExcitation excitation);
 
     // The ROM of a scene on a given modal basis, stepped implicitly.
     static RomImplicitBeamSystem from_scene(const Scene &scene, ModalBasis basis);

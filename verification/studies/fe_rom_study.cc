@@ -72,11 +72,11 @@ namespace beamslider
         rom.set_cubic_terms(compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
       }
     if (setting.integrator == "implicit")
-      return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness,
+      return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
                                                      BaseExcitation::from_scene(scene.excitation));
     if (setting.integrator != "explicit")
       throw InputError("ROM integrator '" + setting.integrator + "' is not one of explicit, implicit");
-    return std::make_unique<RomBeamSystem>(std::move(rom), scene.beam.thickness,
+    return std::make_unique<RomBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
                                            BaseExcitation::from_scene(scene.excitation));
   }
 

@@ -89,6 +89,15 @@ namespace beamslider
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
       << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
       << " ladder-2"; // the ladder's rungs: version 2 has the FE reference at Δt/4
+    // A mesh beam by its elements and sections (not its file name alone:
+    // the file may change), and the point bodies.
+    for (const BeamMeshCell &cell : s.beam.mesh_cells)
+      c << ' ' << cell.x_begin << ' ' << cell.x_end << ' ' << cell.tag;
+    for (const auto &[tag, section] : s.beam.sections)
+      c << ' ' << tag << ' ' << section.width << ' ' << section.thickness << ' ' << section.youngs_modulus << ' '
+        << section.density;
+    for (const PointMass &body : s.beam.point_masses)
+      c << ' ' << body.position << ' ' << body.mass << ' ' << body.rotary_inertia;
     std::uint64_t hash = 14695981039346656037ull; // FNV-1a, 64 bit
     for (const unsigned char byte : c.str())
       {
