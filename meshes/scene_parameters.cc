@@ -478,8 +478,9 @@ namespace beamslider
       std::set<unsigned int> tags;
       for (const BeamMeshCell &c : b.mesh_cells)
         tags.insert(c.tag);
-      for (const auto &[name, table] : t.sections)
+      for (const std::string name : {"Width", "Thickness", "Young's modulus", "Density"}) // the file's order
         {
+          const std::map<unsigned int, double> &table = t.sections.at(name);
           for (const unsigned int tag : tags)
             if (!table.count(tag))
               throw InputError("Parameter 'Sections/" + name + "' has no value for physical tag " + std::to_string(tag) +
