@@ -272,7 +272,8 @@ namespace beamslider
       ideal.supports.pinned_end  = {{false, false}};
       // Quick mode: 16 elements here (the tongue moves by ~0.2 % in ŵ/h
       // against 32 elements: 2.726 against 2.721), to stay within ~20 s.
-      const unsigned int n_ideal = full ? n_elements : std::min(16u, n_elements);
+      // (A beam from a mesh keeps its elements: it cannot be coarsened.)
+      const unsigned int n_ideal = full || scene.beam.from_mesh() ? n_elements : std::min(16u, n_elements);
       const FEBeam ibeam(ideal, n_ideal);
       const FEModes imodes = compute_bending_modes(ibeam, 7);
       const double iw1     = imodes.omega[0];
@@ -355,7 +356,7 @@ namespace beamslider
        << " after the half-period symmetry): " << fixed(fe.seconds, 2) << " s for " << fe.points.size() << " points and "
        << fe.n_newton_iterations << " Newton iterations.\n\n";
 
-    if (full)
+    if (full && !scene.beam.from_mesh()) // a mesh beam cannot be coarsened to 16 elements
       {
         // The quick report's FE mesh (16 elements) against this one, and the
         // half-period symmetry against the full harmonic set on it.
