@@ -3,7 +3,6 @@
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
 
-#include "contact/output_file.h"
 #include "contact/trace_analysis.h"
 
 #include "contact/adaptation_run.h"
@@ -14,7 +13,7 @@
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>
@@ -126,11 +125,10 @@ namespace beamslider
         options.output_rate              = 1.;
         options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
         AdaptationRun run(scene, *beam, options);
-        OutputFile file(dir + "/free_periods.csv");
-        PeriodCsvWriter periods(file.stream(), file.path());
+        CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
         std::vector<PeriodRecord> records;
         run.on_period = [&periods, &records](const PeriodRecord &r) {
-          periods.write(r);
+          write_period_row(periods, r);
           records.push_back(r);
         };
         if (settings.verbose)
