@@ -192,7 +192,8 @@ namespace beamslider
         throw InputError(m.str());
       }
     const std::string dir = outcome.dir =
-      prepare_output_dir(common, scene, the_case ? "simulate/" + the_case->name : std::string("simulate"));
+      prepare_output_dir(common, scene, the_case ? "simulate/" + the_case->name : std::string("simulate"),
+                         resuming ? RunRecord::append : RunRecord::replace);
     // The chart's Python starts now and loads matplotlib while the run
     // computes; it draws once the CSV files are complete.
     EarlyPlot chart("plot_trace.py");
