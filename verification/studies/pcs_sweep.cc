@@ -91,6 +91,9 @@ namespace beamslider
     const long n_positions =
       static_cast<long>(std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L +
                                    1e-9)) + 1;
+    // Whether each run reached its end: pcs.csv holds the positions a branch
+    // reached, which its rows alone cannot tell from a complete branch.
+    CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"});
     for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down})
       {
         std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
@@ -109,6 +112,8 @@ namespace beamslider
         if (branch.last_run.status != RunStatus::completed)
           console() << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
                     << "): " << branch.last_run.message << std::endl;
+        runs.row({to_string(direction), to_string(branch.last_run.status), CsvWriter::cell(branch.points.size()),
+                  std::to_string(n_positions), CsvWriter::cell(branch.last_run.t_end)});
         (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
       }
     study.crossings_up   = force_zero_crossings(study.up.points);
@@ -157,6 +162,7 @@ namespace beamslider
         if (study.free_run.status != RunStatus::completed)
           console() << "  free slider stopped early (" << to_string(study.free_run.status)
                     << "): " << study.free_run.message << std::endl;
+        runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
       }
 
     study.plotted = run_plot_script("plot_pcs.py", {dir, scene.name});
@@ -174,13 +180,17 @@ namespace beamslider
       << ".\n";
     for (const PcsBranch *b : {&study.up, &study.down})
       if (b->last_run.status != RunStatus::completed)
-        s << "- Branch " << to_string(b->direction) << " stopped early: " << b->last_run.message << "\n";
+        s << "- Branch " << to_string(b->direction) << " stopped early (" << to_string(b->last_run.status) << ") after "
+          << b->points.size() << " positions: " << b->last_run.message << "\n";
+    if (study.free_run.n_steps == 0 && study.free_run.status != RunStatus::completed)
+      s << "- The free slider's run stopped before its first step (" << to_string(study.free_run.status)
+        << "): " << study.free_run.message << "\n";
     if (study.free_run.n_steps > 0)
       {
         s << "- Free slider from x_C/L = " << fixed(scene.initial.slider_position_over_L, 3) << " over "
           << fixed(study.free_run.t_end, 1) << " s: ended at x_C/L = " << fixed(study.free_final_x_over_L, 3);
         if (study.free_run.status != RunStatus::completed)
-          s << " (stopped: " << study.free_run.message << ")";
+          s << " (stopped early, " << to_string(study.free_run.status) << ": " << study.free_run.message << ")";
         s << ".";
         if (study.free_jump)
           {
@@ -238,6 +248,6 @@ namespace beamslider
                 << describe(study, scene) << "\n";
     if (study.plotted)
       report.text << "![PCS sweep](pcs.png)\n\n";
-    report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`.\n\n";
+    report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`, `runs.csv`.\n\n";
   }
 } // namespace beamslider
