@@ -1,14 +1,10 @@
 // Free-slider and prescribed-position runs, see adaptation_run.h.
 #include "contact/adaptation_run.h"
 #include "contact/interruption.h"
-#include "contact/output_file.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -366,84 +362,31 @@ namespace beamslider
     return result;
   }
 
-  namespace
+  std::vector<std::string> trace_csv_columns()
   {
-    // Throws OutputError if the stream has failed; errno (cleared before the
-    // writes that this check follows) holds the system's reason.
-    void check_stream(const std::ostream &out, const std::string &name)
-    {
-      if (!out)
-        throw OutputError("result file '" + name + "' could not be written: " +
-                          (errno ? std::strerror(errno) : "the stream reported an error"));
-    }
-
-    void flush_checked(std::ostream &out, const std::string &name)
-    {
-      errno = 0;
-      out.flush();
-      check_stream(out, name);
-    }
-  } // namespace
-
-  TraceCsvWriter::TraceCsvWriter(std::ostream &out, const unsigned int flush_every, std::string name,
-                                 const bool with_header)
-    : out_(out)
-    , flush_every_(std::max(1u, flush_every))
-    , name_(std::move(name))
-  {
-    if (with_header)
-      out_ << header() << '\n';
-    flush_checked(out_, name_);
+    return {"t_s", "slider_x_over_L", "slider_z_m", "slider_beta_rad", "w_center_m", "w_probe_m", "amplitude_over_h"};
   }
 
-  // A destructor must not throw; whoever needs to know calls flush() first.
-  TraceCsvWriter::~TraceCsvWriter() { out_.flush(); }
-
-  void TraceCsvWriter::flush()
+  void write_trace_row(CsvWriter &csv, const TraceRow &r)
   {
-    flush_checked(out_, name_);
-    pending_ = 0;
+    csv.numbers({r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h}, 10);
   }
 
-  const char *TraceCsvWriter::header()
+  std::vector<std::string> period_csv_columns()
   {
-    return "t_s,slider_x_over_L,slider_z_m,slider_beta_rad,w_center_m,w_probe_m,amplitude_over_h";
+    return {"period",           "t_start_s",         "t_end_s",         "slider_x_over_L",
+            "amplitude_over_h", "mean_contact_force_x_N", "energy_start_J", "energy_end_J",
+            "work_gravity_J",   "work_damping_J",    "work_excitation_J", "work_impact_J",
+            "work_friction_J",  "work_base_contact_J", "energy_residual_J", "max_solver_iterations",
+            "contact_fraction"};
   }
 
-  void TraceCsvWriter::write(const TraceRow &r)
+  void write_period_row(CsvWriter &csv, const PeriodRecord &p)
   {
-    errno = 0;
-    out_ << std::setprecision(10) << r.t << ',' << r.slider_x_over_L << ',' << r.slider_z << ',' << r.slider_beta
-         << ',' << r.w_center << ',' << r.w_probe << ',' << r.amplitude_over_h << '\n';
-    check_stream(out_, name_); // a full buffer was written out just now and failed
-    if (++pending_ >= flush_every_)
-      flush();
-  }
-
-  PeriodCsvWriter::PeriodCsvWriter(std::ostream &out, std::string name, const bool with_header)
-    : out_(out)
-    , name_(std::move(name))
-  {
-    if (with_header)
-      out_ << header() << '\n';
-    flush_checked(out_, name_);
-  }
-
-  const char *PeriodCsvWriter::header()
-  {
-    return "period,t_start_s,t_end_s,slider_x_over_L,amplitude_over_h,mean_contact_force_x_N,energy_start_J,"
-           "energy_end_J,work_gravity_J,work_damping_J,work_excitation_J,work_impact_J,work_friction_J,"
-           "work_base_contact_J,energy_residual_J,max_solver_iterations,contact_fraction";
-  }
-
-  void PeriodCsvWriter::write(const PeriodRecord &p)
-  {
-    errno = 0;
-    out_ << std::setprecision(10) << p.index << ',' << p.t_start << ',' << p.t_end << ',' << p.slider_x_over_L << ','
-         << p.amplitude_over_h << ',' << p.mean_horizontal_contact_force << ',' << p.energy_start << ','
-         << p.energy_end << ',' << p.work_gravity << ',' << p.work_damping << ',' << p.work_excitation << ','
-         << p.work_impact << ',' << p.work_friction << ',' << p.work_base_contact << ',' << p.energy_residual << ','
-         << p.max_solver_iterations << ',' << p.contact_fraction << '\n';
-    flush_checked(out_, name_);
+    auto c = [](const double x) { return CsvWriter::cell(x, 10); };
+    csv.row({CsvWriter::cell(p.index), c(p.t_start), c(p.t_end), c(p.slider_x_over_L), c(p.amplitude_over_h),
+             c(p.mean_horizontal_contact_force), c(p.energy_start), c(p.energy_end), c(p.work_gravity),
+             c(p.work_damping), c(p.work_excitation), c(p.work_impact), c(p.work_friction), c(p.work_base_contact),
+             c(p.energy_residual), CsvWriter::cell(p.max_solver_iterations), c(p.contact_fraction)});
   }
 } // namespace beamslider

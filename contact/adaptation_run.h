@@ -21,12 +21,13 @@
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
 #include "contact/checkpoint.h"
+#include "contact/csv_writer.h"
 #include "contact/moreau_stepper.h"
 #include "meshes/scene.h"
 
 #include <functional>
 #include <memory>
-#include <ostream>
+#include <vector>
 #include <string>
 
 namespace beamslider
@@ -180,37 +181,11 @@ namespace beamslider
     Eigen::VectorXd centre_grad_w_; // ∂w(L/2)/∂q: the centre's deflection, tracked every step, is its dot with q
   };
 
-  // trace.csv: header, one row per call, flushes every `flush_every` rows and
-  // on destruction, so a long run never loses finished work. A failed write
-  // or flush throws OutputError naming `name` (the file) and the reason.
-  // `with_header` = false continues a file that has one (a resumed run).
-  class TraceCsvWriter
-  {
-  public:
-    explicit TraceCsvWriter(std::ostream &out, unsigned int flush_every = 1000, std::string name = "trace.csv",
-                            bool with_header = true);
-    ~TraceCsvWriter();
-    void write(const TraceRow &row);
-    void flush();
-    static const char *header();
-
-  private:
-    std::ostream &out_;
-    unsigned int flush_every_, pending_ = 0;
-    std::string name_;
-  };
-
-  // periods.csv: one row per excitation period (PeriodRecord), flushed each
-  // row; failures throw OutputError as for TraceCsvWriter.
-  class PeriodCsvWriter
-  {
-  public:
-    explicit PeriodCsvWriter(std::ostream &out, std::string name = "periods.csv", bool with_header = true);
-    void write(const PeriodRecord &record);
-    static const char *header();
-
-  private:
-    std::ostream &out_;
-    std::string name_;
-  };
+  // trace.csv and periods.csv (written through CsvWriter): their columns
+  // and one row of a TraceRow / PeriodRecord, 10 significant digits (a
+  // resumed run's rows must equal those of an uninterrupted one).
+  std::vector<std::string> trace_csv_columns();
+  void write_trace_row(CsvWriter &csv, const TraceRow &row);
+  std::vector<std::string> period_csv_columns();
+  void write_period_row(CsvWriter &csv, const PeriodRecord &record);
 } // namespace beamslider

@@ -125,14 +125,15 @@ namespace beamslider
     std::filesystem::create_directories(directory_, ec);
     if (ec)
       throw std::runtime_error("animation: cannot create '" + directory_ + "': " + ec.message());
-    csv_.open(directory_ + "/frames.csv");
-    if (!csv_)
-      throw std::runtime_error("animation: cannot write '" + directory_ + "/frames.csv'");
-    csv_ << "# drawn geometry of each frame (magnification " << magnification_
-         << "); parts: beam_top, beam_bottom, slider_outer, slider_window (closed polylines), contact (force on "
-            "the slider at a corner)\n";
-    csv_ << "frame,t_s,part,x_m,z_m,fx_N,fz_N\n";
-    csv_ << std::setprecision(9);
+    std::ostringstream comment;
+    comment << "drawn geometry of each frame (magnification " << magnification_
+            << "); parts: beam_top, beam_bottom, slider_outer, slider_window (closed polylines), contact (force on "
+               "the slider at a corner)";
+    CsvOptions options;
+    options.comment     = comment.str();
+    options.flush_every = 0; // with the .pvd, every 25 frames (write())
+    csv_.emplace(directory_ + "/frames.csv",
+                 std::vector<std::string>{"frame", "t_s", "part", "x_m", "z_m", "fx_N", "fz_N"}, options);
   }
 
   VtkAnimationWriter::~VtkAnimationWriter()
@@ -198,7 +199,7 @@ namespace beamslider
 
       for (const auto &[part, line] : {std::pair{"beam_top", &top}, std::pair{"beam_bottom", &bottom}})
         for (const auto &p : *line)
-          csv_ << index << ',' << frame.t << ',' << part << ',' << p[0] << ',' << p[1] << ",0,0\n";
+          csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
     }
 
     // Slider: drawn window centre S and rotation; outer box and window as closed polylines.
@@ -235,7 +236,7 @@ namespace beamslider
           for (unsigned int k = 0; k <= 4; ++k)
             {
               const Eigen::Vector2d p = drawn((*box)[k % 4]);
-              csv_ << index << ',' << frame.t << ',' << part << ',' << p[0] << ',' << p[1] << ",0,0\n";
+              csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
             }
         }
       vtkNew<vtkPolyData> poly;
@@ -264,8 +265,7 @@ namespace beamslider
           const double F[3] = {s.force[k][0], 0., s.force[k][1]};
           force->InsertNextTuple(F);
           normal->InsertNextValue(s.force[k].norm());
-          csv_ << index << ',' << frame.t << ",contact," << p[0] << ',' << p[1] << ',' << s.force[k][0] << ','
-               << s.force[k][1] << '\n';
+          csv_row(index, frame.t, "contact", p, s.force[k]);
         }
       vtkNew<vtkPolyData> poly;
       poly->SetPoints(points);
@@ -282,7 +282,7 @@ namespace beamslider
     if (times_.size() % 25 == 0)
       {
         write_pvd();
-        flush_csv();
+        csv_->flush();
       }
   }
 
@@ -311,13 +311,14 @@ namespace beamslider
   void VtkAnimationWriter::finish()
   {
     write_pvd();
-    flush_csv();
+    csv_->flush();
   }
 
-  void VtkAnimationWriter::flush_csv()
+  void VtkAnimationWriter::csv_row(const unsigned int frame, const double t, const std::string &part,
+                                   const Eigen::Vector2d &p, const Eigen::Vector2d &force)
   {
-    csv_.flush();
-    if (!csv_)
-      throw OutputError("result file '" + directory_ + "/frames.csv' could not be written");
+    // 9 significant digits; a zero force is written "0".
+    auto c = [](const double x) { return CsvWriter::cell(x, 9); };
+    csv_->row({CsvWriter::cell(frame), c(t), part, c(p[0]), c(p[1]), c(force[0]), c(force[1])});
   }
 } // namespace beamslider

@@ -24,12 +24,13 @@
 // renders a strip of stills to PNG.
 #pragma once
 
+#include "contact/csv_writer.h"
 #include "contact/moreau_stepper.h"
 
 #include <Eigen/Dense>
 
 #include <array>
-#include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -88,7 +89,8 @@ namespace beamslider
     std::string directory_, name_;
     double magnification_;
     std::vector<double> times_;
-    std::ofstream csv_;
-    void flush_csv(); // throws OutputError if frames.csv could not be written
+    std::optional<CsvWriter> csv_; // frames.csv, opened once the folder exists
+    void csv_row(unsigned int frame, double t, const std::string &part, const Eigen::Vector2d &p,
+                 const Eigen::Vector2d &force);
   };
 } // namespace beamslider

@@ -1,13 +1,11 @@
 // STEP and ICE identification of the modal cubic stiffness (see cubic_fit.h
 // for the model, units and references).
 #include "reduced/cubic_fit.h"
+#include "contact/csv_writer.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
-#include <iomanip>
-#include <ostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -358,27 +356,20 @@ namespace beamslider
     return fit;
   }
 
-  void write_coefficients_csv(std::ostream &out, const std::vector<CubicTerm> &terms)
-  {
-    out << "n,j,k,l,value\n" << std::setprecision(17);
-    for (const auto &t : terms)
-      out << t.n + 1 << ',' << t.j + 1 << ',' << t.k + 1 << ',' << t.l + 1 << ',' << t.value << '\n';
-  }
-
   void write_coefficients_csv(const std::string &filename, const std::vector<CubicTerm> &terms)
   {
-    std::ofstream out(filename);
-    if (!out)
-      throw std::runtime_error("write_coefficients_csv: cannot open '" + filename + "' for writing");
-    write_coefficients_csv(out, terms);
-    if (!out)
-      throw std::runtime_error("write_coefficients_csv: writing '" + filename + "' failed");
+    CsvWriter csv(filename, {"n", "j", "k", "l", "value"});
+    for (const auto &t : terms)
+      csv.row({CsvWriter::cell(t.n + 1), CsvWriter::cell(t.j + 1), CsvWriter::cell(t.k + 1), CsvWriter::cell(t.l + 1),
+               CsvWriter::cell(t.value, 17)});
+    csv.close();
   }
 
-  void write_quadratic_coefficients_csv(std::ostream &out, const std::vector<QuadraticTerm> &terms)
+  void write_quadratic_coefficients_csv(const std::string &filename, const std::vector<QuadraticTerm> &terms)
   {
-    out << "n,j,k,value\n" << std::setprecision(17);
+    CsvWriter csv(filename, {"n", "j", "k", "value"});
     for (const auto &t : terms)
-      out << t.n + 1 << ',' << t.j + 1 << ',' << t.k + 1 << ',' << t.value << '\n';
+      csv.row({CsvWriter::cell(t.n + 1), CsvWriter::cell(t.j + 1), CsvWriter::cell(t.k + 1), CsvWriter::cell(t.value, 17)});
+    csv.close();
   }
 } // namespace beamslider

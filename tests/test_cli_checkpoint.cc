@@ -3,7 +3,8 @@
 // the ROM and for the FE model (whose modified Newton iteration reuses a
 // factorisation, so the checkpoint must carry where it was made), also after
 // a kill -9 in the middle of a piece; a checkpoint of another scene, another
-// version or with a flipped byte is refused.
+// version or with a flipped byte is refused. A resume adds its record to
+// the folder's run.txt.
 #include "tests/cli_runner.h"
 
 #include <gtest/gtest.h>
@@ -37,10 +38,18 @@ namespace
                           "--output", (dir / "pieces").string()});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     ASSERT_TRUE(fs::exists(dir / "pieces" / "checkpoint.bin"));
+    const std::string first_record = read_file(dir / "pieces" / "run.txt");
     run = run_beamslider({"simulate", "--resume", (dir / "pieces").string(), "--end-time", "2"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     expect_same_bytes(dir / "straight" / "trace.csv", dir / "pieces" / "trace.csv");
     expect_same_bytes(dir / "straight" / "periods.csv", dir / "pieces" / "periods.csv");
+    // run.txt keeps the history: the first run's record, then the resume's.
+    const std::string records = read_file(dir / "pieces" / "run.txt");
+    ASSERT_EQ(records.compare(0, first_record.size(), first_record), 0) << records;
+    const std::string added = records.substr(first_record.size());
+    EXPECT_NE(added.find("command:"), std::string::npos) << added;
+    EXPECT_NE(added.find("--resume"), std::string::npos) << added;
+    EXPECT_EQ(first_record.find("--resume"), std::string::npos) << first_record;
     fs::remove_all(dir);
   }
 } // namespace

@@ -140,6 +140,34 @@ TEST(Commands, SweepWritesTheDocumentedColumns)
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(starts_with(first_line(dir / "pcs.csv"), "x_over_L,direction,amplitude_over_h,mean_fx_N"))
     << first_line(dir / "pcs.csv");
+  // runs.csv: both branches reached all three positions.
+  EXPECT_EQ(first_line(dir / "runs.csv"), "run,status,positions,positions_planned,t_end_s");
+  const auto runs = text_rows(dir / "runs.csv");
+  ASSERT_EQ(runs.size(), 2u);
+  for (const auto &r : runs)
+    EXPECT_EQ(std::vector<std::string>(r.begin(), r.begin() + 4),
+              (std::vector<std::string>{r[0], "completed", "3", "3"}));
+  fs::remove_all(dir);
+}
+
+// A branch that stops early is a result, not only a console line (which
+// --quiet silences): runs.csv and summary.md say so, and the exit status is 1.
+TEST(Commands, SweepThatStopsEarlySaysSoInItsFiles)
+{
+  const fs::path dir = fresh_folder("cmd_sweep_stopped");
+  const CliRun run   = run_beamslider({"sweep", "--from", "0.30", "--to", "0.32", "--step", "0.01", "--settle-time",
+                                       "0.05", "--average-time", "0.05", "--free-time", "0", "--set",
+                                       "Contact/Gravity=1e30", "--quiet", "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  const auto runs = text_rows(dir / "runs.csv");
+  ASSERT_EQ(runs.size(), 2u);
+  for (const auto &r : runs)
+    {
+      EXPECT_EQ(r[1], "unphysical_state") << r[0];
+      EXPECT_LT(std::stoi(r[2]), 3) << r[0];
+    }
+  EXPECT_NE(read_file(dir / "summary.md").find("stopped early (unphysical_state)"), std::string::npos)
+    << read_file(dir / "summary.md");
   fs::remove_all(dir);
 }
 

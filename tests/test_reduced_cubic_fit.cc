@@ -12,6 +12,7 @@
 // - ICE with an exact static solve (Newton on ω²q + f(q) = f̂) recovers the
 //   same tensor by least squares; with a non-cubic (quintic) term the
 //   identified coefficient drifts with the load level as the theory says.
+#include "contact/output_file.h"
 #include "reduced/cubic_fit.h"
 #include "reduced/rom_operator.h"
 #include "tests/test_reduced_clamped_beam.h"
@@ -19,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -256,13 +258,17 @@ TEST(ImplicitCondensation, CoefficientDriftsWithLoadLevelWhenTheModelIsNotCubic)
 TEST(CoefficientFiles, CsvHasOneBasedModeNumbersAndFullPrecision)
 {
   const std::vector<CubicTerm> terms = {{0, 0, 0, 0, 1.2345678901234567e12}, {2, 0, 1, 2, -3.5}};
-  std::ostringstream out;
-  write_coefficients_csv(out, terms);
-  EXPECT_EQ(out.str(), "n,j,k,l,value\n1,1,1,1,1234567890123.4568\n3,1,2,3,-3.5\n");
-  std::ostringstream qout;
-  write_quadratic_coefficients_csv(qout, {{1, 0, 1, 0.25}});
-  EXPECT_EQ(qout.str(), "n,j,k,value\n2,1,2,0.25\n");
-  EXPECT_THROW(write_coefficients_csv("/nonexistent-dir/coefficients.csv", terms), std::runtime_error);
+  const std::string dir = ::testing::TempDir();
+  auto text             = [](const std::string &path) {
+    std::ostringstream s;
+    s << std::ifstream(path).rdbuf();
+    return s.str();
+  };
+  write_coefficients_csv(dir + "coefficients.csv", terms);
+  EXPECT_EQ(text(dir + "coefficients.csv"), "n,j,k,l,value\n1,1,1,1,1234567890123.4568\n3,1,2,3,-3.5\n");
+  write_quadratic_coefficients_csv(dir + "quadratic.csv", {{1, 0, 1, 0.25}});
+  EXPECT_EQ(text(dir + "quadratic.csv"), "n,j,k,value\n2,1,2,0.25\n");
+  EXPECT_THROW(write_coefficients_csv("/nonexistent-dir/coefficients.csv", terms), OutputError);
 }
 
 TEST(CoefficientIdentificationErrors, BadSettingsNameTheParameter)

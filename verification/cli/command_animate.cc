@@ -8,7 +8,6 @@
 // drawn by scripts/plot_frames.py).
 #include "contact/adaptation_run.h"
 #include "contact/interruption.h"
-#include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
@@ -54,9 +53,10 @@ namespace beamslider
     run_options.end_time          = end_time;
     run_options.progress_interval = 1e9;
     AdaptationRun run(scene, *beam, run_options);
-    OutputFile trace_file(dir + "/trace.csv");
-    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path());
-    run.on_trace_row = [&trace](const TraceRow &row) { trace.write(row); };
+    CsvOptions trace_options;
+    trace_options.flush_every = 1000; // 1000 rows per simulated second
+    CsvWriter trace(dir + "/trace.csv", trace_csv_columns(), trace_options);
+    run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
 
     VtkAnimationWriter writer(dir, options.magnification);
     const auto start = std::chrono::steady_clock::now();
@@ -71,8 +71,7 @@ namespace beamslider
         writer.write(make_animation_frame(run.stepper()));
       }
     run.finish_trace();
-    trace.flush();
-    trace_file.close();
+    trace.close();
     writer.finish();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last.status != RunStatus::completed)

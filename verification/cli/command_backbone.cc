@@ -27,7 +27,7 @@
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_operator.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

@@ -47,7 +47,7 @@ namespace beamslider
       return quoted + "'";
     }
 
-    void write_run_record(const std::string &dir, const Scene &scene)
+    void write_run_record(const std::string &dir, const Scene &scene, const RunRecord record)
     {
       write_text_file(dir + "/parameters.prm",
                       "# The scene '" + scene.name + "' as this run used it (after --set and --case), written by "
@@ -65,7 +65,10 @@ namespace beamslider
           << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
           << " (git describe of the source tree when the build was configured)\n"
           << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
-      write_text_file(dir + "/run.txt", run.str());
+      const bool append = record == RunRecord::append && fs::exists(dir + "/run.txt", ec);
+      OutputFile file(dir + "/run.txt", append);
+      file.stream() << (append ? "\n" : "") << run.str(); // records apart by a blank line
+      file.close();
     }
   } // namespace
 
@@ -74,7 +77,8 @@ namespace beamslider
     command_line().assign(argv, argv + argc);
   }
 
-  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command)
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
+                                 const RunRecord record)
   {
     const fs::path dir = !common.output_dir.empty() ? fs::path(common.output_dir)
                          : command.empty()           ? fs::path("reports") / scene.name
@@ -85,7 +89,7 @@ namespace beamslider
       throw OutputError("output folder '" + dir.string() + "' cannot be created: " + ec.message());
     if (!fs::is_directory(dir, ec))
       throw OutputError("output folder '" + dir.string() + "' is not a folder");
-    write_run_record(dir.string(), scene);
+    write_run_record(dir.string(), scene, record);
     return dir.string();
   }
 

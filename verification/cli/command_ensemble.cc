@@ -17,7 +17,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
 #include "verification/studies/console.h"
@@ -134,12 +134,12 @@ namespace beamslider
         }
     }
     {
-      OutputFile file(dir + "/member_periods.csv");
-      file.stream() << "member,t_s,x_over_L,amplitude_over_h\n" << std::setprecision(8);
+      CsvWriter csv(dir + "/member_periods.csv", {"member", "t_s", "x_over_L", "amplitude_over_h"});
       for (const auto &m : members)
         for (const auto &p : m.periods)
-          file.stream() << m.index << ',' << p.t_end << ',' << p.slider_x_over_L << ',' << p.amplitude_over_h << '\n';
-      file.close();
+          csv.row({CsvWriter::cell(m.index), CsvWriter::cell(p.t_end, 8), CsvWriter::cell(p.slider_x_over_L, 8),
+                   CsvWriter::cell(p.amplitude_over_h, 8)});
+      csv.close();
     }
 
     const OutcomeSamples samples = outcome_samples(members);

@@ -23,21 +23,19 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/mpi_cells.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"
 #include "verification/studies/console.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
-#include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -53,27 +51,13 @@ namespace beamslider
       return s.str();
     }
 
-    // Appends to a file and makes it reach the disk, checked.
-    void append_checked(const std::string &path, const std::string &text)
+    void write_published_cases(const std::string &path)
     {
-      std::FILE *f = std::fopen(path.c_str(), "ab");
-      if (!f)
-        throw OutputError("cannot open '" + path + "' to append: " + std::strerror(errno));
-      const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-      const bool flushed = std::fflush(f) == 0;
-      const bool closed  = std::fclose(f) == 0;
-      if (!written || !flushed || !closed)
-        throw OutputError("cannot write to '" + path + "': " + std::strerror(errno));
-    }
-
-    std::string published_cases_csv()
-    {
-      std::ostringstream out;
-      out << "name,frequency_hz,acceleration_m_s2,start_x_over_L,expected_outcome\n";
+      CsvWriter csv(path, {"name", "frequency_hz", "acceleration_m_s2", "start_x_over_L", "expected_outcome"});
       for (const PublishedMapCase &c : published_map_cases())
-        out << c.name << ',' << c.frequency_hz << ',' << c.acceleration << ',' << c.start_over_L << ','
-            << c.expected_outcome << '\n';
-      return out.str();
+        csv.row({c.name, CsvWriter::cell(c.frequency_hz, 6), CsvWriter::cell(c.acceleration, 6),
+                 CsvWriter::cell(c.start_over_L, 6), c.expected_outcome});
+      csv.close();
     }
 
     std::string duration_text(const double seconds)
@@ -139,6 +123,7 @@ namespace beamslider
 
     const std::vector<std::string> columns = map_csv_columns(grid);
     std::string dir, map_csv;
+    std::optional<CsvWriter> map_rows, timing; // rank 0's map.csv and timing.csv
     std::vector<std::size_t> todo;
     std::size_t n_skipped = 0;
     if (root)
@@ -172,21 +157,23 @@ namespace beamslider
         write_text_file(settings_path, what.str());
         // map.csv anew with the complete cells only (atomically: a kill now
         // leaves the old file or the new one).
-        std::string header;
-        for (std::size_t k = 0; k < columns.size(); ++k)
-          header += (k ? "," : "") + columns[k];
-        std::string kept = header + "\n";
+        std::string kept = CsvWriter::line(columns) + "\n";
         for (const auto &[key, rows] : finished)
           kept += rows;
         write_file_atomically(map_csv, kept);
+        // The cells computed now are appended, each row flushed as written.
+        CsvOptions continued;
+        continued.append = true;
+        map_rows.emplace(map_csv, columns, continued);
+        CsvOptions timing_options;
+        timing_options.append = !read_whole(dir + "/timing.csv").empty();
+        timing.emplace(dir + "/timing.csv", std::vector<std::string>{"cell", "rank", "wall_s"}, timing_options);
         for (std::size_t c = 0; c < n_cells; ++c)
           if (finished.count(map_cell_key(grid, c)))
             ++n_skipped;
           else
             todo.push_back(c);
-        write_text_file(dir + "/published_cases.csv", published_cases_csv());
-        if (read_whole(dir + "/timing.csv").empty())
-          write_text_file(dir + "/timing.csv", "cell,rank,wall_s\n");
+        write_published_cases(dir + "/published_cases.csv");
 
         console() << "map " << base.name << ": " << n_cells << " cells";
         for (const MapAxis &a : grid.axes)
@@ -214,24 +201,17 @@ namespace beamslider
       [&](const std::size_t cell, const std::string &result, const unsigned int rank) {
         const std::size_t cut = result.rfind("#wall ");
         const std::string rows = result.substr(0, cut);
-        append_checked(map_csv, rows);
         const double wall = cut == std::string::npos ? 0. : std::stod(result.substr(cut + 6));
-        append_checked(dir + "/timing.csv",
-                       map_cell_key(grid, cell).insert(0, "\"") + "\"," + std::to_string(rank) + "," +
-                         std::to_string(wall) + "\n");
-        ++n_done;
         std::istringstream lines(rows);
         std::string line;
         while (std::getline(lines, line))
           {
-            const std::size_t k = [&] {
-              std::size_t pos = 0;
-              for (std::size_t i = 0; i < grid.axes.size() + 3; ++i)
-                pos = line.find(',', pos) + 1;
-              return pos;
-            }();
-            ++class_counts[line.substr(k, line.find(',', k) - k)];
+            const std::vector<std::string> cells = CsvWriter::cells(line);
+            map_rows->row(cells);
+            ++class_counts[cells[grid.axes.size() + 3]]; // the outcome column
           }
+        timing->row({"\"" + map_cell_key(grid, cell) + "\"", std::to_string(rank), std::to_string(wall)});
+        ++n_done;
         const double elapsed = std::chrono::duration<double>(clock::now() - work_start).count();
         const double rate    = n_done / elapsed;
         console() << "  cells " << n_done + n_skipped << "/" << n_cells << " (" << map_cell_key(grid, cell)

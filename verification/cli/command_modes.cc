@@ -5,7 +5,7 @@
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

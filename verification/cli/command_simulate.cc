@@ -192,7 +192,8 @@ namespace beamslider
         throw InputError(m.str());
       }
     const std::string dir = outcome.dir =
-      prepare_output_dir(common, scene, the_case ? "simulate/" + the_case->name : std::string("simulate"));
+      prepare_output_dir(common, scene, the_case ? "simulate/" + the_case->name : std::string("simulate"),
+                         resuming ? RunRecord::append : RunRecord::replace);
     // The chart's Python starts now and loads matplotlib while the run
     // computes; it draws once the CSV files are complete.
     EarlyPlot chart("plot_trace.py");
@@ -267,12 +268,17 @@ namespace beamslider
         periods = saved.periods;
         console() << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
       }
-    OutputFile trace_file(dir + "/trace.csv", resuming), period_file(dir + "/periods.csv", resuming);
-    TraceCsvWriter trace(trace_file.stream(), 1000, trace_file.path(), !resuming);
-    PeriodCsvWriter period_writer(period_file.stream(), period_file.path(), !resuming);
-    run.on_trace_row = [&trace](const TraceRow &row) { trace.write(row); };
+    // A resumed run appends to the files it continues. The trace (1000 rows
+    // per simulated second) is flushed every 1000 rows, periods.csv every row.
+    CsvOptions trace_options, period_options;
+    trace_options.append      = resuming;
+    trace_options.flush_every = 1000;
+    period_options.append     = resuming;
+    CsvWriter trace(dir + "/trace.csv", trace_csv_columns(), trace_options);
+    CsvWriter period_writer(dir + "/periods.csv", period_csv_columns(), period_options);
+    run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
     run.on_period    = [&](const PeriodRecord &r) {
-      period_writer.write(r);
+      write_period_row(period_writer, r);
       periods.push_back(r);
     };
     if (verbose)
@@ -316,8 +322,7 @@ namespace beamslider
         const double every = options.checkpoint_every.value_or(0.);
         auto write_checkpoint = [&] {
           trace.flush();
-          trace_file.flush();
-          period_file.flush();
+          period_writer.flush();
           RunDescription d;
           d.scene_file   = scene_file;
           d.overrides    = common.overrides;
@@ -326,8 +331,8 @@ namespace beamslider
           d.setting      = setting;
           d.end_time     = end_time;
           d.why          = why;
-          d.trace_bytes  = std::filesystem::file_size(trace_file.path());
-          d.period_bytes = std::filesystem::file_size(period_file.path());
+          d.trace_bytes  = std::filesystem::file_size(trace.path());
+          d.period_bytes = std::filesystem::file_size(period_writer.path());
           d.n_steps      = saved.n_steps + result.n_steps;
           d.wall_seconds = saved.wall_seconds +
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -360,9 +365,8 @@ namespace beamslider
         run.finish_trace();
       }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    trace.flush();
-    trace_file.close();
-    period_file.close();
+    trace.close();
+    period_writer.close();
 
     outcome.result       = result;
     outcome.wall_seconds = wall;

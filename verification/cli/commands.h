@@ -152,9 +152,17 @@ namespace beamslider
   //                   complete, in the scene-file format (read_scene reads it
   //                   back bit for bit);
   //   run.txt         the command line, working directory, time (UTC),
-  //                   beamslider version and source revision.
+  //                   beamslider version and source revision; a run that
+  //                   continues the folder's run (simulate --resume) appends
+  //                   its record, so the folder keeps every one.
   // Throws OutputError if the folder or either file cannot be written.
-  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command);
+  enum class RunRecord
+  {
+    replace,
+    append
+  };
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
+                                 RunRecord record = RunRecord::replace);
 
   // The process's command line, for run.txt (main() records it first).
   void record_command_line(int argc, const char *const *argv);

@@ -7,7 +7,7 @@
 #include "fem/fe_statics.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 

@@ -17,7 +17,7 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/report/report.h"
 #include "verification/report/report_ladder.h"
 #include "verification/studies/error_ladder.h"

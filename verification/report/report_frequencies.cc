@@ -3,7 +3,7 @@
 #include "fem/fe_modes.h"
 #include "verification/studies/analytic_beam.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 

@@ -11,7 +11,7 @@
 // Columns are listed in doc/verification.md §6.
 #pragma once
 
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/error_ladder.h"
 
 #include <string>

@@ -1,7 +1,7 @@
 // The model choice of `simulate --model auto`, see model_choice.h.
 #include "verification/studies/model_choice.h"
 
-#include "contact/output_file.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/console.h"
 
@@ -20,18 +20,9 @@ namespace beamslider
     constexpr unsigned int ladder_members = 4;
     constexpr double ladder_end_time      = 25.; // [s]: the end state of the published cases is reached by ~25 s
 
-    const char *cache_header =
-      "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,reference,cost_units,final_x_median,w1,w1_high";
-
-    std::vector<std::string> split(const std::string &line)
-    {
-      std::vector<std::string> cells;
-      std::stringstream row(line);
-      std::string cell;
-      while (std::getline(row, cell, ','))
-        cells.push_back(cell);
-      return cells;
-    }
+    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "n_elements",
+                                                    "integrator",  "time_step_s",  "damped_modes", "reference",
+                                                    "cost_units",  "final_x_median", "w1",         "w1_high"};
 
     // The cache, or an empty vector if there is none or it is not ours.
     std::vector<LadderChoiceRow> read_cache(const std::string &path)
@@ -39,12 +30,12 @@ namespace beamslider
       std::vector<LadderChoiceRow> rows;
       std::ifstream in(path);
       std::string line;
-      if (!in || !std::getline(in, line) || line != cache_header)
+      if (!in || !std::getline(in, line) || line != CsvWriter::line(cache_columns))
         return rows;
       while (std::getline(in, line))
         {
-          const auto c = split(line);
-          if (c.size() != 12)
+          const auto c = CsvWriter::cells(line);
+          if (c.size() != cache_columns.size())
             return {};
           LadderChoiceRow r;
           r.rung                = c[0];
@@ -64,12 +55,8 @@ namespace beamslider
       return rows;
     }
 
-    std::string number(const double x)
-    {
-      std::ostringstream s;
-      s << std::setprecision(17) << x;
-      return s.str();
-    }
+    // 17 significant digits: a double read back from the cache is the one written.
+    std::string number(const double x) { return CsvWriter::cell(x, 17); }
   } // namespace
 
   std::string scene_content_key(const Scene &s)
@@ -156,14 +143,13 @@ namespace beamslider
             rows.push_back(row);
           }
         std::filesystem::create_directories(cache_dir);
-        std::ostringstream text;
-        text << cache_header << '\n';
+        CsvWriter cache(path, cache_columns);
         for (const auto &r : rows)
-          text << r.rung << ',' << r.model.family << ',' << r.model.n_modes << ',' << r.model.n_elements << ','
-               << r.model.integrator << ',' << number(r.model.time_step) << ',' << r.model.damped_modes << ','
-               << (r.reference ? 1 : 0) << ',' << number(r.cost_units) << ',' << number(r.final_x_median) << ','
-               << number(r.w1) << ',' << number(r.w1_high) << '\n';
-        write_text_file(path, text.str());
+          cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes), CsvWriter::cell(r.model.n_elements),
+                     r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
+                     r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
+                     number(r.w1_high)});
+        cache.close();
         log << "model choice from the error ladder just computed (cached in " << path << "):\n";
       }
 

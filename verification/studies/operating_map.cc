@@ -3,6 +3,7 @@
 
 #include "contact/adaptation_run.h"
 #include "contact/beam_system.h"
+#include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/parallel_for.h"
@@ -54,12 +55,7 @@ namespace beamslider
     }
 
     // Results: 8 significant digits (far below the ensemble spread).
-    std::string result_field(const double x)
-    {
-      std::ostringstream s;
-      s << std::setprecision(8) << x;
-      return s.str();
-    }
+    std::string result_field(const double x) { return CsvWriter::cell(x, 8); }
 
     std::vector<std::string> split(const std::string &line, const char separator)
     {
@@ -255,23 +251,18 @@ namespace beamslider
   std::string format_map_rows(const MapGrid &grid, const std::size_t cell, const std::vector<MapMember> &members)
   {
     const std::string key = map_cell_key(grid, cell);
-    std::ostringstream row;
+    std::string rows;
     for (const MapMember &m : members)
       {
         const TraceAnalysis &a = m.analysis;
-        row << key << ',' << m.index << ',' << result_field(m.perturbation) << ',' << to_string(m.status) << ','
-            << to_string(a.outcome) << ',';
-        if (a.valid)
-          row << result_field(a.final_position) << ',' << result_field(a.final_amplitude) << ','
-              << result_field(a.adaptation_time);
-        else
-          row << ",,";
-        row << ',' << a.n_upward_jumps << ',';
-        if (a.jumped)
-          row << result_field(a.jump_time);
-        row << '\n';
+        const auto if_valid    = [&](const double x) { return a.valid ? result_field(x) : std::string(); };
+        rows += CsvWriter::line({key, CsvWriter::cell(m.index), result_field(m.perturbation), to_string(m.status),
+                                 to_string(a.outcome), if_valid(a.final_position), if_valid(a.final_amplitude),
+                                 if_valid(a.adaptation_time), CsvWriter::cell(a.n_upward_jumps),
+                                 a.jumped ? result_field(a.jump_time) : std::string()}) +
+                '\n';
       }
-    return row.str();
+    return rows;
   }
 
   std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,
@@ -341,7 +332,7 @@ namespace beamslider
       {
         if (in.eof())
           break; // the last line had no '\n': cut short by a kill
-        if (split(line, ',').size() != columns.size())
+        if (CsvWriter::cells(line).size() != columns.size())
           continue;
         rows[map_row_cell_key(line, n_axes)].push_back(line);
       }
@@ -352,7 +343,7 @@ namespace beamslider
         bool complete = lines.size() == n_members;
         for (const std::string &l : lines)
           {
-            const std::vector<std::string> f = split(l, ',');
+            const std::vector<std::string> f = CsvWriter::cells(l);
             const long m = std::strtol(f[n_axes].c_str(), nullptr, 10);
             if (m < 0 || m >= static_cast<long>(n_members) || seen[m])
               complete = false;

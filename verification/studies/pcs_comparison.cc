@@ -2,7 +2,7 @@
 #include "verification/studies/pcs_comparison.h"
 
 #include "meshes/scene.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,6 @@
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
 
-#include "contact/output_file.h"
 #include "contact/trace_analysis.h"
 
 #include "contact/adaptation_run.h"
@@ -14,7 +13,7 @@
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
-#include "verification/report/csv_writer.h"
+#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>
@@ -92,6 +91,9 @@ namespace beamslider
     const long n_positions =
       static_cast<long>(std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L +
                                    1e-9)) + 1;
+    // Whether each run reached its end: pcs.csv holds the positions a branch
+    // reached, which its rows alone cannot tell from a complete branch.
+    CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"});
     for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down})
       {
         std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
@@ -110,6 +112,8 @@ namespace beamslider
         if (branch.last_run.status != RunStatus::completed)
           console() << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
                     << "): " << branch.last_run.message << std::endl;
+        runs.row({to_string(direction), to_string(branch.last_run.status), CsvWriter::cell(branch.points.size()),
+                  std::to_string(n_positions), CsvWriter::cell(branch.last_run.t_end)});
         (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
       }
     study.crossings_up   = force_zero_crossings(study.up.points);
@@ -126,11 +130,10 @@ namespace beamslider
         options.output_rate              = 1.;
         options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
         AdaptationRun run(scene, *beam, options);
-        OutputFile file(dir + "/free_periods.csv");
-        PeriodCsvWriter periods(file.stream(), file.path());
+        CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
         std::vector<PeriodRecord> records;
         run.on_period = [&periods, &records](const PeriodRecord &r) {
-          periods.write(r);
+          write_period_row(periods, r);
           records.push_back(r);
         };
         if (settings.verbose)
@@ -159,6 +162,7 @@ namespace beamslider
         if (study.free_run.status != RunStatus::completed)
           console() << "  free slider stopped early (" << to_string(study.free_run.status)
                     << "): " << study.free_run.message << std::endl;
+        runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
       }
 
     study.plotted = run_plot_script("plot_pcs.py", {dir, scene.name});
@@ -176,13 +180,17 @@ namespace beamslider
       << ".\n";
     for (const PcsBranch *b : {&study.up, &study.down})
       if (b->last_run.status != RunStatus::completed)
-        s << "- Branch " << to_string(b->direction) << " stopped early: " << b->last_run.message << "\n";
+        s << "- Branch " << to_string(b->direction) << " stopped early (" << to_string(b->last_run.status) << ") after "
+          << b->points.size() << " positions: " << b->last_run.message << "\n";
+    if (study.free_run.n_steps == 0 && study.free_run.status != RunStatus::completed)
+      s << "- The free slider's run stopped before its first step (" << to_string(study.free_run.status)
+        << "): " << study.free_run.message << "\n";
     if (study.free_run.n_steps > 0)
       {
         s << "- Free slider from x_C/L = " << fixed(scene.initial.slider_position_over_L, 3) << " over "
           << fixed(study.free_run.t_end, 1) << " s: ended at x_C/L = " << fixed(study.free_final_x_over_L, 3);
         if (study.free_run.status != RunStatus::completed)
-          s << " (stopped: " << study.free_run.message << ")";
+          s << " (stopped early, " << to_string(study.free_run.status) << ": " << study.free_run.message << ")";
         s << ".";
         if (study.free_jump)
           {
@@ -240,6 +248,6 @@ namespace beamslider
                 << describe(study, scene) << "\n";
     if (study.plotted)
       report.text << "![PCS sweep](pcs.png)\n\n";
-    report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`.\n\n";
+    report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`, `runs.csv`.\n\n";
   }
 } // namespace beamslider

@@ -14,7 +14,12 @@
 //                  + toward x = L; *_std = spread over those periods)
 //   resonance.csv  x_over_L,amplitude_over_h (Eq. 5; empty cell = no resonance)
 //   free_periods.csv  the free-slider run, one row per excitation period
-//                  (PeriodCsvWriter columns)
+//                  (periods.csv columns)
+//   runs.csv       run,status,positions,positions_planned,t_end_s: whether
+//                  each branch (and the free run) reached its end; status
+//                  other than "completed" = stopped early, its pcs.csv rows
+//                  are the positions it reached (also in PcsStudy and
+//                  describe())
 //   pcs.png        amplitude and F̄_x against x_C/L (seed Figs. 10b and 14)
 // Rows are flushed as they are computed: a stopped sweep keeps its points.
 #pragma once
