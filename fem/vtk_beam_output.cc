@@ -9,7 +9,9 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <vector>
 
 namespace beamslider
 {
@@ -17,12 +19,17 @@ namespace beamslider
                              const std::vector<std::pair<std::string, double>> &field_data,
                              const unsigned int samples_per_element)
   {
-    const double L = beam.length(), h = beam.beam_data().thickness;
+    const double L = beam.length();
     const unsigned int n_x = samples_per_element * beam.n_elements() + 1;
+    // Each point at the thickness of the element to its right, so that a beam
+    // of several sections is drawn with each section's own thickness.
+    std::vector<double> h(n_x);
+    for (unsigned int i = 0; i < n_x; ++i)
+      h[i] = beam.thickness_at(std::min(L * i / (n_x - 1), L));
 
     vtkNew<vtkPoints> points;
     for (unsigned int i = 0; i < n_x; ++i)
-      for (const double z : {-0.5 * h, 0.5 * h})
+      for (const double z : {-0.5 * h[i], 0.5 * h[i]})
         points->InsertNextPoint(L * i / (n_x - 1), 0., z);
 
     vtkNew<vtkUnstructuredGrid> grid;
@@ -50,7 +57,7 @@ namespace beamslider
               }
             for (unsigned int k = 0; k < p.u_dofs.size(); ++k)
               u += p.u_values[k] * s.shape[p.u_dofs[k]];
-            for (const double z : {-0.5 * h, 0.5 * h})
+            for (const double z : {-0.5 * h[i], 0.5 * h[i]})
               {
                 const double d[3] = {s.scale * (u - z * dw), 0., s.scale * w};
                 displacement->InsertNextTuple(d);
