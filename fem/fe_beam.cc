@@ -329,14 +329,7 @@ namespace beamslider
 
   FEPointShape FEBeam::point_shape(const double x) const
   {
-    const double tol = 1e-12 * beam.length;
-    AssertThrow(x >= -tol && x <= beam.length + tol,
-                ExcMessage("FE beam evaluated at x = " + std::to_string(x) + " m, outside the beam [0, " +
-                           std::to_string(beam.length) + "] m"));
-    // The cell whose left vertex is the last one at or before x.
-    auto it = std::upper_bound(ordered_cells.begin(), ordered_cells.end(), x,
-                               [](const double x, const auto &cell) { return x < cell->vertex(0)[0]; });
-    const auto cell = *(it == ordered_cells.begin() ? it : std::prev(it));
+    const auto cell = cell_at(x);
     const double h  = cell->diameter();
     const double xi = std::clamp((x - cell->vertex(0)[0]) / h, 0., 1.);
 
@@ -357,14 +350,16 @@ namespace beamslider
     return s;
   }
 
-  const BeamSection &FEBeam::section_at(const double x) const
+  typename DoFHandler<1>::active_cell_iterator FEBeam::cell_at(const double x) const
   {
     const double tol = 1e-12 * beam.length;
     AssertThrow(x >= -tol && x <= beam.length + tol,
-                ExcMessage("FE beam section asked at x = " + std::to_string(x) + " m, outside the beam"));
+                ExcMessage("FE beam evaluated at x = " + std::to_string(x) + " m, outside the beam [0, " +
+                           std::to_string(beam.length) + "] m"));
+    // The cell whose left vertex is the last one at or before x.
     auto it = std::upper_bound(ordered_cells.begin(), ordered_cells.end(), x,
                                [](const double x, const auto &cell) { return x < cell->vertex(0)[0]; });
-    return section(*(it == ordered_cells.begin() ? it : std::prev(it)));
+    return *(it == ordered_cells.begin() ? it : std::prev(it));
   }
 
   namespace

@@ -85,7 +85,7 @@ namespace beamslider
     }
     // The section at x and its thickness [m] (at an element boundary, the
     // element to the right).
-    const BeamSection &section_at(double x) const;
+    const BeamSection &section_at(const double x) const { return section(cell_at(x)); }
     double thickness_at(const double x) const { return section_at(x).thickness; }
     // The cells from x = 0 to x = L.
     const std::vector<typename dealii::DoFHandler<1>::active_cell_iterator> &cells_in_order() const
@@ -131,6 +131,9 @@ namespace beamslider
     std::array<global_dof_index, 3> support_dofs(unsigned int end) const { return end_dofs[end]; }
 
   private:
+    // The cell containing x ∈ [0, L] (at a vertex, the cell to the right;
+    // throws for x outside).
+    typename dealii::DoFHandler<1>::active_cell_iterator cell_at(double x) const;
     void make_grid_and_dofs(unsigned int n_elements);
     void make_constraints();
 

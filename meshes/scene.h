@@ -104,8 +104,6 @@ namespace beamslider
 
     bool from_mesh() const { return !mesh_cells.empty(); }
     BeamSection uniform_section() const { return {width, thickness, youngs_modulus, density}; }
-    // The section of the element that contains x (at a node: the one to the right).
-    BeamSection section_at(double x) const;
     ThicknessProfile thickness_profile() const;
     // ∫₀ᴸ dx / EA(x) [m/N]: the beam's axial compliance (L/EA when uniform).
     double axial_compliance() const;
@@ -117,16 +115,6 @@ namespace beamslider
     double bending_stiffness() const { return uniform_section().bending_stiffness(); } // EI [N m^2]
     double axial_stiffness() const { return uniform_section().axial_stiffness(); }     // EA [N]
   };
-
-  inline BeamSection BeamData::section_at(const double x) const
-  {
-    if (!from_mesh())
-      return uniform_section();
-    const auto it = std::upper_bound(mesh_cells.begin(), mesh_cells.end(), x,
-                                     [](const double x, const BeamMeshCell &c) { return x < c.x_end; });
-    const BeamMeshCell &cell = it == mesh_cells.end() ? mesh_cells.back() : *it;
-    return sections.at(cell.tag);
-  }
 
   inline ThicknessProfile BeamData::thickness_profile() const
   {
