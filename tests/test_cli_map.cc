@@ -121,6 +121,22 @@ TEST(MapGrid, RangesAxesAndCells)
   EXPECT_EQ(map_row_cell_key("2,30,1,0,completed", 2), "2,30");
 }
 
+TEST(MapGrid, AxesAndTheMapsEndTimeReplaceTheUsersSetOfTheSameParameter)
+{
+  // verify --section 6 --set "Time stepping/End time=3" once failed with
+  // "already set": the cell's scene took both the user's --set and the map's
+  // own end time. The axis value and the map's end time win; other --set
+  // entries pass through.
+  MapGrid grid;
+  grid.axes = {{"Excitation/Frequency", "frequency_hz", {110, 120}}};
+  const std::vector<std::string> overrides = {"Time stepping/End time=3", "Excitation/Frequency=99",
+                                              "Contact/Friction coefficient=0.125"};
+  const Scene s = map_cell_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm", overrides, grid, 1, 2.5);
+  EXPECT_EQ(s.time_stepping.end_time, 2.5);
+  EXPECT_EQ(s.excitation.frequency_hz, 120.);
+  EXPECT_EQ(s.contact.friction_coefficient, 0.125);
+}
+
 TEST(MapCommand, RestartAfterAKillKeepsFinishedCellsAndEndsWithTheSameRows)
 {
   const auto full = fresh("full"), cut = fresh("cut");

@@ -128,21 +128,23 @@ namespace beamslider
   Scene map_cell_scene(const std::string &scene_file, const std::vector<std::string> &overrides,
                        const MapGrid &grid, const std::size_t cell, const double end_time)
   {
-    // The axes replace a user's --set of the same parameter (read_scene
-    // refuses a parameter set twice).
+    // The axes and the map's end time replace a user's --set of the same
+    // parameter (read_scene refuses a parameter set twice; a --set of the
+    // end time has reached `end_time` already, unless --end-time overrode it).
+    const std::string end_time_key = "Time stepping/End time";
     std::vector<std::string> all;
     for (const std::string &o : overrides)
       {
-        bool on_axis = false;
+        bool replaced = o.rfind(end_time_key + "=", 0) == 0;
         for (const MapAxis &a : grid.axes)
-          on_axis = on_axis || o.rfind(a.parameter + "=", 0) == 0;
-        if (!on_axis)
+          replaced = replaced || o.rfind(a.parameter + "=", 0) == 0;
+        if (!replaced)
           all.push_back(o);
       }
     const std::vector<double> values = grid.cell_values(cell);
     for (std::size_t k = 0; k < grid.axes.size(); ++k)
       all.push_back(grid.axes[k].parameter + "=" + number_field(values[k]));
-    all.push_back("Time stepping/End time=" + number_field(end_time));
+    all.push_back(end_time_key + "=" + number_field(end_time));
     return read_scene(scene_file, all);
   }
 

@@ -4,11 +4,19 @@
 // become free, so items of very different cost keep every thread busy.
 // Used by ensembles (members) and maps (cells) within one process; across
 // processes a map uses MPI (verification/cli/mpi_cells.h).
+//
+// If an item throws, no further items are started, the items already running
+// finish, every thread is joined, and the first exception is rethrown to the
+// caller (an exception may not leave a thread, and a thread may not be
+// destroyed unjoined: either would end the program with std::terminate and
+// no message).
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -18,17 +26,32 @@ namespace beamslider
   void parallel_for(const std::size_t n, const unsigned int n_threads, const Body &body)
   {
     std::atomic<std::size_t> next{0};
-    const auto work = [&] {
+    std::exception_ptr       first_error;
+    std::mutex               error_mutex;
+    const auto               work = [&]() noexcept {
       for (std::size_t i = next++; i < n; i = next++)
-        body(i);
+        try
+          {
+            body(i);
+          }
+        catch (...)
+          {
+            const std::lock_guard<std::mutex> lock(error_mutex);
+            if (!first_error)
+              first_error = std::current_exception();
+            next = n; // start nothing new
+          }
     };
     const std::size_t wanted = n_threads ? n_threads : std::max(1u, std::thread::hardware_concurrency());
     const std::size_t count  = std::max<std::size_t>(1, std::min(wanted, n));
     std::vector<std::thread> pool;
+    pool.reserve(count - 1);
     for (std::size_t t = 1; t < count; ++t)
       pool.emplace_back(work);
     work();
     for (auto &t : pool)
       t.join();
+    if (first_error)
+      std::rethrow_exception(first_error);
   }
 } // namespace beamslider
