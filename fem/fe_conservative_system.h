@@ -12,7 +12,7 @@
 #pragma once
 
 #include "fem/fe_beam.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 
 #include <Eigen/Dense>
 

@@ -2,6 +2,8 @@
 // harmonic_balance.h for the equations, the choice of harmonics and samples.
 #include "reduced/harmonic_balance.h"
 
+#include "reduced/backbone_tongues.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <chrono>
@@ -12,17 +14,6 @@
 
 namespace beamslider
 {
-  ConservativeSystem make_conservative_system(const ReducedOrderModel &rom)
-  {
-    const unsigned int N = rom.n_modes();
-    ConservativeSystem s;
-    s.mass      = Eigen::MatrixXd::Identity(N, N);
-    s.stiffness = rom.basis().omega.array().square().matrix().asDiagonal();
-    s.force     = [&rom](const Eigen::VectorXd &q) { return rom.nonlinear_force(q); };
-    s.tangent   = [&rom](const Eigen::VectorXd &q) { return rom.nonlinear_tangent(q); };
-    return s;
-  }
-
   namespace
   {
     // The HB residual R(Q, ω) of the file header, its Jacobian ∂R/∂Q and
@@ -356,8 +347,8 @@ namespace beamslider
             const bool rising = a_new >= a_max;
             a_max             = std::max(a_max, a_new);
             double deviation  = 0;
-            OmegaFit fit;
-            if (settings_.tongue_frequency_deviation > 0 && fit_backbone_frequency(a_max, fit))
+            BackboneFrequencyFit fit;
+            if (settings_.tongue_frequency_deviation > 0 && fit_backbone_frequency(result_.points, a_max, s_w_, fit))
               deviation = std::abs(z_new[m_] * s_w_ / fit.omega(a_new) - 1.);
             const bool off_backbone = settings_.tongue_frequency_deviation > 0 &&
                                       deviation > settings_.tongue_frequency_deviation;
@@ -413,54 +404,6 @@ namespace beamslider
             result_.points[i].tongue = true;
       }
 
-      // ω² = α + β a² (+ γ a⁴) through the backbone points (any segment, not
-      // on a tongue) with amplitudes in [0.4, 0.85] a_ref: away from a
-      // tongue near a_ref, so an extrapolation of the backbone across it.
-      struct OmegaFit
-      {
-        Eigen::VectorXd coef;
-        double a_ref = 1, s_w = 1;
-        std::size_t reference = 0; // the fitted point of largest amplitude
-        double omega(const double a) const
-        {
-          double w2 = 0;
-          for (Eigen::Index k = 0; k < coef.size(); ++k)
-            w2 += coef[k] * std::pow(a / a_ref, 2 * k);
-          return w2 > 0 ? std::sqrt(w2) * s_w : 0.;
-        }
-      };
-      bool fit_backbone_frequency(const double a_ref, OmegaFit &fit) const
-      {
-        const auto &pts = result_.points;
-        std::vector<std::size_t> ref;
-        for (std::size_t i = 0; i < pts.size(); ++i)
-          if (!pts[i].tongue && pts[i].amplitude >= 0.4 * a_ref && pts[i].amplitude <= 0.85 * a_ref)
-            ref.push_back(i);
-        if (ref.size() < 2)
-          return false;
-        // Scaled variables keep the least-squares problem well conditioned.
-        const unsigned int n_terms = ref.size() >= 3 ? 3 : 2;
-        Eigen::MatrixXd A(ref.size(), n_terms);
-        Eigen::VectorXd y(ref.size());
-        double a_best = 0;
-        for (std::size_t r = 0; r < ref.size(); ++r)
-          {
-            const double a = pts[ref[r]].amplitude / a_ref;
-            for (unsigned int k = 0; k < n_terms; ++k)
-              A(r, k) = std::pow(a, 2 * k);
-            y[r] = std::pow(pts[ref[r]].omega / s_w_, 2);
-            if (pts[ref[r]].amplitude > a_best)
-              {
-                a_best        = pts[ref[r]].amplitude;
-                fit.reference = ref[r];
-              }
-          }
-        fit.coef  = A.colPivHouseholderQr().solve(y);
-        fit.a_ref = a_ref;
-        fit.s_w   = s_w_;
-        return true;
-      }
-
       // The branch left along a tongue after the point `last` (the last
       // regular one): look for the backbone beyond it (see
       // BackboneSettings::restart_past_tongues). On success, stores the first
@@ -469,12 +412,12 @@ namespace beamslider
       {
         const BackbonePoint last_point = result_.points[last];
         const double a_last = last_point.amplitude;
-        OmegaFit fit;
-        if (!fit_backbone_frequency(a_last, fit))
+        BackboneFrequencyFit fit;
+        if (!fit_backbone_frequency(result_.points, a_last, s_w_, fit))
           return false;
         const BackbonePoint reference = result_.points[fit.reference];
 
-        for (const double delta : {0.02, 0.05, 0.1, 0.2, 0.3, 0.5})
+        for (const double delta : tongue_restart_offsets)
           {
             const double a_target = std::min((1. + delta) * a_last, settings_.end_amplitude);
             if (a_target <= a_last)
@@ -482,26 +425,16 @@ namespace beamslider
             const double omega_pred = fit.omega(a_target);
             if (!(omega_pred > 0))
               continue;
-            // Two initial guesses: the reference motion with harmonic h
-            // scaled like a^h (a² for the mean), and its first harmonic alone
-            // (the component resonating in the tongue changes sign across it).
-            const double r = a_target / reference.amplitude;
             for (const bool first_only : {false, true})
               {
-                Eigen::VectorXd X = reference.harmonics;
-                for (unsigned int b = 0; b < result_.harmonics.size(); ++b)
-                  {
-                    const unsigned int h = result_.harmonics[b];
-                    const double scale   = (first_only && h != 1) ? 0. : std::pow(r, h == 0 ? 2 : std::min(h, 3u));
-                    X.segment(b * n_, n_) *= scale;
-                  }
+                const Eigen::VectorXd X = tongue_restart_guess(reference, result_.harmonics, n_, a_target, first_only);
                 Eigen::VectorXd z_try = restrict_to_active(X / s_x_);
                 z_try[m_]             = omega_pred / s_w_;
                 BackbonePoint p;
                 if (!correct_at_amplitude(z_try, a_target, p))
                   continue;
                 const double omega = z_try[m_] * s_w_;
-                if (std::abs(omega / omega_pred - 1.) > 0.03)
+                if (std::abs(omega / omega_pred - 1.) > tongue_restart_tolerance)
                   continue;
                 BackboneGap gap;
                 gap.last_amplitude    = a_last;
@@ -670,35 +603,6 @@ namespace beamslider
     return result;
   }
 
-  BackboneSettings make_beam_backbone_settings(const Eigen::VectorXd &output, const BeamBackboneSettings &beam)
-  {
-    if (!(beam.thickness > 0))
-      throw std::invalid_argument("BeamBackboneSettings: thickness = " + std::to_string(beam.thickness) + " m; must be > 0");
-    BackboneSettings s;
-    s.hb.n_harmonics          = beam.n_harmonics;
-    s.output                  = output;
-    s.mode                    = 0;
-    s.start_amplitude         = beam.start_over_h * beam.thickness;
-    s.end_amplitude           = beam.end_over_h * beam.thickness;
-    s.max_step                = beam.max_step;
-    s.initial_step            = std::min(s.initial_step, s.max_step);
-    s.restart_past_tongues    = beam.restart_past_tongues;
-    s.tongue_frequency_deviation = 0.03;
-    s.normalise_by_mode          = true;
-    for (const double r : beam.landing_over_h)
-      s.landing_amplitudes.push_back(r * beam.thickness);
-    return s;
-  }
-
-  Backbone compute_rom_backbone(const ReducedOrderModel &rom, const double x_out, const BeamBackboneSettings &beam)
-  {
-    Eigen::VectorXd phi, dphi;
-    rom.basis().evaluate(x_out, phi, dphi);
-    BackboneSettings s       = make_beam_backbone_settings(phi, beam);
-    s.hb.odd_harmonics_only  = true;
-    return compute_backbone(make_conservative_system(rom), s);
-  }
-
   Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,
                                       const Eigen::VectorXd &output, const unsigned int n_samples)
   {
@@ -715,39 +619,6 @@ namespace beamslider
       for (unsigned int b = 0; b < nb; ++b)
         y[i] += yh[b] * std::cos(backbone.harmonics[b] * 2. * pi * i / n_samples);
     return y;
-  }
-
-  double single_mode_backbone_frequency(const double omega_1, const double b_111, const double q_hat)
-  {
-    const double w2 = omega_1 * omega_1 + 0.75 * b_111 * q_hat * q_hat;
-    if (!(w2 > 0))
-      throw std::invalid_argument("single_mode_backbone_frequency: ω₁² + ¾ b₁₁₁ q̂² = " + std::to_string(w2) +
-                                  " (ω₁ = " + std::to_string(omega_1) + " rad/s, b₁₁₁ = " + std::to_string(b_111) +
-                                  ", q̂ = " + std::to_string(q_hat) + "); must be > 0");
-    return std::sqrt(w2);
-  }
-
-  double single_mode_backbone_frequency_with_slider(const double omega_1, const double b_111, const double q_hat,
-                                                    const double slider_mass, const double slider_inertia,
-                                                    const double phi_1_at_slider, const double dphi_1_at_slider)
-  {
-    if (!(slider_mass >= 0) || !(slider_inertia >= 0))
-      throw std::invalid_argument("single_mode_backbone_frequency_with_slider: slider mass " +
-                                  std::to_string(slider_mass) + " kg and inertia " + std::to_string(slider_inertia) +
-                                  " kg m²; must be ≥ 0");
-    const double w = single_mode_backbone_frequency(omega_1, b_111, q_hat);
-    return w / std::sqrt(1. + slider_mass * phi_1_at_slider * phi_1_at_slider +
-                         slider_inertia * dphi_1_at_slider * dphi_1_at_slider);
-  }
-
-  double single_mode_backbone_coefficient(const double omega_1, const double b_111, const double phi_1_at_output,
-                                          const double thickness)
-  {
-    if (!(omega_1 > 0) || phi_1_at_output == 0 || !(thickness > 0))
-      throw std::invalid_argument("single_mode_backbone_coefficient: need ω₁ > 0 (" + std::to_string(omega_1) +
-                                  "), φ₁(x) ≠ 0 (" + std::to_string(phi_1_at_output) + "), h > 0 (" +
-                                  std::to_string(thickness) + ")");
-    return 0.75 * b_111 * thickness * thickness / (phi_1_at_output * phi_1_at_output * omega_1 * omega_1);
   }
 
   unsigned int count_amplitude_folds(const Backbone &backbone, const bool include_tongues)

@@ -28,10 +28,10 @@
 // [m]) or the pseudo-arclength condition (Keller 1977; Seydel, "Practical
 // Bifurcation and Stability Analysis", 2010), which follows folds and loops
 // of the backbone in amplitude. The method is the one of Krack & Gross,
-// "Harmonic Balance for Nonlinear Vibration Problems" (Springer 2019), whose
-// NLvib the seed used for its NMA (H = 10, N = 7); this code is checked
-// against exact Duffing periods and the seed's published backbone numbers
-// (tests/test_reduced_backbone.cc), not against NLvib itself.
+// "Harmonic Balance for Nonlinear Vibration Problems" (Springer 2019); the
+// seed computed its NMA with their tool NLvib (H = 10, N = 7). This code is
+// checked against exact Duffing periods and the seed's published backbone
+// numbers (tests/test_reduced_backbone.cc), not against NLvib itself.
 //
 // Cost: the Newton matrix is dense of size n|𝓗|+1; for n = 300, H = 10 (full
 // set) that is 3301² and one LU is seconds: use odd harmonics, the per-DoF
@@ -43,19 +43,14 @@
 // falls, or ω leaves the backbone extrapolated from below) and either stops
 // with a message or restarts beyond the tongue from the extrapolated backbone
 // (BackboneSettings::restart_past_tongues); Backbone::gaps records what was
-// jumped over. On the ideal-clamp mueller2023 beam (H = 10) the 3:1
-// interaction with mode 3 lies at ŵ/h ≈ 2.70–2.78, ω ≈ 2.2 ω₁. Narrower
-// tongues are stepped over when the arclength step is larger than they are
-// wide: with steps of ~1e-3 of the range the FE backbone of that beam (16
-// elements) also shows tongues at ŵ/h ≈ 0.640–0.653 (5:1) and 1.658–1.691,
-// which the default steps (max_step = 0.05 with normalise_by_mode) do not see;
-// restarted beyond them, the backbone lands within 5e-5 of its extrapolation.
+// jumped over. The heuristics (the extrapolation, the restart guesses) are in
+// backbone_tongues.h; where the tongues of the mueller2023 beam lie is in
+// doc/physics.md.
 //
-// Also here: the single-mode, single-harmonic backbone (seed Eq. 4) and its
-// slider version (seed Eq. 5).
+// This file is generic: any M, K, f. The beam's mode-1 backbone as the
+// reports use it (output w(L/2), amplitudes in thicknesses) and the
+// single-mode formulas of the seed (Eqs. 4 and 5) are in beam_backbone.h.
 #pragma once
-
-#include "reduced/rom_operator.h"
 
 #include <Eigen/Dense>
 
@@ -75,11 +70,6 @@ namespace beamslider
 
     unsigned int n_dofs() const { return stiffness.rows(); }
   };
-
-  // The ROM as a ConservativeSystem: M = I, K = diag ω_n², f = nonlinear_force
-  // (damping is dropped: the backbone is the undamped one). The ROM must
-  // outlive the returned object.
-  ConservativeSystem make_conservative_system(const ReducedOrderModel &rom);
 
   struct HarmonicBalanceSettings
   {
@@ -122,12 +112,9 @@ namespace beamslider
     // Arclength: stop (reported, not completed) when the first-harmonic
     // amplitude falls below this fraction of the largest one reached so far,
     // i.e. the branch has left along an internal-resonance tongue rather than
-    // making a loop. 0 follows it until the first harmonic changes sign. On
-    // the mueller2023 ideal-clamp ROM (N = 5…7, H = 10) this happens at
-    // ŵ/h ≈ 2.7, ω ≈ 2.2 ω₁: the 3:1 interaction with mode 3 (3ω ≈ ω₃ of the
-    // stretched beam); followed, the branch ends on the mode-3 motion seen at
-    // a third of its frequency (a₁ → 0 at ω ≈ 3.19 ω₁). Jumping over the tongue
-    // to the continuation of the mode-1 backbone: restart_past_tongues.
+    // making a loop. 0 follows it until the first harmonic changes sign.
+    // Jumping over the tongue to the continuation of the mode-1 backbone:
+    // restart_past_tongues.
     double tongue_exit_fraction = 0.5;
     // Arclength: also stop (or restart) when ω departs by more than this
     // fraction from the backbone extrapolated from below (ω² = α + β a² +
@@ -207,36 +194,8 @@ namespace beamslider
   // mode-1 backbone itself.
   unsigned int count_amplitude_folds(const Backbone &backbone, bool include_tongues = true);
 
-  // The mode-1 backbone of a beam model as the reports and the `backbone`
-  // command use it: output y = w(L/2) [m], amplitude range in thicknesses,
-  // pseudo-arclength with restarts past internal-resonance tongues.
-  struct BeamBackboneSettings
-  {
-    unsigned int n_harmonics = 10; // H
-    double thickness = 0;          // h [m]
-    double start_over_h = 0.01, end_over_h = 4; // first and last ŵ/h
-    bool restart_past_tongues = true;
-    double max_step = 0.05;        // largest arclength step (fraction of the end amplitude)
-    std::vector<double> landing_over_h; // ŵ/h at which points are solved for exactly
-  };
-  BackboneSettings make_beam_backbone_settings(const Eigen::VectorXd &output, const BeamBackboneSettings &beam);
-
-  // The ROM's mode-1 backbone with output c = φ(x_out) (odd harmonics only:
-  // the cubic ROM is odd, so this equals the full set 0…H exactly).
-  Backbone compute_rom_backbone(const ReducedOrderModel &rom, double x_out, const BeamBackboneSettings &beam);
-
   // Evaluate y(τ) = cᵀq(τ) of a backbone point at n_samples equispaced τ in [0, 2π).
   Eigen::VectorXd output_time_history(const Backbone &backbone, const BackbonePoint &point,
                                       const Eigen::VectorXd &output, unsigned int n_samples);
 
-  // Seed Eq. 4: ω = sqrt(ω₁² + ¾ b₁₁₁ q̂²) [rad/s]; b₁₁₁ [1/(s² m² kg)], q̂ [m kg^1/2].
-  double single_mode_backbone_frequency(double omega_1, double b_111, double q_hat);
-  // Seed Eq. 5: the same divided by 1 + m φ₁(x_C)² + J φ₁'(x_C)² under the
-  // root (slider mass m [kg], inertia J [kg m²], φ₁ [kg^-1/2], φ₁' [kg^-1/2/m]).
-  double single_mode_backbone_frequency_with_slider(double omega_1, double b_111, double q_hat, double slider_mass,
-                                                    double slider_inertia, double phi_1_at_slider,
-                                                    double dphi_1_at_slider);
-  // The coefficient c of (ω/ω₁)² = 1 + c (ŵ/h)² with ŵ = φ₁(x_out) q̂ (Eq. 4
-  // rewritten): c = ¾ b₁₁₁ h² / (φ₁(x_out)² ω₁²) [-].
-  double single_mode_backbone_coefficient(double omega_1, double b_111, double phi_1_at_output, double thickness);
 } // namespace beamslider

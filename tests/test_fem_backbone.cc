@@ -19,7 +19,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "meshes/scene.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 
 #include <gtest/gtest.h>

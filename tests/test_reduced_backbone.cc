@@ -17,7 +17,7 @@
 //   period from it (RK4) must return to it;
 // - the solver does not care in which coordinates the system is written: a
 //   dense M, K (q = P x) gives the same backbone.
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 #include "tests/test_reduced_clamped_beam.h"
 

@@ -3,7 +3,7 @@
 // model of the ideal-clamp mueller2023 beam with the analytic clamped–clamped
 // modes of test_reduced_clamped_beam.h (no FE code involved).
 #include "contact/prescribed_position_sweep.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
 #include "test_reduced_clamped_beam.h"

@@ -13,7 +13,7 @@
 #include "fem/fe_modes.h"
 #include "fem/fe_transient.h"
 #include "meshes/scene.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/benchmarks/heap_counter.h"
 #include "verification/studies/coefficient_methods.h"

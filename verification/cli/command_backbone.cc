@@ -18,16 +18,16 @@
 // scene's mesh; harmonics 0…H with w odd and u even (see
 // FEConservativeSystem::even_harmonic_dofs). A coarser FE mesh:
 // --set "Discretisation/Number of elements=16".
+#include "contact/csv_writer.h"
+#include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
-#include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

@@ -9,14 +9,14 @@
 // condensed axial inertia, the FE's membrane discretisation) and not a
 // difference of mode shapes. --full adds the FE backbone on 16 elements (the
 // mesh effect) and with the full harmonic set (the half-period symmetry).
+#include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
-#include "reduced/harmonic_balance.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 

@@ -1,10 +1,10 @@
 // The named adaptation cases, see simulation_cases.h.
 #include "verification/studies/simulation_cases.h"
-#include "reduced/rom_operator.h"
-#include "reduced/harmonic_balance.h"
-#include "fem/fe_modes.h"
-#include "fem/fe_modal_basis.h"
 #include "fem/fe_beam.h"
+#include "fem/fe_modal_basis.h"
+#include "fem/fe_modes.h"
+#include "reduced/beam_backbone.h"
+#include "reduced/rom_operator.h"
 
 #include <algorithm>
 #include <cmath>
