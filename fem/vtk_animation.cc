@@ -3,6 +3,8 @@
 
 #include "contact/output_file.h"
 
+#include <deal.II/base/data_out_base.h>
+
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -296,16 +298,32 @@ namespace beamslider
         << std::setprecision(12);
     for (unsigned int i = 0; i < times_.size(); ++i)
       {
-        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"0\" file=\"" << frame_file("beam", i, ".vtu")
-            << "\"/>\n";
-        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"1\" file=\"" << frame_file("slider", i, ".vtp")
-            << "\"/>\n";
-        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"2\" file=\""
-            << frame_file("contacts", i, ".vtp") << "\"/>\n";
+      for (unsigned int k = 0; k < animation_parts.size(); ++k)
+        out << "    <DataSet timestep=\"" << times_[i] << "\" part=\"" << k << "\" file=\""
+            << frame_file(animation_parts[k].first, i, animation_parts[k].second) << "\"/>\n";
       }
     out << "  </Collection>\n</VTKFile>\n";
     // Atomically: a viewer (or a stopped run) never sees half a collection.
     write_file_atomically(pvd_file(), out.str());
+
+    // One collection per part as well, by deal.II's writer (it has no parts:
+    // every entry is part 0, hence the combined file above is our own).
+    // Opened alone, each part gets its own pipeline source in ParaView and
+    // so its own colour map: the beam by N or w'', the forces by magnitude.
+    for (const auto &[part, extension] : animation_parts)
+      {
+        std::vector<std::pair<double, std::string>> series;
+        for (unsigned int i = 0; i < times_.size(); ++i)
+          series.emplace_back(times_[i], frame_file(part, i, extension));
+        std::ostringstream record;
+        dealii::DataOutBase::write_pvd_record(record, series);
+        write_file_atomically(part_pvd_file(part), record.str());
+      }
+  }
+
+  std::string VtkAnimationWriter::part_pvd_file(const std::string &part) const
+  {
+    return directory_ + "/" + name_ + "_" + part + ".pvd";
   }
 
   void VtkAnimationWriter::finish()

@@ -19,6 +19,11 @@
 // drawing is the physical geometry; for m > 1 the picture stays consistent
 // up to (m − 1) times the clearance (R − h)/2.
 //
+// The combined <name>.pvd lists the three parts of each time as parts 0, 1,
+// 2; <name>_beam.pvd, <name>_slider.pvd and <name>_contacts.pvd (written by
+// deal.II's DataOutBase::write_pvd_record) list one part each, for opening
+// them as separate sources with separate colour maps.
+//
 // Alongside, frames.csv holds the drawn geometry of every frame (columns
 // frame, t_s, part, x_m, z_m, fx_N, fz_N) for scripts/plot_frames.py, which
 // renders a strip of stills to PNG.
@@ -31,6 +36,7 @@
 
 #include <array>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -66,6 +72,11 @@ namespace beamslider
   // of the last step (corner impulses / Δt).
   AnimationFrame make_animation_frame(const MoreauStepper &stepper);
 
+  // The parts of every frame, in the order of their part numbers in the
+  // combined .pvd: name (the files' prefix) and file extension.
+  inline const std::array<std::pair<const char *, const char *>, 3> animation_parts{
+    {{"beam", ".vtu"}, {"slider", ".vtp"}, {"contacts", ".vtp"}}};
+
   class VtkAnimationWriter
   {
   public:
@@ -81,6 +92,8 @@ namespace beamslider
 
     unsigned int n_frames() const { return times_.size(); }
     std::string pvd_file() const;
+    // The collection of one part alone (`part` one of animation_parts).
+    std::string part_pvd_file(const std::string &part) const;
     const std::string &directory() const { return directory_; }
 
   private:
