@@ -10,15 +10,16 @@
 //
 // Files in <report>/map/: map.csv (as `beamslider map` writes it),
 // published_cases.csv, map_*.png (scripts/plot_map.py).
+#include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/cli/commands.h"
 #include "verification/report/report.h"
+#include "verification/studies/console.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"
-#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>
@@ -57,7 +58,9 @@ namespace beamslider
             model = line.substr(line.find(':') + 2);
             break;
           }
-      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
+      // A CSV cell: no commas (CsvWriter does not quote).
+      std::replace(model.begin(), model.end(), ',', ' ');
+      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores; " + model;
     }
 
     // Strong scaling of `beamslider map` on MPI. The same small map (24
@@ -74,8 +77,8 @@ namespace beamslider
       const std::vector<std::string> map = {"map", scene_file, "--frequency", "100:135:5", "--acceleration", "8:18:5",
                                             "--end-time", "10", "--quiet"};
       const std::string machine = machine_description();
-      std::ostringstream csv, md;
-      csv << "ranks,cells,wall_s,cells_per_s,machine\n";
+      std::ostringstream md;
+      CsvWriter csv(dir + "/scaling.csv", {"ranks", "cells", "wall_s", "cells_per_s", "machine"});
       const unsigned int n_cells = 8 * 3;
       std::vector<std::pair<unsigned int, double>> points;
       std::string failures;
@@ -106,9 +109,10 @@ namespace beamslider
               continue;
             }
           points.emplace_back(ranks, wall);
-          csv << ranks << "," << n_cells << "," << wall << "," << n_cells / wall << ",\"" << machine << "\"\n";
+          csv.row({CsvWriter::cell(ranks), CsvWriter::cell(n_cells), CsvWriter::cell(wall, 6),
+                   CsvWriter::cell(n_cells / wall, 6), machine});
         }
-      write_text_file(dir + "/scaling.csv", csv.str());
+      csv.close();
       md << "### Strong scaling on MPI\n\nThe same map of " << n_cells
          << " ROM cells (100–135 Hz × 8–18 m/s², 10 s each) by `beamslider map` as one process and under `mpirun -np "
             "2` (" << machine << "); wall time of the whole command, start-up included.\n\n"
@@ -186,7 +190,8 @@ namespace beamslider
       MapMember member;
     };
     std::vector<CaseResult> cases;
-    std::string cases_csv = "name,frequency_hz,acceleration_m_s2,start_x_over_L,expected_outcome\n";
+    CsvWriter cases_csv(dir + "/published_cases.csv",
+                        {"name", "frequency_hz", "acceleration_m_s2", "start_x_over_L", "expected_outcome"});
     for (const PublishedMapCase &c : published_map_cases())
       {
         if (scene.name != "mueller2023")
@@ -203,10 +208,10 @@ namespace beamslider
         cases.push_back({c.name, c.expected_outcome, c.frequency_hz, c.acceleration, c.start_over_L, m.front()});
         // Marked on the map only if it starts where the map's runs start.
         if (std::abs(c.start_over_L - scene.initial.slider_position_over_L) < 1e-9)
-          cases_csv += c.name + "," + fixed(c.frequency_hz, 1) + "," + fixed(c.acceleration, 1) + "," +
-                       fixed(c.start_over_L, 2) + "," + c.expected_outcome + "\n";
+          cases_csv.row({c.name, fixed(c.frequency_hz, 1), fixed(c.acceleration, 1), fixed(c.start_over_L, 2),
+                         c.expected_outcome});
       }
-    write_text_file(dir + "/published_cases.csv", cases_csv);
+    cases_csv.close();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // Counts per class and the frequency band of adaptation per level.
