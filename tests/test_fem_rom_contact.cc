@@ -45,8 +45,8 @@
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
 #include "meshes/scene.h"
-#include "verification/studies/fe_rom_study.h"
 #include "verification/report/report.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include "tests/fem_test_loads.h"
 

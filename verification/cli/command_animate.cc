@@ -16,8 +16,8 @@
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/fe_rom_study.h"
 #include "verification/studies/console.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <chrono>
 #include <cmath>

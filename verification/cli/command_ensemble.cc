@@ -13,14 +13,14 @@
 //                      against DIR's members.csv (compare_samples)
 //   ensemble.png       fan chart: every member's x_C/L and amplitude envelope
 //   summary.md         settings, outcome definitions, statistics, classes
+#include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
+#include "verification/studies/console.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
-#include "verification/studies/console.h"
 
 #include <chrono>
 #include <fstream>

@@ -18,16 +18,16 @@
 // map.csv (a cell cut short by a kill is dropped and computed again) and
 // computes the others; the file then holds the same rows as an uninterrupted
 // run, in another order.
+#include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/mpi_cells.h"
-#include "contact/csv_writer.h"
+#include "verification/studies/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"
-#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>

@@ -4,9 +4,9 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/console.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
-#include "verification/studies/console.h"
 
 #include <cmath>
 #include <fstream>

@@ -1,14 +1,14 @@
 // Verification section "Cubic coefficients": analytic (seed Eq. 3) against
 // STEP, condensed STEP and ICE on the FE model; the membrane over-prediction
 // of plain STEP explained by a number; cost; ICE against its load level.
+#include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
-#include "verification/studies/coefficient_methods.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/report/report.h"
+#include "verification/studies/coefficient_methods.h"
 #include "verification/studies/console.h"
 
 #include <cmath>

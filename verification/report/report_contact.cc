@@ -6,12 +6,12 @@
 //
 // Quick mode: the signature move to its end time (60 s, ~7 s wall) and every
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
-#include "verification/cli/commands.h"
 #include "contact/csv_writer.h"
-#include "verification/studies/pcs_sweep.h"
+#include "verification/cli/commands.h"
 #include "verification/report/report.h"
-#include "verification/studies/simulation_cases.h"
 #include "verification/studies/console.h"
+#include "verification/studies/pcs_sweep.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <chrono>
 #include <cmath>

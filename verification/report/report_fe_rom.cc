@@ -14,16 +14,16 @@
 //                       accuracy (cost against W₁ with its interval)
 //   slow_manifold_{fe,rom}/  the two sweeps, comparison.csv, pcs_compare.png
 //   explicit_time_step_limit.{csv,png}
+#include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/report/report.h"
 #include "verification/report/report_ladder.h"
+#include "verification/studies/console.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
-#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>

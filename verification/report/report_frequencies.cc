@@ -1,10 +1,10 @@
 // Verification section "Linear frequencies": see report.h.
+#include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/studies/analytic_beam.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/report/report.h"
+#include "verification/studies/analytic_beam.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

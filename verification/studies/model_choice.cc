@@ -2,8 +2,8 @@
 #include "verification/studies/model_choice.h"
 
 #include "contact/csv_writer.h"
-#include "verification/studies/error_ladder.h"
 #include "verification/studies/console.h"
+#include "verification/studies/error_ladder.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,8 +1,8 @@
 // Two prescribed-position sweeps compared, see pcs_comparison.h.
 #include "verification/studies/pcs_comparison.h"
 
-#include "meshes/scene.h"
 #include "contact/csv_writer.h"
+#include "meshes/scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,6 +6,7 @@
 #include "contact/trace_analysis.h"
 
 #include "contact/adaptation_run.h"
+#include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
@@ -13,7 +14,6 @@
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
-#include "contact/csv_writer.h"
 #include "verification/studies/console.h"
 
 #include <chrono>
