@@ -1,7 +1,8 @@
 // Reading and checking scene files (meshes/*.prm) with deal.II's
-// ParameterHandler. Every entry is declared with a typed pattern and a
-// documentation string that gives its unit, so that `scene_template()` writes
-// a self-documenting file. Ranges that a pattern cannot express (strict
+// ParameterHandler. Every entry is declared once, in bind_scene(), with a
+// typed pattern, a documentation string that gives its unit (so that
+// `scene_template()` writes a self-documenting file) and the Scene field it
+// is read into. Ranges that a pattern cannot express (strict
 // inequalities, relations between parameters) are checked in validate_scene().
 #include "scene.h"
 
@@ -17,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -43,150 +45,22 @@ namespace beamslider
       return std::string(buffer.data(), result.ptr);
     }
 
-    // Declares every entry with the values of `d` as defaults: Scene{} (the
-    // default scene, mueller2023) for reading and the template, a run's own
-    // scene for the effective parameters it writes (scene_file_text). parse()
-    // below reads the same entries back.
-    void declare(ParameterHandler &prm, const Scene &d)
+    // A double as written in a scene: the pattern has matched already, so
+    // the only failure left is a magnitude below the smallest normal double
+    // (2.2e-308, e.g. 1e-320), which Patterns::Double accepts but which is
+    // an input error like any other, not a failure of the program.
+    double read_double(const std::string &path, const std::string &text)
     {
-      prm.enter_subsection("Beam");
-      prm.declare_entry("Length", num(d.beam.length), Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
-      prm.declare_entry("Width", num(d.beam.width), Double(0), "b, beam width [m]");
-      prm.declare_entry("Thickness", num(d.beam.thickness), Double(0), "h, beam thickness [m], > 0 and < L/20 (Euler-Bernoulli)");
-      prm.declare_entry("Young's modulus", num(d.beam.youngs_modulus), Double(1e6, 1e13), "E [Pa], in [1e6, 1e13] (soft polymers to diamond)");
-      prm.declare_entry("Density", num(d.beam.density), Double(1, 1e5), "rho [kg/m^3], in [1, 1e5]");
-      prm.declare_entry("Mesh file", d.beam.mesh_file, Anything(),
-                        "a Gmsh line mesh (.msh, format 2 or 4) of the beam, a path relative to the scene file: "
-                        "line elements along x from 0 to L, each with a physical tag whose section the subsection "
-                        "Sections gives. Empty: a uniform beam of the section above, meshed with Number of elements. "
-                        "With a mesh, Length is the mesh's and Width, Thickness, Young's modulus and Density are the "
-                        "thickest section's (R/h and amplitudes in thicknesses refer to it): leave them unset");
-      prm.leave_subsection();
-
-      // Tables "tag: value, tag: value" of a mesh beam's sections.
-      prm.enter_subsection("Sections");
-      const auto table = [&](const char *name, double BeamSection::*field, const char *doc) {
-        std::string text;
-        for (const auto &[tag, section] : d.beam.sections)
-          text += (text.empty() ? "" : ", ") + std::to_string(tag) + ": " + num(section.*field);
-        prm.declare_entry(name, text, Map(Integer(0), Double(0), 0, Map::max_int_value, ",", ":"), doc);
-      };
-      table("Width", &BeamSection::width, "b per physical tag of the mesh, 'tag: value, ...' [m] (mesh beams only)");
-      table("Thickness", &BeamSection::thickness, "h per physical tag [m], each > 0 and < L/20");
-      table("Young's modulus", &BeamSection::youngs_modulus, "E per physical tag [Pa], in [1e6, 1e13]");
-      table("Density", &BeamSection::density, "rho per physical tag [kg/m^3], in [1, 1e5]");
-      prm.leave_subsection();
-
-      // Rigid bodies fixed to the beam, "x: value, ..." with x in metres.
-      prm.enter_subsection("Point masses");
-      {
-        std::string masses, inertias;
-        for (const PointMass &m : d.beam.point_masses)
-          {
-            masses += (masses.empty() ? "" : ", ") + num(m.position) + ": " + num(m.mass);
-            inertias += (inertias.empty() ? "" : ", ") + num(m.position) + ": " + num(m.rotary_inertia);
-          }
-        prm.declare_entry("Masses", masses, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
-                          "point masses on the beam, 'x: m, ...': position x in [0, L] [m], mass [kg] (on w(x))");
-        prm.declare_entry("Rotary inertias", inertias, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
-                          "rotary inertias of the bodies, 'x: J, ...' [m: kg m^2] (on w'(x)); a position without "
-                          "a mass is a body of rotary inertia only");
-      }
-      prm.leave_subsection();
-
-      prm.enter_subsection("Supports");
-      prm.declare_entry("Type", d.supports.type(), Selection("elastic|clamped|pinned|clamped-pinned"),
-                        "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
-                        "clamped: the ideal clamp w = w' = u = 0; pinned: immovable hinges w = u = 0, w' free; "
-                        "clamped-pinned: clamped at x = 0, pinned at x = L (the springs below are used by elastic only)");
-      prm.declare_entry("Rotational stiffness", num(d.supports.rotational_stiffness), Double(0), "k_r, on w' at each end [N m/rad]");
-      prm.declare_entry("Axial stiffness", num(d.supports.axial_stiffness), Double(0), "k_t, the clamping's TOTAL axial stiffness as published (Mueller, Beck & Krack 2023): in series with the beam, k_ax = (L/(EA) + 1/k_t)^-1; the FE model puts 2 k_t at each end [N/m]");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Slider");
-      prm.declare_entry("Mass", num(d.slider.mass), Double(0), "m [kg], > 0");
-      prm.declare_entry("Rotary inertia", num(d.slider.inertia), Double(0), "J_C about the centre of mass [kg m^2], > 0; the radius of gyration sqrt(J_C/m) must be at least 3 % of the corners' distance sqrt(d^2 + B^2/4) from the centre of mass (a rigid frame around the window cannot have less)");
-      prm.declare_entry("Window width", num(d.slider.window_width), Double(0), "B, horizontal distance of the contact corners [m], < L");
-      prm.declare_entry("Window height ratio", num(d.slider.window_height_ratio), Double(0), "R/h, inner window height over beam thickness [-], > 1");
-      prm.declare_entry("Centre of mass offset", num(d.slider.com_offset), Double(0), "d, centre of mass below the window centre [m]");
-      prm.declare_entry("Mass factor", num(d.slider.mass_factor), Double(0), "ablation: multiplies mass and rotary inertia [-], > 0");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Contact");
-      prm.declare_entry("Friction coefficient", num(d.contact.friction_coefficient), Double(0), "mu, Coulomb [-]");
-      prm.declare_entry("Restitution", num(d.contact.restitution), Double(0, 1), "e_N, Newton's normal restitution [-] in [0, 1]");
-      prm.declare_entry("Gravity", num(d.contact.gravity), Double(0), "g, acting on the slider in -z [m/s^2]");
-      prm.declare_entry("Solver", d.contact.solver, Selection("projected|exact-local"),
-                        "contact impulses per step: projected Gauss-Seidel (as the authors' code) or exact-local "
-                        "(each contact's 2x2 problem solved exactly, block Gauss-Seidel; same solution, fewer sweeps)");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Damping");
-      prm.declare_entry("Modal damping ratio", num(d.damping_ratio), Double(0, 1), "D, the same for every mode [-] in [0, 1)");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Excitation");
-      prm.declare_entry("Frequency", num(d.excitation.frequency_hz), Double(0.1, 1e5),
-                        "f_ex [Hz], in [0.1, 1e5] (at lower frequencies the base displacement a/Omega^2 swamps the micrometre gaps in round-off)");
-      prm.declare_entry("Acceleration amplitude", num(d.excitation.acceleration_amplitude), Double(0), "base acceleration amplitude [m/s^2]");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Initial state");
-      prm.declare_entry("Slider position", num(d.initial.slider_position_over_L), Double(0, 1), "x_C/L at t = 0 [-]; the window must lie inside the beam");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Discretisation");
-      prm.declare_entry("Number of elements", std::to_string(d.discretisation.n_elements), Integer(1, 4096), "beam elements of the FE model, at least N + 1 (Number of modes)");
-      prm.declare_entry("Axial degree", std::to_string(d.discretisation.axial_degree), Integer(1, 6), "polynomial degree of the axial displacement u");
-      prm.declare_entry("Number of modes", std::to_string(d.discretisation.n_modes), Integer(1, 40),
-                        "N, bending modes of the reduced model (and modes the FE damps); the explicit ROM step needs Delta t <= 2/omega_N");
-      prm.declare_entry("Geometric nonlinearity", d.discretisation.geometric_nonlinearity ? "true" : "false", Bool(), "von Karman bending-stretching coupling on/off (ablation)");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Time stepping");
-      prm.declare_entry("Time step", num(d.time_stepping.time_step), Double(0), "Delta t [s], > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
-      prm.declare_entry("End time", num(d.time_stepping.end_time), Double(0), "[s], at most 1e11 time steps");
-      prm.declare_entry("Output rate", num(d.time_stepping.output_rate), Double(0), "samples per second in trace.csv [1/s]");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Solvers");
-      prm.declare_entry("Contact tolerance", num(d.solvers.contact_tolerance), Double(1e-16, 1e-2),
-                        "contact impulses of a step: converged when the relative change of G P + c per sweep is below "
-                        "this [-], in [1e-16, 1e-2]");
-      prm.declare_entry("Contact sweeps", std::to_string(d.solvers.contact_sweeps), Integer(1, 10000000),
-                        "cap on the Gauss-Seidel sweeps of one contact solve; a solve that reaches it stops the run "
-                        "with a message");
-      prm.declare_entry("Newton relative tolerance", num(d.solvers.newton_relative_tolerance), Double(1e-15, 1e-2),
-                        "FE time step: Newton's correction relative to the end velocity [-], in [1e-15, 1e-2]");
-      prm.declare_entry("Newton absolute tolerance", num(d.solvers.newton_absolute_tolerance), Double(0, 1),
-                        "FE time step: or a correction below this [m/s], in [0, 1]");
-      prm.declare_entry("Newton iterations", std::to_string(d.solvers.newton_iterations), Integer(1, 1000),
-                        "FE time step: cap on Newton iterations per step, refactorisations included; a step that "
-                        "reaches it stops the run with a message");
-      prm.leave_subsection();
-    }
-
-    // ParameterHandler::get_double refuses a value that underflows (a
-    // magnitude below the smallest normal double, 2.2e-308, e.g. 1e-320 or
-    // 1e-400) although its Double pattern accepts it; such a value is an
-    // input error like any other, not a failure of the program.
-    double get_double(const ParameterHandler &prm, const std::string &section, const std::string &name)
-    {
-      try
-        {
-          return prm.get_double(name);
-        }
-      catch (const dealii::ExceptionBase &)
-        {
-          const std::string value = prm.get(name);
-          errno                   = 0;
-          std::strtod(value.c_str(), nullptr);
-          const bool underflow = errno == ERANGE;
-          throw InputError("Parameter '" + section + "/" + name + "' = '" + value + "' is not allowed: " +
-                           (underflow ? "its magnitude is below the smallest normal double (2.2e-308), where a "
-                                        "double underflows; give 0 or a value of normal size"
-                                      : "it cannot be read as a number"));
-        }
+      errno             = 0;
+      char *end         = nullptr;
+      const double value = std::strtod(text.c_str(), &end);
+      if (end == text.c_str())
+        throw InputError("Parameter '" + path + "' = '" + text + "' is not allowed: it cannot be read as a number");
+      if (errno == ERANGE && std::abs(value) < 1.)
+        throw InputError("Parameter '" + path + "' = '" + text + "' is not allowed: its magnitude is below the "
+                         "smallest normal double (2.2e-308), where a double underflows; give 0 or a value of "
+                         "normal size");
+      return value;
     }
 
     // The tables of a scene, as read: the sections by tag and the point
@@ -197,11 +71,10 @@ namespace beamslider
       std::map<double, double> masses, inertias;                      // x -> m, x -> J
     };
 
-    // A "key: value, ..." table of the current subsection.
+    // A "key: value, ..." table (the Map pattern has matched already).
     template <typename Key>
-    std::map<Key, double> read_table(const ParameterHandler &prm, const std::string &section, const std::string &name)
+    std::map<Key, double> read_table(const std::string &path, const std::string &text)
     {
-      const std::string text = prm.get(name);
       std::map<Key, double> table;
       std::istringstream entries(text);
       std::string entry;
@@ -214,95 +87,212 @@ namespace beamslider
           double value = 0;
           std::istringstream k(entry.substr(0, colon)), v(colon == std::string::npos ? "" : entry.substr(colon + 1));
           if (!(k >> key) || !(v >> value) || !std::isfinite(value) || !std::isfinite(double(key)))
-            throw InputError("Parameter '" + section + "/" + name + "' = '" + text + "' is not allowed: the entry '" +
-                             entry + "' is not 'key: value' with two finite numbers");
+            throw InputError("Parameter '" + path + "' = '" + text + "' is not allowed: the entry '" + entry +
+                             "' is not 'key: value' with two finite numbers");
           if (!table.emplace(key, value).second)
-            throw InputError("Parameter '" + section + "/" + name + "' = '" + text + "' is not allowed: it gives a "
-                             "value for " + entry.substr(0, colon) + " twice");
+            throw InputError("Parameter '" + path + "' = '" + text + "' is not allowed: it gives a value for " +
+                             entry.substr(0, colon) + " twice");
         }
       return table;
     }
 
-    Scene parse(ParameterHandler &prm, SceneTables &tables)
+    // Declares entries of a ParameterHandler bound to the variables that
+    // hold them: each entry's default is the variable's value (written
+    // exactly, so a written scene reads back bit for bit), and a value read
+    // from a file or set by --set goes straight into the variable through
+    // the entry's action (ParameterHandler::add_action). One list of entries
+    // thus serves reading a scene, the template and a run's effective
+    // parameters.
+    //
+    // (ParameterHandler::add_parameter does the same for plain types but
+    // writes a double's default with six digits, which would not read back
+    // to the same scene.)
+    class SceneBinder
     {
-      Scene s;
-      prm.enter_subsection("Beam");
-      s.beam.length         = get_double(prm, "Beam", "Length");
-      s.beam.width          = get_double(prm, "Beam", "Width");
-      s.beam.thickness      = get_double(prm, "Beam", "Thickness");
-      s.beam.youngs_modulus = get_double(prm, "Beam", "Young's modulus");
-      s.beam.density        = get_double(prm, "Beam", "Density");
-      s.beam.mesh_file      = prm.get("Mesh file");
-      prm.leave_subsection();
+    public:
+      explicit SceneBinder(ParameterHandler &prm)
+        : prm_(prm)
+      {}
 
-      prm.enter_subsection("Sections");
-      for (const char *name : {"Width", "Thickness", "Young's modulus", "Density"})
-        tables.sections[name] = read_table<unsigned int>(prm, "Sections", name);
-      prm.leave_subsection();
+      void enter(const std::string &section)
+      {
+        prm_.enter_subsection(section);
+        section_ = section;
+      }
+      void leave() { prm_.leave_subsection(); }
 
-      prm.enter_subsection("Point masses");
-      tables.masses   = read_table<double>(prm, "Point masses", "Masses");
-      tables.inertias = read_table<double>(prm, "Point masses", "Rotary inertias");
-      prm.leave_subsection();
+      void bind(const std::string &name, double &field, const Double &pattern, const std::string &doc)
+      {
+        const std::string path = section_ + "/" + name;
+        declare(name, num(field), pattern, doc,
+                [&field, path](const std::string &text) { field = read_double(path, text); });
+      }
+      void bind(const std::string &name, unsigned int &field, const Integer &pattern, const std::string &doc)
+      {
+        declare(name, std::to_string(field), pattern, doc,
+                [&field](const std::string &text) { field = static_cast<unsigned int>(std::stoul(text)); });
+      }
+      void bind(const std::string &name, bool &field, const std::string &doc)
+      {
+        declare(name, field ? "true" : "false", Bool(), doc,
+                [&field](const std::string &text) { field = text == "true" || text == "yes"; });
+      }
+      void bind(const std::string &name, std::string &field, const dealii::Patterns::PatternBase &pattern,
+                const std::string &doc)
+      {
+        declare(name, field, pattern, doc, [&field](const std::string &text) { field = text; });
+      }
+      // An entry whose text is turned into the scene by `on_value` (a
+      // selection that sets several fields, a table).
+      void declare(const std::string &name, const std::string &default_text,
+                   const dealii::Patterns::PatternBase &pattern, const std::string &doc,
+                   const std::function<void(const std::string &)> &on_value)
+      {
+        prm_.declare_entry(name, default_text, pattern, doc);
+        prm_.add_action(name, on_value); // runs once now, with the default
+      }
+      const std::string &section() const { return section_; }
 
-      prm.enter_subsection("Supports");
-      const std::string type          = prm.get("Type");
-      s.supports.ideal_clamp          = type == "clamped" || type == "clamped-pinned";
-      s.supports.pinned_end           = {{type == "pinned", type == "pinned" || type == "clamped-pinned"}};
-      s.supports.rotational_stiffness = get_double(prm, "Supports", "Rotational stiffness");
-      s.supports.axial_stiffness      = get_double(prm, "Supports", "Axial stiffness");
-      prm.leave_subsection();
+    private:
+      ParameterHandler &prm_;
+      std::string section_;
+    };
 
-      prm.enter_subsection("Slider");
-      s.slider.mass                = get_double(prm, "Slider", "Mass");
-      s.slider.inertia             = get_double(prm, "Slider", "Rotary inertia");
-      s.slider.window_width        = get_double(prm, "Slider", "Window width");
-      s.slider.window_height_ratio = get_double(prm, "Slider", "Window height ratio");
-      s.slider.com_offset          = get_double(prm, "Slider", "Centre of mass offset");
-      s.slider.mass_factor         = get_double(prm, "Slider", "Mass factor");
-      prm.leave_subsection();
+    // Every entry of a scene, with the values of `s` as defaults, bound to
+    // the fields of `s` (and to `tables` for the Sections and Point masses
+    // tables, which build_beam() assembles into the beam afterwards): Scene{}
+    // (the default scene, mueller2023) for reading and the template, a run's
+    // own scene for the effective parameters it writes (scene_file_text).
+    void bind_scene(ParameterHandler &prm, Scene &s, SceneTables &tables)
+    {
+      SceneBinder e(prm);
+      e.enter("Beam");
+      e.bind("Length", s.beam.length, Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
+      e.bind("Width", s.beam.width, Double(0), "b, beam width [m]");
+      e.bind("Thickness", s.beam.thickness, Double(0), "h, beam thickness [m], > 0 and < L/20 (Euler-Bernoulli)");
+      e.bind("Young's modulus", s.beam.youngs_modulus, Double(1e6, 1e13), "E [Pa], in [1e6, 1e13] (soft polymers to diamond)");
+      e.bind("Density", s.beam.density, Double(1, 1e5), "rho [kg/m^3], in [1, 1e5]");
+      e.bind("Mesh file", s.beam.mesh_file, Anything(),
+             "a Gmsh line mesh (.msh, format 2 or 4) of the beam, a path relative to the scene file: "
+             "line elements along x from 0 to L, each with a physical tag whose section the subsection "
+             "Sections gives. Empty: a uniform beam of the section above, meshed with Number of elements. "
+             "With a mesh, Length is the mesh's and Width, Thickness, Young's modulus and Density are the "
+             "thickest section's (R/h and amplitudes in thicknesses refer to it): leave them unset");
+      e.leave();
 
-      prm.enter_subsection("Contact");
-      s.contact.friction_coefficient = get_double(prm, "Contact", "Friction coefficient");
-      s.contact.restitution          = get_double(prm, "Contact", "Restitution");
-      s.contact.gravity              = get_double(prm, "Contact", "Gravity");
-      s.contact.solver               = prm.get("Solver");
-      prm.leave_subsection();
+      // Tables "tag: value, tag: value" of a mesh beam's sections.
+      e.enter("Sections");
+      const auto section_table = [&](const char *name, double BeamSection::*field, const char *doc) {
+        std::string text;
+        for (const auto &[tag, section] : s.beam.sections)
+          text += (text.empty() ? "" : ", ") + std::to_string(tag) + ": " + num(section.*field);
+        const std::string path = std::string("Sections/") + name;
+        e.declare(name, text, Map(Integer(0), Double(0), 0, Map::max_int_value, ",", ":"), doc,
+                  [&tables, name, path](const std::string &value) {
+                    tables.sections[name] = read_table<unsigned int>(path, value);
+                  });
+      };
+      section_table("Width", &BeamSection::width, "b per physical tag of the mesh, 'tag: value, ...' [m] (mesh beams only)");
+      section_table("Thickness", &BeamSection::thickness, "h per physical tag [m], each > 0 and < L/20");
+      section_table("Young's modulus", &BeamSection::youngs_modulus, "E per physical tag [Pa], in [1e6, 1e13]");
+      section_table("Density", &BeamSection::density, "rho per physical tag [kg/m^3], in [1, 1e5]");
+      e.leave();
 
-      prm.enter_subsection("Damping");
-      s.damping_ratio = get_double(prm, "Damping", "Modal damping ratio");
-      prm.leave_subsection();
+      // Rigid bodies fixed to the beam, "x: value, ..." with x in metres.
+      e.enter("Point masses");
+      {
+        std::string masses, inertias;
+        for (const PointMass &m : s.beam.point_masses)
+          {
+            masses += (masses.empty() ? "" : ", ") + num(m.position) + ": " + num(m.mass);
+            inertias += (inertias.empty() ? "" : ", ") + num(m.position) + ": " + num(m.rotary_inertia);
+          }
+        e.declare("Masses", masses, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
+                  "point masses on the beam, 'x: m, ...': position x in [0, L] [m], mass [kg] (on w(x))",
+                  [&tables](const std::string &value) { tables.masses = read_table<double>("Point masses/Masses", value); });
+        e.declare("Rotary inertias", inertias, Map(Double(0), Double(0), 0, Map::max_int_value, ",", ":"),
+                  "rotary inertias of the bodies, 'x: J, ...' [m: kg m^2] (on w'(x)); a position without "
+                  "a mass is a body of rotary inertia only",
+                  [&tables](const std::string &value) {
+                    tables.inertias = read_table<double>("Point masses/Rotary inertias", value);
+                  });
+      }
+      e.leave();
 
-      prm.enter_subsection("Excitation");
-      s.excitation.frequency_hz           = get_double(prm, "Excitation", "Frequency");
-      s.excitation.acceleration_amplitude = get_double(prm, "Excitation", "Acceleration amplitude");
-      prm.leave_subsection();
+      e.enter("Supports");
+      e.declare("Type", s.supports.type(), Selection("elastic|clamped|pinned|clamped-pinned"),
+                "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
+                "clamped: the ideal clamp w = w' = u = 0; pinned: immovable hinges w = u = 0, w' free; "
+                "clamped-pinned: clamped at x = 0, pinned at x = L (the springs below are used by elastic only)",
+                [&supports = s.supports](const std::string &type) {
+                  supports.ideal_clamp = type == "clamped" || type == "clamped-pinned";
+                  supports.pinned_end  = {{type == "pinned", type == "pinned" || type == "clamped-pinned"}};
+                });
+      e.bind("Rotational stiffness", s.supports.rotational_stiffness, Double(0), "k_r, on w' at each end [N m/rad]");
+      e.bind("Axial stiffness", s.supports.axial_stiffness, Double(0), "k_t, the clamping's TOTAL axial stiffness as published (Mueller, Beck & Krack 2023): in series with the beam, k_ax = (L/(EA) + 1/k_t)^-1; the FE model puts 2 k_t at each end [N/m]");
+      e.leave();
 
-      prm.enter_subsection("Initial state");
-      s.initial.slider_position_over_L = get_double(prm, "Initial state", "Slider position");
-      prm.leave_subsection();
+      e.enter("Slider");
+      e.bind("Mass", s.slider.mass, Double(0), "m [kg], > 0");
+      e.bind("Rotary inertia", s.slider.inertia, Double(0), "J_C about the centre of mass [kg m^2], > 0; the radius of gyration sqrt(J_C/m) must be at least 3 % of the corners' distance sqrt(d^2 + B^2/4) from the centre of mass (a rigid frame around the window cannot have less)");
+      e.bind("Window width", s.slider.window_width, Double(0), "B, horizontal distance of the contact corners [m], < L");
+      e.bind("Window height ratio", s.slider.window_height_ratio, Double(0), "R/h, inner window height over beam thickness [-], > 1");
+      e.bind("Centre of mass offset", s.slider.com_offset, Double(0), "d, centre of mass below the window centre [m]");
+      e.bind("Mass factor", s.slider.mass_factor, Double(0), "ablation: multiplies mass and rotary inertia [-], > 0");
+      e.leave();
 
-      prm.enter_subsection("Discretisation");
-      s.discretisation.n_elements             = prm.get_integer("Number of elements");
-      s.discretisation.axial_degree           = prm.get_integer("Axial degree");
-      s.discretisation.n_modes                = prm.get_integer("Number of modes");
-      s.discretisation.geometric_nonlinearity = prm.get_bool("Geometric nonlinearity");
-      prm.leave_subsection();
+      e.enter("Contact");
+      e.bind("Friction coefficient", s.contact.friction_coefficient, Double(0), "mu, Coulomb [-]");
+      e.bind("Restitution", s.contact.restitution, Double(0, 1), "e_N, Newton's normal restitution [-] in [0, 1]");
+      e.bind("Gravity", s.contact.gravity, Double(0), "g, acting on the slider in -z [m/s^2]");
+      e.bind("Solver", s.contact.solver, Selection("projected|exact-local"),
+             "contact impulses per step: projected Gauss-Seidel (as the authors' code) or exact-local "
+             "(each contact's 2x2 problem solved exactly, block Gauss-Seidel; same solution, fewer sweeps)");
+      e.leave();
 
-      prm.enter_subsection("Time stepping");
-      s.time_stepping.time_step   = get_double(prm, "Time stepping", "Time step");
-      s.time_stepping.end_time    = get_double(prm, "Time stepping", "End time");
-      s.time_stepping.output_rate = get_double(prm, "Time stepping", "Output rate");
-      prm.leave_subsection();
+      e.enter("Damping");
+      e.bind("Modal damping ratio", s.damping_ratio, Double(0, 1), "D, the same for every mode [-] in [0, 1)");
+      e.leave();
 
-      prm.enter_subsection("Solvers");
-      s.solvers.contact_tolerance         = get_double(prm, "Solvers", "Contact tolerance");
-      s.solvers.contact_sweeps            = prm.get_integer("Contact sweeps");
-      s.solvers.newton_relative_tolerance = get_double(prm, "Solvers", "Newton relative tolerance");
-      s.solvers.newton_absolute_tolerance = get_double(prm, "Solvers", "Newton absolute tolerance");
-      s.solvers.newton_iterations         = prm.get_integer("Newton iterations");
-      prm.leave_subsection();
-      return s;
+      e.enter("Excitation");
+      e.bind("Frequency", s.excitation.frequency_hz, Double(0.1, 1e5),
+             "f_ex [Hz], in [0.1, 1e5] (at lower frequencies the base displacement a/Omega^2 swamps the micrometre gaps in round-off)");
+      e.bind("Acceleration amplitude", s.excitation.acceleration_amplitude, Double(0), "base acceleration amplitude [m/s^2]");
+      e.leave();
+
+      e.enter("Initial state");
+      e.bind("Slider position", s.initial.slider_position_over_L, Double(0, 1), "x_C/L at t = 0 [-]; the window must lie inside the beam");
+      e.leave();
+
+      e.enter("Discretisation");
+      e.bind("Number of elements", s.discretisation.n_elements, Integer(1, 4096), "beam elements of the FE model, at least N + 1 (Number of modes)");
+      e.bind("Axial degree", s.discretisation.axial_degree, Integer(1, 6), "polynomial degree of the axial displacement u");
+      e.bind("Number of modes", s.discretisation.n_modes, Integer(1, 40),
+             "N, bending modes of the reduced model (and modes the FE damps); the explicit ROM step needs Delta t <= 2/omega_N");
+      e.bind("Geometric nonlinearity", s.discretisation.geometric_nonlinearity, "von Karman bending-stretching coupling on/off (ablation)");
+      e.leave();
+
+      e.enter("Time stepping");
+      e.bind("Time step", s.time_stepping.time_step, Double(0), "Delta t [s], > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
+      e.bind("End time", s.time_stepping.end_time, Double(0), "[s], at most 1e11 time steps");
+      e.bind("Output rate", s.time_stepping.output_rate, Double(0), "samples per second in trace.csv [1/s]");
+      e.leave();
+
+      e.enter("Solvers");
+      e.bind("Contact tolerance", s.solvers.contact_tolerance, Double(1e-16, 1e-2),
+             "contact impulses of a step: converged when the relative change of G P + c per sweep is below "
+             "this [-], in [1e-16, 1e-2]");
+      e.bind("Contact sweeps", s.solvers.contact_sweeps, Integer(1, 10000000),
+             "cap on the Gauss-Seidel sweeps of one contact solve; a solve that reaches it stops the run "
+             "with a message");
+      e.bind("Newton relative tolerance", s.solvers.newton_relative_tolerance, Double(1e-15, 1e-2),
+             "FE time step: Newton's correction relative to the end velocity [-], in [1e-15, 1e-2]");
+      e.bind("Newton absolute tolerance", s.solvers.newton_absolute_tolerance, Double(0, 1),
+             "FE time step: or a correction below this [m/s], in [0, 1]");
+      e.bind("Newton iterations", s.solvers.newton_iterations, Integer(1, 1000),
+             "FE time step: cap on Newton iterations per step, refactorisations included; a step that "
+             "reaches it stops the run with a message");
+      e.leave();
     }
 
     // The additional-information part of a deal.II exception, without the
@@ -688,7 +678,9 @@ namespace beamslider
       set_keys.insert(override_path(o));
 
     ParameterHandler prm;
-    declare(prm, Scene());
+    Scene s;
+    SceneTables tables;
+    bind_scene(prm, s, tables);
     try
       {
         std::istringstream in(text);
@@ -701,8 +693,6 @@ namespace beamslider
     for (const auto &o : overrides)
       apply_override(prm, o);
 
-    SceneTables tables;
-    Scene s = parse(prm, tables);
     build_beam(s, tables, filename, set_keys);
     const auto slash = filename.find_last_of('/');
     s.name           = filename.substr(slash == std::string::npos ? 0 : slash + 1);
@@ -717,7 +707,9 @@ namespace beamslider
   std::string scene_file_text(const Scene &scene)
   {
     ParameterHandler prm;
-    declare(prm, scene);
+    Scene bound = scene; // bind_scene needs variables; this copy is only written
+    SceneTables tables;
+    bind_scene(prm, bound, tables);
     std::ostringstream out;
     prm.print_parameters(out, ParameterHandler::PRM);
     return out.str();

@@ -219,6 +219,26 @@ TEST(SceneErrors, UnderflowingValueIsAnInputErrorNamingTheParameter)
       expect_contains(m, "'Contact/Restitution' = '" + value + "'");
       expect_contains(m, "smallest normal double");
     }
+  // The same from a file: the value reaches the scene through the entry's
+  // action inside ParameterHandler::parse_input, whose failure must still
+  // arrive as this InputError, not as a deal.II exception.
+  const std::string path = ::testing::TempDir() + "underflow_scene.prm";
+  {
+    std::ofstream f(path);
+    f << "subsection Contact\n  set Restitution = 1e-320\nend\n";
+  }
+  std::string m;
+  try
+    {
+      read_scene(path);
+    }
+  catch (const InputError &e)
+    {
+      m = e.what();
+    }
+  expect_contains(m, "'Contact/Restitution' = '1e-320'");
+  expect_contains(m, "smallest normal double");
+  std::remove(path.c_str());
 }
 
 // Found by tests/test_cli_fuzz.cc: when the base displacement amplitude
