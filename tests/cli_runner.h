@@ -36,6 +36,18 @@ namespace beamslider::testing
     int send_signal             = 0;   // sent once after signal_delay_seconds
     double signal_delay_seconds = 0;
     std::string working_directory; // "" = the test's
+
+    // Named settings for a call site, e.g. CliLimits().signal(SIGKILL, 1.5)
+    // (designated initializers would need C++20).
+    CliLimits &timeout(const double seconds) { timeout_seconds = seconds; return *this; }
+    CliLimits &file_size(const long bytes) { file_size_limit = bytes; return *this; }
+    CliLimits &signal(const int sig, const double delay_seconds)
+    {
+      send_signal          = sig;
+      signal_delay_seconds = delay_seconds;
+      return *this;
+    }
+    CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
   };
 
   inline std::string read_file(const std::filesystem::path &path)

@@ -67,7 +67,7 @@ TEST(Resume, AfterKillNineNothingIsLostAndNothingIsWrittenTwice)
   ASSERT_EQ(run.exit_code, 0) << run.err;
   run = run_beamslider({"simulate", scene, "--end-time", "60", "--checkpoint-every", "1", "--output",
                         (dir / "killed").string()},
-                       {.send_signal = SIGKILL, .signal_delay_seconds = 1.5});
+                       CliLimits().signal(SIGKILL, 1.5));
   ASSERT_EQ(run.signal, SIGKILL) << "the run ended before it was killed: " << run.out;
   ASSERT_TRUE(fs::exists(dir / "killed" / "checkpoint.bin")) << run.out;
   run = run_beamslider({"simulate", "--resume", (dir / "killed").string()});

@@ -52,7 +52,7 @@ TEST(NoShell, OutputPathWithQuotesIsAPathNotACommand)
   const fs::path dir    = fresh_folder("injection_output");
   const fs::path output = dir / "o';touch PWNED;'";
   const CliRun run = run_beamslider({"simulate", scene, "--end-time", "0.02", "--output", output.string()},
-                                    {.working_directory = dir.string()});
+                                    CliLimits().in_directory(dir.string()));
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_FALSE(fs::exists(dir / "PWNED")) << "the output path reached a shell";
   EXPECT_TRUE(fs::exists(output / "trace.png")) << "the chart was drawn with the path as one argument";
@@ -65,7 +65,7 @@ TEST(NoShell, SceneNameWithQuotesIsANameNotACommand)
   const fs::path odd = dir / "x';touch PWNED;'.prm";
   fs::copy_file(scene, odd);
   const CliRun run = run_beamslider({"simulate", odd.string(), "--end-time", "0.02", "--output", (dir / "out").string()},
-                                    {.working_directory = dir.string()});
+                                    CliLimits().in_directory(dir.string()));
   EXPECT_EQ(run.exit_code, 0) << run.err;
   EXPECT_FALSE(fs::exists(dir / "PWNED")) << "the scene name reached a shell";
   fs::remove_all(dir);
@@ -114,7 +114,7 @@ TEST(NoSilentSuccess, FileSizeLimitCutsTheTraceAndIsExitOne)
   // start-up needs a few MB of files of its own).
   const CliRun run = run_beamslider({"simulate", scene, "--end-time", "4", "--set", "Time stepping/Output rate=50000",
                                      "--output", dir.string()},
-                                    {.file_size_limit = 16l << 20});
+                                    CliLimits().file_size(16l << 20));
   EXPECT_EQ(run.signal, 0) << "killed by signal " << run.signal << " (SIGXFSZ must be ignored)";
   EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
   EXPECT_NE(run.err.find("File too large"), std::string::npos) << run.err;
@@ -196,7 +196,7 @@ TEST(SceneReader, FolderEmptyFileAndFifoAreRefused)
          {"folder.prm", "is a folder"}, {"empty.prm", "is empty"}, {"pipe.prm", "not a regular file"}})
     {
       const CliRun run = run_beamslider({"simulate", (dir / file).string(), "--output", (dir / "o").string()},
-                                        {.timeout_seconds = 20});
+                                        CliLimits().timeout(20));
       EXPECT_FALSE(run.timed_out) << file << " hangs";
       EXPECT_EQ(run.exit_code, 2) << file << ": " << run.err;
       EXPECT_NE(run.err.find(words), std::string::npos) << file << ": " << run.err;
@@ -294,7 +294,7 @@ TEST(Interruption, CtrlCFinishesTheStepWritesCompleteRowsAndTheSummary)
       // 600 s of simulated time take ~30 s on one core: the signal at 2.5 s
       // always arrives mid-run, also on a machine faster than this one.
       const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "600", "--output", dir.string()},
-                                          {.timeout_seconds = 60, .send_signal = signal, .signal_delay_seconds = 2.5});
+                                          CliLimits().timeout(60).signal(signal, 2.5));
       EXPECT_EQ(run.exit_code, code) << run.err;
       const std::string summary = read_file(dir / "summary.md");
       EXPECT_NE(summary.find("Status: interrupted"), std::string::npos) << summary;
