@@ -299,4 +299,18 @@ namespace beamslider
   // run writes into its output folder, so that read_scene of this text gives
   // the same scene, bit for bit.
   std::string scene_file_text(const Scene &scene);
+
+  // One setting of a command (an option of the command line with its
+  // effective value, given or default).
+  struct CommandSetting
+  {
+    std::string name;        // the option without dashes, e.g. "settle-time"
+    std::string value;       // as given, or the default ("" if it has none)
+    std::string description; // the option's help text (unit, range)
+  };
+  // The settings as a parameter file (deal.II ParameterHandler format) with
+  // one subsection named after the command: the settings a command uses
+  // besides the scene (harmonics, sweep times, ...), written next to
+  // parameters.prm so that a run's folder says everything it was run with.
+  std::string command_settings_text(const std::string &command, const std::vector<CommandSetting> &settings);
 } // namespace beamslider

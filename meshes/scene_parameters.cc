@@ -714,4 +714,16 @@ namespace beamslider
     prm.print_parameters(out, ParameterHandler::PRM);
     return out.str();
   }
+
+  std::string command_settings_text(const std::string &command, const std::vector<CommandSetting> &settings)
+  {
+    ParameterHandler prm;
+    prm.enter_subsection(command);
+    for (const CommandSetting &c : settings)
+      prm.declare_entry(c.name, c.value, Anything(), c.description);
+    prm.leave_subsection();
+    std::ostringstream out;
+    prm.print_parameters(out, ParameterHandler::PRM);
+    return out.str();
+  }
 } // namespace beamslider

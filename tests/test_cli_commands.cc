@@ -102,6 +102,25 @@ TEST(Commands, BackboneWritesTheDocumentedColumnsUpToTheAskedAmplitude)
   for (const auto &row : numeric_rows(dir / "backbone.csv"))
     largest = std::max(largest, row[0]);
   EXPECT_NEAR(largest, 1., 0.05);
+
+  // command.prm: every option with its effective value, the given ones and
+  // the defaults alike (the number of harmonics is in no other file).
+  const std::string settings = read_file(dir / "command.prm");
+  const auto value_of        = [&settings](const std::string &name) {
+    const std::string key = "\n  set " + name + " ";
+    const auto at         = settings.find(key);
+    if (at == std::string::npos)
+      return std::string("(missing)");
+    const auto begin = settings.find("= ", at) + 2;
+    return settings.substr(begin, settings.find('\n', begin) - begin);
+  };
+  EXPECT_NE(settings.find("subsection backbone"), std::string::npos) << settings;
+  EXPECT_EQ(value_of("max-amplitude"), "1");
+  EXPECT_EQ(value_of("model"), "rom");
+  EXPECT_EQ(value_of("harmonics"), "10"); // the default
+  EXPECT_EQ(value_of("scene"), "mueller2023");
+  EXPECT_EQ(value_of("output"), dir.string());
+  EXPECT_EQ(value_of("help"), "(missing)");
   fs::remove_all(dir);
 }
 

@@ -60,10 +60,33 @@ int main(int argc, char **argv)
 
 namespace
 {
+// The parsed sub-command's options with their effective values (given, or
+// the default), recorded for the output folder's command.prm.
+void record_effective_options(const CLI::App &command)
+{
+  std::vector<beamslider::CommandSetting> settings;
+  for (const CLI::Option *option : command.get_options())
+    {
+      const std::string name = option->get_single_name(); // "end-time" for --end-time
+      if (name == "help" || name.empty())
+        continue;
+      std::string value;
+      if (option->count() > 0)
+        for (const std::string &r : option->results())
+          value += (value.empty() ? "" : ", ") + r;
+      else if (option->get_default_str() != "[]") // an empty list: nothing
+        value = option->get_default_str();
+      settings.push_back({name, value, option->get_description()});
+    }
+  beamslider::record_command_settings(command.get_name(), settings);
+}
+
 int run_command_line(int argc, char **argv)
 {
   CLI::App app{"beamslider: FE and reduced-order models of a beam with a sliding mass (cross-verification suite)"};
   app.require_subcommand(1);
+  // Every option keeps its default as text, for command.prm.
+  app.option_defaults()->always_capture_default();
 
   CommonOptions common;
   bool quiet = false;
@@ -220,6 +243,7 @@ int run_command_line(int argc, char **argv)
     }
 
   set_quiet(quiet);
+  record_effective_options(*app.get_subcommands().front());
   try
     {
       if (*modes_cmd)

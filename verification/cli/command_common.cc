@@ -47,8 +47,20 @@ namespace beamslider
       return quoted + "'";
     }
 
+    // command.prm's text ("" until main() records the parsed command).
+    std::string &command_settings()
+    {
+      static std::string text;
+      return text;
+    }
+
     void write_run_record(const std::string &dir, const Scene &scene, const RunRecord record)
     {
+      if (!command_settings().empty())
+        write_text_file(dir + "/command.prm",
+                        "# The options of this beamslider command with their effective values (given on the command "
+                        "line or default); the scene is in parameters.prm.\n" +
+                          command_settings());
       write_text_file(dir + "/parameters.prm",
                       "# The scene '" + scene.name + "' as this run used it (after --set and --case), written by "
                       "beamslider. Repeat the run with the command line in run.txt and this file as the scene.\n" +
@@ -65,6 +77,8 @@ namespace beamslider
           << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
           << " (git describe of the source tree when the build was configured)\n"
           << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
+      if (!command_settings().empty())
+        run << "options:   command.prm (every option of the command, given or default)\n";
       const bool append = record == RunRecord::append && fs::exists(dir + "/run.txt", ec);
       OutputFile file(dir + "/run.txt", append);
       file.stream() << (append ? "\n" : "") << run.str(); // records apart by a blank line
@@ -75,6 +89,11 @@ namespace beamslider
   void record_command_line(const int argc, const char *const *argv)
   {
     command_line().assign(argv, argv + argc);
+  }
+
+  void record_command_settings(const std::string &command, const std::vector<CommandSetting> &settings)
+  {
+    command_settings() = command_settings_text(command, settings);
   }
 
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,

@@ -135,6 +135,7 @@ namespace beamslider
   // user's overrides last. `modified` lists the case's own parameters the
   // user changed.
   struct Scene;
+  struct CommandSetting;
   Scene read_command_scene(const CommonOptions &common, const std::string &case_name,
                            std::vector<std::string> *modified = nullptr);
 
@@ -151,6 +152,9 @@ namespace beamslider
   //   parameters.prm  the scene as this run uses it (after --set and --case),
   //                   complete, in the scene-file format (read_scene reads it
   //                   back bit for bit);
+  //   command.prm     every option of the command with its effective value,
+  //                   given or default (recorded by main(), see
+  //                   record_command_settings), e.g. harmonics, sweep times;
   //   run.txt         the command line, working directory, time (UTC),
   //                   beamslider version and source revision; a run that
   //                   continues the folder's run (simulate --resume) appends
@@ -166,6 +170,9 @@ namespace beamslider
 
   // The process's command line, for run.txt (main() records it first).
   void record_command_line(int argc, const char *const *argv);
+  // The sub-command's options with their effective values, for command.prm
+  // (main() records them once the command line is parsed).
+  void record_command_settings(const std::string &command, const std::vector<CommandSetting> &settings);
   // Runs a plotting script from scripts/ with Debian's python3 + matplotlib,
   // as a child process with an argument vector (no shell). A chart that could
   // not be drawn is a result not written: it is recorded (note_output_failure)
