@@ -32,6 +32,28 @@ namespace
     return "";
   }
 
+  // Runs read_scene on a scene file with the given text and returns the
+  // error message ("" if none).
+  std::string error_for_file(const std::string &name, const std::string &text)
+  {
+    const std::string path = ::testing::TempDir() + name;
+    {
+      std::ofstream f(path);
+      f << text;
+    }
+    std::string message;
+    try
+      {
+        read_scene(path);
+      }
+    catch (const InputError &e)
+      {
+        message = e.what();
+      }
+    std::remove(path.c_str());
+    return message;
+  }
+
   void expect_contains(const std::string &message, const std::string &what)
   {
     EXPECT_NE(message.find(what), std::string::npos) << "message: " << message << "\nexpected to contain: " << what;
@@ -175,21 +197,7 @@ TEST(SceneErrors, UnknownParameterIsAnError)
 
 TEST(SceneErrors, UnknownParameterInAFileIsAnError)
 {
-  const std::string path = ::testing::TempDir() + "bad_scene.prm";
-  {
-    std::ofstream f(path);
-    f << "subsection Beam\n  set Lenght = 0.1\nend\n";
-  }
-  std::string m;
-  try
-    {
-      read_scene(path);
-    }
-  catch (const InputError &e)
-    {
-      m = e.what();
-    }
-  expect_contains(m, "Lenght");
+  expect_contains(error_for_file("bad_scene.prm", "subsection Beam\n  set Lenght = 0.1\nend\n"), "Lenght");
 }
 
 TEST(SceneErrors, MissingFile)
@@ -208,9 +216,9 @@ TEST(SceneErrors, MissingFile)
 }
 
 // Found by tests/test_cli_fuzz.cc: a value below the smallest normal double
-// (2.2e-308) passes deal.II's Double pattern, but ParameterHandler::get_double
-// refuses it with its own exception (the program exited 1 with a deal.II
-// banner). It is an input error like any other.
+// (2.2e-308) passes deal.II's Double pattern, but deal.II's conversion to a
+// double refuses it with its own exception (the program exited 1 with a
+// deal.II banner). It is an input error like any other.
 TEST(SceneErrors, UnderflowingValueIsAnInputErrorNamingTheParameter)
 {
   for (const std::string value : {"1e-320", "4.9e-324", "1e-400"})
@@ -222,23 +230,10 @@ TEST(SceneErrors, UnderflowingValueIsAnInputErrorNamingTheParameter)
   // The same from a file: the value reaches the scene through the entry's
   // action inside ParameterHandler::parse_input, whose failure must still
   // arrive as this InputError, not as a deal.II exception.
-  const std::string path = ::testing::TempDir() + "underflow_scene.prm";
-  {
-    std::ofstream f(path);
-    f << "subsection Contact\n  set Restitution = 1e-320\nend\n";
-  }
-  std::string m;
-  try
-    {
-      read_scene(path);
-    }
-  catch (const InputError &e)
-    {
-      m = e.what();
-    }
+  const std::string m =
+    error_for_file("underflow_scene.prm", "subsection Contact\n  set Restitution = 1e-320\nend\n");
   expect_contains(m, "'Contact/Restitution' = '1e-320'");
   expect_contains(m, "smallest normal double");
-  std::remove(path.c_str());
 }
 
 // Found by tests/test_cli_fuzz.cc: when the base displacement amplitude
