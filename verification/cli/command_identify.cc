@@ -67,14 +67,14 @@ namespace beamslider
     else
       for (const std::string &id : options.facts)
         facts.push_back(&system1_fact(id));
-    // Every candidate's scene in every scenario is checked before any work.
+    // Every candidate's scene in every scenario is checked before any work,
+    // in the order the runs apply them: the user's overrides, the unknowns'
+    // values, the scenario (an axis the scenario fixes is not varied in it).
     for (const System1Fact *f : facts)
       {
-        std::vector<std::string> o = common.overrides;
-        o.insert(o.end(), f->overrides.begin(), f->overrides.end());
         for (std::size_t c = 0; c < unknowns.n_cells(); ++c)
           {
-            std::vector<std::string> cell = o;
+            std::vector<std::string> cell = common.overrides;
             const std::vector<double> values = unknowns.cell_values(c);
             for (std::size_t k = 0; k < values.size(); ++k)
               {
@@ -82,7 +82,8 @@ namespace beamslider
                 s << std::setprecision(17) << unknowns.axes[k].parameter << "=" << values[k];
                 cell.push_back(s.str());
               }
-            // An axis the scenario fixes is not varied in that scenario.
+            cell.insert(cell.end(), f->overrides.begin(), f->overrides.end());
+            // The last setting of each parameter wins.
             std::vector<std::string> unique;
             for (auto it = cell.rbegin(); it != cell.rend(); ++it)
               {
