@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 using namespace beamslider;
 
@@ -96,6 +98,16 @@ TEST(SceneFiles, AllScenesParse)
   EXPECT_TRUE(s1.supports.ideal_clamp);
   // Reconstruction target: slider/beam mass ratio about 2.66.
   EXPECT_NEAR(s1.slider.mass / (s1.beam.mass_per_length() * s1.beam.length), 2.66, 0.05);
+  // Its unknowns are identified, never measured, and the file says so; the
+  // identified J_C is that of a block of the slider's mass with a 15-25 mm
+  // edge, m (a^2 + a^2)/12.
+  std::ifstream file(scene_dir + "system1.prm");
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("IDENTIFIED"), std::string::npos);
+  EXPECT_EQ(text.find("measured value"), std::string::npos);
+  const double edge = std::sqrt(6. * s1.slider.inertia / s1.slider.mass);
+  EXPECT_GT(edge, 0.015);
+  EXPECT_LT(edge, 0.025);
 }
 
 TEST(SceneFiles, OverrideChangesAValue)

@@ -11,6 +11,7 @@
 //   beamslider animate SCENE --model fe|rom         ParaView time series (.pvd)
 //   beamslider ensemble SCENE --model rom|fe        K perturbed runs: outcome statistics, --against DIR
 //   beamslider map SCENE --frequency A:B:S ...      outcome maps over a parameter grid (MPI: mpirun -np P)
+//   beamslider identify SCENE --axis "S/N=A:B:S"... System 1's unknowns by the seed's facts
 //   beamslider verify [SCENE] [--full]              the verification report
 //   beamslider scene-template                       every parameter with unit and range
 //
@@ -201,12 +202,23 @@ int run_command_line(int argc, char **argv)
     ->check(finite_in(0., 1e-3));
   map_cmd->add_option("--end-time", map.end_time, "simulated time per member [s]")->check(finite_positive());
 
+  IdentifyOptions identify;
+  auto *identify_cmd = app.add_subcommand("identify", "the seed's System 1 facts over a grid of unknown parameters "
+                                                      "(one map per fact); scores each candidate");
+  add_common(identify_cmd);
+  identify_cmd->add_option("--axis", identify.axes, "an unknown scene parameter: \"Section/Name=A:B:STEP\" (repeatable)");
+  identify_cmd->add_option("--fact", identify.facts, "only this fact, by id (repeatable; default: every fact)");
+  identify_cmd->add_option("--members", identify.members, "K members per run (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  identify_cmd->add_option("--perturbation", identify.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
   verify_cmd->add_flag("--full", verify.full, "run the long studies too");
-  verify_cmd->add_option("--section", verify.sections, "write only this section (1-6; repeatable)")
-    ->check(integer_in(1, 6));
+  verify_cmd->add_option("--section", verify.sections, "write only this section (1-7; repeatable)")
+    ->check(integer_in(1, 7));
 
   LadderOptions ladder;
   auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
@@ -270,6 +282,8 @@ int run_command_line(int argc, char **argv)
         return run_ensemble_command(common, ensemble);
       if (*map_cmd)
         return run_map(common, map);
+      if (*identify_cmd)
+        return run_identify(common, identify);
       if (*verify_cmd)
         return run_verify(common, verify);
       if (*ladder_cmd)

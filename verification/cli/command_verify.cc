@@ -56,7 +56,8 @@ namespace beamslider
       [&] { add_backbone_section(report, scene, options.full); },
       [&] { add_contact_section(report, scene, options.full); },
       [&] { add_fe_rom_section(report, scene, options.full); },
-      [&] { add_map_section(report, scene, options.full); }};
+      [&] { add_map_section(report, scene, options.full); },
+      [&] { add_system1_section(report, scene, options.full); }};
     for (std::size_t k = 0; k < sections.size(); ++k)
       {
         if (!options.sections.empty() &&

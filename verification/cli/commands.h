@@ -30,7 +30,7 @@ namespace beamslider
   struct VerifyOptions
   {
     bool full = false; // the long studies (minutes to hours)
-    std::vector<unsigned int> sections; // only these sections (1–6); empty = all
+    std::vector<unsigned int> sections; // only these sections (1–7); empty = all
   };
   int run_verify(const CommonOptions &common, const VerifyOptions &options);
 
@@ -129,6 +129,17 @@ namespace beamslider
     std::optional<double> end_time; // [s]; default the scene's
   };
   int run_map(const CommonOptions &common, const MapOptions &options);
+
+  // `beamslider identify`: System 1's unknowns by the seed's facts, one map
+  // per fact over the unknowns (command_identify.cc, studies/system1_facts.h).
+  struct IdentifyOptions
+  {
+    std::vector<std::string> axes;  // the unknowns, "Section/Name=A:B:STEP"
+    std::vector<std::string> facts; // fact ids; empty = every fact
+    unsigned int members = 1;       // K per run
+    double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
+  };
+  int run_identify(const CommonOptions &common, const IdentifyOptions &options);
 
   // The scene of a command that simulates: the scene file, or with a case
   // name the file with the case's parameters (simulation_cases.h); the

@@ -70,4 +70,7 @@ namespace beamslider
   // Section 6: the operating range, a map of the adaptation over frequency ×
   // level with the published cases (--full only; report_map.cc).
   void add_map_section(Report &report, const Scene &scene, bool full);
+  // Section 7: the seed's System 1 facts, each run once on the scene with
+  // its verdict (system1 only; report_system1.cc).
+  void add_system1_section(Report &report, const Scene &scene, bool full);
 } // namespace beamslider

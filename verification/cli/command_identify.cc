@@ -1,0 +1,226 @@
+// `beamslider identify [SCENE] --axis "Section/Name=A:B:STEP"... [--fact ID]...
+// [--members K]`: the identification of System 1's unknown parameters
+// (verification/studies/system1_facts.h). For each of the seed's facts, one
+// map (the `map` command's cells, operating_map.h) over the unknowns' axes
+// with the fact's scenario; each candidate (a cell of the unknowns' grid) is
+// scored by every fact's criterion and the scores are summed.
+//
+// Writes into the output folder:
+//   facts.csv             id, name, scenario (overrides), end time, seed text
+//   <fact id>/map.csv     the fact's map, in the map command's format
+//   identification.csv    one row per candidate: the unknowns' values, each
+//                         fact's score (mean over the members) and members
+//                         passing, the total
+//   verdicts.csv          one row per candidate and fact: score, pass, reason
+//   summary.md            the search, the best candidate and its verdicts
+//
+// Not restartable (unlike `map`): a search of this size runs in minutes.
+#include "contact/csv_writer.h"
+#include "contact/interruption.h"
+#include "contact/output_file.h"
+#include "meshes/scene.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/console.h"
+#include "verification/studies/operating_map.h"
+#include "verification/studies/system1_facts.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string joined(const std::vector<std::string> &parts, const std::string &separator)
+    {
+      std::string s;
+      for (const std::string &p : parts)
+        s += (s.empty() ? "" : separator) + p;
+      return s;
+    }
+  } // namespace
+
+  int run_identify(const CommonOptions &common, const IdentifyOptions &options)
+  {
+    const auto start_time        = std::chrono::steady_clock::now();
+    const std::string scene_file = resolve_scene_path(common.scene_file);
+    check_overrides_unique(common.overrides);
+    const Scene base = read_scene(scene_file, common.overrides);
+
+    MapGrid unknowns;
+    for (const std::string &a : options.axes)
+      unknowns.axes.push_back(parse_parameter_axis(a));
+    if (unknowns.axes.empty())
+      throw InputError("identify: no unknown given: use --axis \"Section/Name=A:B:STEP\" (repeatable)");
+    for (std::size_t i = 0; i < unknowns.axes.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (unknowns.axes[i].parameter == unknowns.axes[j].parameter)
+          throw InputError("identify: the parameter '" + unknowns.axes[i].parameter + "' is given as two axes");
+    std::vector<const System1Fact *> facts;
+    if (options.facts.empty())
+      for (const System1Fact &f : system1_facts())
+        facts.push_back(&f);
+    else
+      for (const std::string &id : options.facts)
+        facts.push_back(&system1_fact(id));
+    // Every candidate's scene in every scenario is checked before any work,
+    // in the order the runs apply them: the user's overrides, the unknowns'
+    // values, the scenario (an axis the scenario fixes is not varied in it).
+    for (const System1Fact *f : facts)
+      {
+        for (std::size_t c = 0; c < unknowns.n_cells(); ++c)
+          {
+            std::vector<std::string> cell = common.overrides;
+            const std::vector<double> values = unknowns.cell_values(c);
+            for (std::size_t k = 0; k < values.size(); ++k)
+              {
+                std::ostringstream s;
+                s << std::setprecision(17) << unknowns.axes[k].parameter << "=" << values[k];
+                cell.push_back(s.str());
+              }
+            cell.insert(cell.end(), f->overrides.begin(), f->overrides.end());
+            // The last setting of each parameter wins.
+            std::vector<std::string> unique;
+            for (auto it = cell.rbegin(); it != cell.rend(); ++it)
+              {
+                const std::string key = it->substr(0, it->find('='));
+                if (std::none_of(unique.begin(), unique.end(),
+                                 [&](const std::string &u) { return u.substr(0, u.find('=')) == key; }))
+                  unique.push_back(*it);
+              }
+            read_scene(scene_file, unique);
+          }
+      }
+
+    const std::string dir = prepare_output_dir(common, base, "identify");
+    MapSettings settings;
+    settings.model.family = "rom";
+    settings.n_members    = options.members;
+    settings.perturbation = options.perturbation;
+
+    {
+      CsvWriter csv(dir + "/facts.csv", {"id", "name", "overrides", "end_time_s", "seed"});
+      for (const System1Fact *f : facts)
+        csv.row({f->id, f->name, joined(f->overrides, "; "), CsvWriter::cell(f->end_time, 6), f->seed});
+      csv.close();
+    }
+    std::size_t runs = 0;
+    for (const System1Fact *f : facts)
+      {
+        std::size_t n = 1;
+        const std::vector<std::string> fixed = f->fixed_parameters();
+        for (const MapAxis &a : unknowns.axes)
+          if (std::find(fixed.begin(), fixed.end(), a.parameter) == fixed.end())
+            n *= a.values.size();
+        runs += n * options.members;
+      }
+    console() << "identify " << base.name << ": " << unknowns.n_cells() << " candidates x " << facts.size()
+              << " facts, " << runs << " ROM runs; into " << dir << std::endl;
+
+    std::vector<std::string> ids;
+    for (const System1Fact *f : facts)
+      ids.push_back(f->id);
+    bool complete = true;
+    const IdentificationResult result = identify_system1(
+      scene_file, common.overrides, unknowns, ids, settings, complete,
+      [&](const System1Fact &fact, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells) {
+        std::filesystem::create_directories(dir + "/" + fact.id);
+        CsvWriter csv(dir + "/" + fact.id + "/map.csv", map_csv_columns(grid));
+        for (std::size_t c = 0; c < cells.size(); ++c)
+          if (!cells[c].empty())
+            {
+              std::istringstream lines(format_map_rows(grid, c, cells[c]));
+              std::string line;
+              while (std::getline(lines, line))
+                csv.row(CsvWriter::cells(line));
+            }
+        csv.close();
+        console() << "  " << fact.name << ": " << cells.size() << " cell(s) done" << std::endl;
+      });
+
+    std::vector<std::string> columns;
+    for (const MapAxis &a : unknowns.axes)
+      columns.push_back(a.column);
+    for (const std::string &id : result.fact_ids)
+      {
+        columns.push_back("score_" + id);
+        columns.push_back("pass_" + id);
+      }
+    columns.push_back("total");
+    CsvWriter table(dir + "/identification.csv", columns);
+    CsvWriter verdicts(dir + "/verdicts.csv", {"candidate", "fact", "score", "members_passing", "reason"});
+    for (std::size_t c = 0; c < unknowns.n_cells(); ++c)
+      {
+        std::vector<std::string> row;
+        for (const double v : unknowns.cell_values(c))
+          row.push_back(CsvWriter::cell(v, 9));
+        for (std::size_t i = 0; i < result.fact_ids.size(); ++i)
+          {
+            row.push_back(CsvWriter::cell(result.scores[c][i], 4));
+            row.push_back(CsvWriter::cell(result.passes[c][i]));
+            verdicts.row({CsvWriter::cell(c), result.fact_ids[i], CsvWriter::cell(result.scores[c][i], 4),
+                          CsvWriter::cell(result.passes[c][i]), result.reasons[c][i]});
+          }
+        row.push_back(CsvWriter::cell(result.total(c), 4));
+        table.row(row);
+      }
+    table.close();
+    verdicts.close();
+
+    const std::size_t b = result.best;
+    std::ostringstream summary;
+    summary << "# Identification of `" << base.name << "` by the seed's System 1 facts\n\n"
+            << "- " << unknowns.n_cells() << " candidates (every combination of the unknowns' values), " << facts.size()
+            << " facts, " << options.members << " member(s) per run, ROM; one map per fact (`<fact>/map.csv`).\n"
+            << "- Wall time " << std::fixed << std::setprecision(0)
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count() << " s";
+    for (std::size_t i = 0; i < result.wall_seconds.size(); ++i)
+      summary << (i == 0 ? " (" : ", ") << result.fact_ids[i] << " " << result.wall_seconds[i] << " s";
+    summary << (result.wall_seconds.empty() ? "" : ")") << ".\n" << std::defaultfloat;
+    for (const std::string &o : common.overrides)
+      summary << "- Held at (`--set`): " << o << "\n";
+    if (!complete)
+      summary << "- **Interrupted**: the facts not run score 0.\n";
+    summary << std::setprecision(6) << "\n## Unknowns\n\n| parameter | values |\n|---|---|\n";
+    for (const MapAxis &a : unknowns.axes)
+      {
+        summary << "| " << a.parameter << " |";
+        for (const double v : a.values)
+          summary << " " << v;
+        summary << " |\n";
+      }
+    summary << "\n## Best candidate (total " << std::setprecision(3) << result.total(b) << " of " << facts.size()
+            << ")\n\n";
+    const std::vector<double> best_values = unknowns.cell_values(b);
+    for (std::size_t k = 0; k < unknowns.axes.size(); ++k)
+      summary << "- " << unknowns.axes[k].parameter << " = " << best_values[k] << "\n";
+    summary << "\n| fact | score | members passing | reason (member 0) |\n|---|---|---|---|\n";
+    for (std::size_t i = 0; i < result.fact_ids.size(); ++i)
+      summary << "| " << system1_fact(result.fact_ids[i]).name << " | " << result.scores[b][i] << " | "
+              << result.passes[b][i] << "/" << options.members << " | " << result.reasons[b][i] << " |\n";
+    // How often each fact passes over all candidates: a fact no candidate
+    // passes is a result too.
+    summary << "\n## Each fact over all candidates\n\n| fact | candidates passing | best score |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < result.fact_ids.size(); ++i)
+      {
+        unsigned int n_pass = 0;
+        double best_score   = 0;
+        for (std::size_t c = 0; c < unknowns.n_cells(); ++c)
+          {
+            n_pass += result.passes[c][i] == options.members;
+            best_score = std::max(best_score, result.scores[c][i]);
+          }
+        summary << "| " << result.fact_ids[i] << " | " << n_pass << " of " << unknowns.n_cells() << " | "
+                << best_score << " |\n";
+      }
+    summary << "\nFiles: identification.csv, verdicts.csv, facts.csv, <fact>/map.csv.\n";
+    write_text_file(dir + "/summary.md", summary.str());
+    console() << "identify: best candidate " << b << " (total " << result.total(b) << " of " << facts.size()
+              << "); " << dir << "/summary.md" << std::endl;
+    return 0; // after Ctrl-C, main() turns the interruption into 130/143
+  }
+} // namespace beamslider
