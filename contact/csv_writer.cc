@@ -72,22 +72,47 @@ namespace beamslider
     return s.str();
   }
 
+  std::string CsvWriter::quoted(const std::string &cell)
+  {
+    if (cell.find_first_of(",\"\n\r") == std::string::npos)
+      return cell;
+    std::string text = "\"";
+    for (const char c : cell)
+      text += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return text + "\"";
+  }
+
   std::string CsvWriter::line(const std::vector<std::string> &cells)
   {
     std::string text;
     for (std::size_t i = 0; i < cells.size(); ++i)
-      (text += i ? "," : "") += cells[i];
+      (text += i ? "," : "") += quoted(cells[i]);
     return text;
   }
 
   std::vector<std::string> CsvWriter::cells(const std::string &line)
   {
     std::vector<std::string> cells(1);
-    for (const char c : line)
-      if (c == ',')
-        cells.emplace_back();
-      else
-        cells.back() += c;
+    bool in_quotes = false;
+    for (std::size_t i = 0; i < line.size(); ++i)
+      {
+        const char c = line[i];
+        if (in_quotes)
+          {
+            if (c != '"')
+              cells.back() += c;
+            else if (i + 1 < line.size() && line[i + 1] == '"')
+              cells.back() += line[++i]; // "" inside quotes: one quote
+            else
+              in_quotes = false;
+          }
+        else if (c == '"')
+          in_quotes = true;
+        else if (c == ',')
+          cells.emplace_back();
+        else
+          cells.back() += c;
+      }
     return cells;
   }
 } // namespace beamslider

@@ -1,7 +1,10 @@
 // The one CSV writer of the project: a header of named columns (SI units in
 // the names where they are not obvious), then rows of formatted cells or of
-// numbers. Every result table goes through it, so the format (comma, no
-// quoting, '\n') and the checks are the same everywhere.
+// numbers. Every result table goes through it, so the format and the checks
+// are the same everywhere: cells separated by commas, rows by '\n', and a
+// cell that holds a comma, a double quote or a line break quoted as RFC 4180
+// says ("a, b" and "say ""x""", which Python's csv module and spreadsheet
+// programs read back as the one cell each was).
 //
 // The file is an OutputFile: a failed open, write, flush or close throws
 // OutputError naming the file and the reason. By default every row is
@@ -51,11 +54,15 @@ namespace beamslider
     static std::string cell(unsigned long x) { return std::to_string(x); }
     static std::string cell(unsigned int x) { return std::to_string(x); }
     static std::string cell(int x) { return std::to_string(x); }
-    // Cells joined into one line, without the '\n': for rows that travel as
-    // text before they reach a file (a map cell's rows between MPI ranks).
+    // Cells joined into one line, without the '\n', each quoted if it needs
+    // to be: for rows that travel as text before they reach a file (a map
+    // cell's rows between MPI ranks).
     static std::string line(const std::vector<std::string> &cells);
     // The cells of such a line (the inverse of line(); "a,,b," has 4 cells).
     static std::vector<std::string> cells(const std::string &line);
+    // A cell as it is written: as it is, or in double quotes with every
+    // quote doubled if it holds a comma, a double quote or a line break.
+    static std::string quoted(const std::string &cell);
 
   private:
     void check_width(std::size_t n_cells) const;

@@ -71,6 +71,13 @@ namespace beamslider
            "candidate scored by the facts' criteria (verification/studies/system1_facts.h; score = mean of the "
            "fact's conditions, 1 met, 0 not, a position falling linearly to 0 at three tolerances). The search and "
            "its result are in the scene's header and in doc/verification.md.\n\n"
+        << "The six unknowns as this run used them (the identified set, unless --set changed one):\n\n| parameter | value |\n|---|---|\n"
+        << "| friction coefficient μ | " << scene.contact.friction_coefficient << " |\n"
+        << "| restitution e_N | " << scene.contact.restitution << " |\n"
+        << "| centre-of-mass offset d | " << scene.slider.com_offset * 1e3 << " mm |\n"
+        << "| window width B | " << scene.slider.window_width * 1e3 << " mm |\n"
+        << "| rotary inertia J_C | " << scene.slider.inertia << " kg m² |\n"
+        << "| modal damping ratio D | " << scene.damping_ratio * 100 << " % |\n\n"
         << "Each fact's scenario run once on the scene as written (ROM, one member; runs are chaotic, so a single "
            "run is one sample, not a distribution):\n\n"
         << "| fact | scenario | verdict | score | reason |\n|---|---|---|---|---|\n";
