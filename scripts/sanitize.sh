@@ -15,6 +15,7 @@
 #       solver, Moreau stepper, ROM, harmonic balance): most of our own
 #       arithmetic and indexing, cheap to build
 #   test_scene, test_simulation_cases    the scene reader and the cases
+#   test_parallel_for                    threads, and exceptions across them
 #   test_cli_*                           the built program end to end
 #       (hardening, checkpoint/resume, fuzzing of scene files and --set),
 #       itself built with the sanitizers
@@ -28,7 +29,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-targets=(beamslider test_scene test_simulation_cases)
+targets=(beamslider test_scene test_simulation_cases test_parallel_for)
 for source in tests/test_contact_*.cc tests/test_reduced_*.cc tests/test_cli_*.cc; do
   name=$(basename "$source" .cc)
   [ "$name" = test_reduced_backbone_timing ] || targets+=("$name")
