@@ -129,16 +129,7 @@ namespace beamslider
       scene_file, common.overrides, unknowns, ids, settings, complete,
       [&](const System1Fact &fact, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells) {
         std::filesystem::create_directories(dir + "/" + fact.id);
-        CsvWriter csv(dir + "/" + fact.id + "/map.csv", map_csv_columns(grid));
-        for (std::size_t c = 0; c < cells.size(); ++c)
-          if (!cells[c].empty())
-            {
-              std::istringstream lines(format_map_rows(grid, c, cells[c]));
-              std::string line;
-              while (std::getline(lines, line))
-                csv.row(CsvWriter::cells(line));
-            }
-        csv.close();
+        write_map_csv(dir + "/" + fact.id + "/map.csv", grid, cells);
         console() << "  " << fact.name << ": " << cells.size() << " cell(s) done" << std::endl;
       });
 

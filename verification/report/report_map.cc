@@ -170,16 +170,7 @@ namespace beamslider
         md << "(interrupted before the map was complete)\n\n";
         return;
       }
-    {
-      std::string text;
-      const std::vector<std::string> columns = map_csv_columns(grid);
-      for (std::size_t k = 0; k < columns.size(); ++k)
-        text += (k ? "," : "") + columns[k];
-      text += "\n";
-      for (std::size_t c = 0; c < cells.size(); ++c)
-        text += format_map_rows(grid, c, cells[c]);
-      write_text_file(dir + "/map.csv", text);
-    }
+    write_map_csv(dir + "/map.csv", grid, cells);
 
     // The published cases of this scene that a frequency × level map can
     // show, each run as its own cell (its own start and end time).

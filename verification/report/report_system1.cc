@@ -53,15 +53,7 @@ namespace beamslider
       report.scene_file, report.overrides, here, {}, settings, complete,
       [&](const System1Fact &fact, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells) {
         std::filesystem::create_directories(dir + "/" + fact.id);
-        CsvWriter csv(dir + "/" + fact.id + "/map.csv", map_csv_columns(grid));
-        for (std::size_t c = 0; c < cells.size(); ++c)
-          if (!cells[c].empty())
-            {
-              std::istringstream lines(format_map_rows(grid, c, cells[c]));
-              for (std::string line; std::getline(lines, line);)
-                csv.row(CsvWriter::cells(line));
-            }
-        csv.close();
+        write_map_csv(dir + "/" + fact.id + "/map.csv", grid, cells);
       });
 
     out << "The seed's Table 1 is missing from our copy, so six parameters of System 1 are unknown: the friction "

@@ -252,19 +252,36 @@ namespace beamslider
 
   std::string format_map_rows(const MapGrid &grid, const std::size_t cell, const std::vector<MapMember> &members)
   {
-    const std::string key = map_cell_key(grid, cell);
+    // The axis values, one cell each (as map_cell_key writes them).
+    std::vector<std::string> axis_cells;
+    for (const double v : grid.cell_values(cell))
+      axis_cells.push_back(number_field(v));
     std::string rows;
     for (const MapMember &m : members)
       {
         const TraceAnalysis &a = m.analysis;
         const auto if_valid    = [&](const double x) { return a.valid ? result_field(x) : std::string(); };
-        rows += CsvWriter::line({key, CsvWriter::cell(m.index), result_field(m.perturbation), to_string(m.status),
-                                 to_string(a.outcome), if_valid(a.final_position), if_valid(a.final_amplitude),
-                                 if_valid(a.adaptation_time), CsvWriter::cell(a.n_upward_jumps),
-                                 a.jumped ? result_field(a.jump_time) : std::string()}) +
-                '\n';
+        std::vector<std::string> row = axis_cells;
+        row.insert(row.end(), {CsvWriter::cell(m.index), result_field(m.perturbation), to_string(m.status),
+                               to_string(a.outcome), if_valid(a.final_position), if_valid(a.final_amplitude),
+                               if_valid(a.adaptation_time), CsvWriter::cell(a.n_upward_jumps),
+                               a.jumped ? result_field(a.jump_time) : std::string()});
+        rows += CsvWriter::line(row) + '\n';
       }
     return rows;
+  }
+
+  void write_map_csv(const std::string &path, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells)
+  {
+    CsvWriter csv(path, map_csv_columns(grid));
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      if (!cells[c].empty())
+        {
+          std::istringstream lines(format_map_rows(grid, c, cells[c]));
+          for (std::string line; std::getline(lines, line);)
+            csv.row(CsvWriter::cells(line));
+        }
+    csv.close();
   }
 
   std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,

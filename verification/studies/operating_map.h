@@ -86,6 +86,9 @@ namespace beamslider
                                                     const std::function<void(std::size_t, std::size_t)> &on_cell = {});
   // The cell's rows of map.csv, each ending in '\n'.
   std::string format_map_rows(const MapGrid &grid, std::size_t cell, const std::vector<MapMember> &members);
+  // A whole map.csv of computed cells (run_map_cells' result; empty cells,
+  // not run, are left out). Throws OutputError if it cannot be written.
+  void write_map_csv(const std::string &path, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells);
   // Both: what a map worker returns ("" when interrupted).
   std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,
                            const MapGrid &grid, std::size_t cell, const MapSettings &settings);
