@@ -81,6 +81,21 @@ namespace beamslider
                         to_string(a.outcome) + ", ends at " + number(a.final_amplitude, 2) + " h");
     }
 
+    // Figs. 10 and its mirror: away from the centre, a jump, a turn, and the
+    // end within 0.03 L of `end_over_L`.
+    std::vector<FactCheck> out_jump_turn_stop_near(const TraceAnalysis &a, const double end_over_L)
+    {
+      return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
+              position_check("stops near x_C/L = " + number(end_over_L, 2), a.final_position, end_over_L, 0.03)};
+    }
+    // Figs. 11, 12 and 13: toward the centre from the start, no jump, no turn,
+    // and the end at most half the start's distance from the centre.
+    std::vector<FactCheck> straight_to_the_centre(const TraceAnalysis &a, const double start_over_L)
+    {
+      return {direction_check(a, "toward the centre"), jump_check(a, false), turn_check(a, false),
+              moves_in_check(a, start_over_L, 0.5)};
+    }
+
     std::vector<System1Fact> make_facts()
     {
       std::vector<System1Fact> facts;
@@ -99,10 +114,7 @@ namespace beamslider
                       "from the centre on the low branch, jump, turn, stops at x_C^ss/L = 0.57 (seed 4.2-4.3)";
         f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.6)};
         f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
-                  position_check("stops near x_C/L = 0.57", a.final_position, 0.57, 0.03)};
-        };
+        f.checks    = [](const TraceAnalysis &a, double) { return out_jump_turn_stop_near(a, 0.57); };
         facts.push_back(f);
       }
       // The same from the left half: by symmetry the end near 0.43.
@@ -112,10 +124,7 @@ namespace beamslider
         f.name        = "Fig. 10 mirrored: from the left half, stop near x_C/L = 0.43";
         f.seed        = "as Fig. 10, started at 0.4: the mirror image, ending at 1 - 0.57 = 0.43";
         f.overrides   = {set(frequency, 145), set(acceleration, 20), set(start, 0.4)};
-        f.checks      = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
-                  position_check("stops near x_C/L = 0.43", a.final_position, 0.43, 0.03)};
-        };
+        f.checks      = [](const TraceAnalysis &a, double) { return out_jump_turn_stop_near(a, 0.43); };
         facts.push_back(f);
       }
       // Fig. 12: from near the clamp, x_C/L > 0.78 (only the high branch
@@ -129,9 +138,10 @@ namespace beamslider
                       "the high-level branch, moves monotonously toward the centre, no jump (seed 4.2)";
         f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.82)};
         f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double x0) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the centre"), jump_check(a, false), turn_check(a, false),
-                  moves_in_check(a, x0, 0.5), outcome_check(a, AdaptationClass::trivial_adaption)};
+        f.checks    = [](const TraceAnalysis &a, double x0) {
+          std::vector<FactCheck> checks = straight_to_the_centre(a, x0);
+          checks.push_back(outcome_check(a, AdaptationClass::trivial_adaption));
+          return checks;
         };
         facts.push_back(f);
       }
@@ -144,10 +154,7 @@ namespace beamslider
                       "at the centre (seed 4.2)";
         f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.6), set(clearance, 1.01)};
         f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double x0) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the centre"), jump_check(a, false), turn_check(a, false),
-                  moves_in_check(a, x0, 0.5)};
-        };
+        f.checks    = straight_to_the_centre;
         facts.push_back(f);
       }
       // Fig. 13: tight fit, started near the clamp like Fig. 12.
@@ -159,10 +166,7 @@ namespace beamslider
                       "without a jump (seed 4.2)";
         f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.82), set(clearance, 1.01)};
         f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double x0) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the centre"), jump_check(a, false), turn_check(a, false),
-                  moves_in_check(a, x0, 0.5)};
-        };
+        f.checks    = straight_to_the_centre;
         facts.push_back(f);
       }
       // Fig. 6: large clearance, the unstable process. The seed gives no start;
