@@ -13,7 +13,9 @@ published_cases.csv (if present) that lie in the plotted plane are marked
 with a star and their name: black, or red where the expected outcome differs
 from the majority class of the cell they lie in.
 
-Arguments: map folder (with map.csv), title text. Prints the files written."""
+Arguments: map folder (with map.csv), title text. Prints nothing on standard
+output (beamslider's --quiet holds for its charts too); problems go to
+standard error."""
 import csv
 import itertools
 import math
@@ -395,14 +397,11 @@ def main(folder, title):
         summary.setdefault(canonical, []).extend(members)
     summary = {k: summarize(m) for k, m in summary.items()}
     cases = read_cases(os.path.join(folder, "published_cases.csv"))
-    written = []
     if len(axes) == 1:
-        written += plot_line(folder, title, axes, grids, summary, cases)
+        plot_line(folder, title, axes, grids, summary, cases)
     else:
         for ia, ib in itertools.combinations(range(len(axes)), 2):
-            written += plot_pair(folder, title, axes, grids, summary, cases, ia, ib)
-    for p in written:
-        print(p)
+            plot_pair(folder, title, axes, grids, summary, cases, ia, ib)
 
 
 if __name__ == "__main__":

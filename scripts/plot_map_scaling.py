@@ -95,7 +95,6 @@ def main(src, out):
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     fig.savefig(out, dpi=120)
-    print(out)
 
 
 if __name__ == "__main__":
