@@ -56,44 +56,18 @@ namespace beamslider
       unknowns.axes.push_back(parse_parameter_axis(a));
     if (unknowns.axes.empty())
       throw InputError("identify: no unknown given: use --axis \"Section/Name=A:B:STEP\" (repeatable)");
-    for (std::size_t i = 0; i < unknowns.axes.size(); ++i)
-      for (std::size_t j = 0; j < i; ++j)
-        if (unknowns.axes[i].parameter == unknowns.axes[j].parameter)
-          throw InputError("identify: the parameter '" + unknowns.axes[i].parameter + "' is given as two axes");
-    std::vector<const System1Fact *> facts;
-    if (options.facts.empty())
-      for (const System1Fact &f : system1_facts())
-        facts.push_back(&f);
-    else
-      for (const std::string &id : options.facts)
-        facts.push_back(&system1_fact(id));
-    // Every candidate's scene in every scenario is checked before any work,
-    // in the order the runs apply them: the user's overrides, the unknowns'
-    // values, the scenario (an axis the scenario fixes is not varied in it).
+    unknowns.check_distinct_parameters("identify");
+    const std::vector<const System1Fact *> facts = select_system1_facts(options.facts);
+    // Every scene the runs will read is checked before any work, built as
+    // the runs build it (system1_fact_map, then map_cell_scene), so a
+    // candidate outside the allowed ranges is an input error up front.
+    std::size_t cells_to_run = 0;
     for (const System1Fact *f : facts)
       {
-        for (std::size_t c = 0; c < unknowns.n_cells(); ++c)
-          {
-            std::vector<std::string> cell = common.overrides;
-            const std::vector<double> values = unknowns.cell_values(c);
-            for (std::size_t k = 0; k < values.size(); ++k)
-              {
-                std::ostringstream s;
-                s << std::setprecision(17) << unknowns.axes[k].parameter << "=" << values[k];
-                cell.push_back(s.str());
-              }
-            cell.insert(cell.end(), f->overrides.begin(), f->overrides.end());
-            // The last setting of each parameter wins.
-            std::vector<std::string> unique;
-            for (auto it = cell.rbegin(); it != cell.rend(); ++it)
-              {
-                const std::string key = it->substr(0, it->find('='));
-                if (std::none_of(unique.begin(), unique.end(),
-                                 [&](const std::string &u) { return u.substr(0, u.find('=')) == key; }))
-                  unique.push_back(*it);
-              }
-            read_scene(scene_file, unique);
-          }
+        const FactMap map = system1_fact_map(*f, unknowns, common.overrides);
+        for (std::size_t c = 0; c < map.grid.n_cells(); ++c)
+          map_cell_scene(scene_file, map.overrides, map.grid, c, f->end_time);
+        cells_to_run += map.grid.n_cells();
       }
 
     const std::string dir = prepare_output_dir(common, base, "identify");
@@ -108,18 +82,8 @@ namespace beamslider
         csv.row({f->id, f->name, joined(f->overrides, "; "), CsvWriter::cell(f->end_time, 6), f->seed});
       csv.close();
     }
-    std::size_t runs = 0;
-    for (const System1Fact *f : facts)
-      {
-        std::size_t n = 1;
-        const std::vector<std::string> fixed = f->fixed_parameters();
-        for (const MapAxis &a : unknowns.axes)
-          if (std::find(fixed.begin(), fixed.end(), a.parameter) == fixed.end())
-            n *= a.values.size();
-        runs += n * options.members;
-      }
     console() << "identify " << base.name << ": " << unknowns.n_cells() << " candidates x " << facts.size()
-              << " facts, " << runs << " ROM runs; into " << dir << std::endl;
+              << " facts, " << cells_to_run * options.members << " ROM runs; into " << dir << std::endl;
 
     std::vector<std::string> ids;
     for (const System1Fact *f : facts)

@@ -98,10 +98,7 @@ namespace beamslider
       grid.axes.push_back(parse_parameter_axis(a));
     if (grid.axes.empty())
       throw InputError("map: no axis given: use --frequency, --acceleration, --start or --axis");
-    for (std::size_t i = 0; i < grid.axes.size(); ++i)
-      for (std::size_t j = 0; j < i; ++j)
-        if (grid.axes[i].parameter == grid.axes[j].parameter)
-          throw InputError("map: the parameter '" + grid.axes[i].parameter + "' is given as two axes");
+    grid.check_distinct_parameters("map");
 
     MapSettings settings;
     settings.model.family = options.model;

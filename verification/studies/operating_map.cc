@@ -114,6 +114,14 @@ namespace beamslider
     return n;
   }
 
+  void MapGrid::check_distinct_parameters(const std::string &command) const
+  {
+    for (std::size_t i = 0; i < axes.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (axes[i].parameter == axes[j].parameter)
+          throw InputError(command + ": the parameter '" + axes[i].parameter + "' is given as two axes");
+  }
+
   std::vector<double> MapGrid::cell_values(std::size_t c) const
   {
     std::vector<double> v(axes.size());

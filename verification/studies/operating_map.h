@@ -44,6 +44,8 @@ namespace beamslider
     std::size_t n_cells() const;
     // The axis values of cell c (row-major over the axes).
     std::vector<double> cell_values(std::size_t c) const;
+    // InputError, naming `command`, if a parameter is given as two axes.
+    void check_distinct_parameters(const std::string &command) const;
   };
 
   struct MapSettings

@@ -342,6 +342,41 @@ namespace beamslider
     throw InputError("unknown System 1 fact '" + id + "'; the facts are: " + known);
   }
 
+  std::vector<const System1Fact *> select_system1_facts(const std::vector<std::string> &ids)
+  {
+    std::vector<const System1Fact *> facts;
+    if (ids.empty())
+      for (const System1Fact &f : system1_facts())
+        facts.push_back(&f);
+    else
+      for (const std::string &id : ids)
+        facts.push_back(&system1_fact(id));
+    return facts;
+  }
+
+  FactMap system1_fact_map(const System1Fact &fact, const MapGrid &unknowns, const std::vector<std::string> &overrides)
+  {
+    const std::vector<std::string> fixed = fact.fixed_parameters();
+    const auto is_fixed = [&fixed](const std::string &parameter) {
+      return std::find(fixed.begin(), fixed.end(), parameter) != fixed.end();
+    };
+    FactMap map;
+    for (std::size_t k = 0; k < unknowns.axes.size(); ++k)
+      if (!is_fixed(unknowns.axes[k].parameter))
+        {
+          map.grid.axes.push_back(unknowns.axes[k]);
+          map.unknown_of_axis.push_back(k);
+        }
+    if (map.grid.axes.empty()) // a map needs an axis: the start, one value
+      map.grid.axes.push_back({start, "start_x_over_L", {fact.start_over_L()}});
+    // The scenario's overrides come after the user's, so the scenario holds.
+    for (const std::string &o : overrides)
+      if (!is_fixed(o.substr(0, o.find('='))))
+        map.overrides.push_back(o);
+    map.overrides.insert(map.overrides.end(), fact.overrides.begin(), fact.overrides.end());
+    return map;
+  }
+
   double IdentificationResult::total(const std::size_t candidate) const
   {
     double t = 0;
@@ -356,13 +391,7 @@ namespace beamslider
     const std::function<void(const System1Fact &, const MapGrid &, const std::vector<std::vector<MapMember>> &)>
       &on_fact)
   {
-    std::vector<const System1Fact *> facts;
-    if (fact_ids.empty())
-      for (const System1Fact &f : system1_facts())
-        facts.push_back(&f);
-    else
-      for (const std::string &id : fact_ids)
-        facts.push_back(&system1_fact(id));
+    const std::vector<const System1Fact *> facts = select_system1_facts(fact_ids);
 
     IdentificationResult result;
     result.unknowns = unknowns;
@@ -377,33 +406,17 @@ namespace beamslider
     for (std::size_t i = 0; i < facts.size(); ++i)
       {
         const System1Fact &fact = *facts[i];
-        // The fact's map: the unknowns it does not fix. Its scenario's
-        // overrides come after the user's, so the scenario holds.
-        const std::vector<std::string> fixed = fact.fixed_parameters();
-        MapGrid grid;
-        std::vector<std::size_t> kept; // unknown axis of each grid axis
-        for (std::size_t k = 0; k < unknowns.axes.size(); ++k)
-          if (std::find(fixed.begin(), fixed.end(), unknowns.axes[k].parameter) == fixed.end())
-            {
-              grid.axes.push_back(unknowns.axes[k]);
-              kept.push_back(k);
-            }
-        if (grid.axes.empty()) // a map needs an axis: the start, one value
-          grid.axes.push_back({start, "start_x_over_L", {fact.start_over_L()}});
-        std::vector<std::string> fact_overrides;
-        for (const std::string &o : overrides)
-          if (std::find(fixed.begin(), fixed.end(), o.substr(0, o.find('='))) == fixed.end())
-            fact_overrides.push_back(o);
-        fact_overrides.insert(fact_overrides.end(), fact.overrides.begin(), fact.overrides.end());
+        const FactMap map         = system1_fact_map(fact, unknowns, overrides);
+        const std::vector<std::size_t> &kept = map.unknown_of_axis;
         MapSettings fact_settings = settings;
         fact_settings.end_time    = fact.end_time;
 
         const auto t0 = std::chrono::steady_clock::now();
         const std::vector<std::vector<MapMember>> cells =
-          run_map_cells(scene_file, fact_overrides, grid, fact_settings);
+          run_map_cells(scene_file, map.overrides, map.grid, fact_settings);
         result.wall_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         if (on_fact)
-          on_fact(fact, grid, cells);
+          on_fact(fact, map.grid, cells);
 
         // Each candidate takes the cell of the fact's map with its values.
         for (std::size_t c = 0; c < n_candidates; ++c)

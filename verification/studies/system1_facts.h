@@ -74,6 +74,21 @@ namespace beamslider
   const std::vector<System1Fact> &system1_facts();
   // One fact by id; InputError naming the known ids otherwise.
   const System1Fact &system1_fact(const std::string &id);
+  // The facts of these ids, in the order given; every fact if `ids` is empty.
+  std::vector<const System1Fact *> select_system1_facts(const std::vector<std::string> &ids);
+
+  // One fact's map in an identification: the unknowns' axes the fact does not
+  // fix (or, if it fixes all, its start as a one-value axis: a map needs an
+  // axis), and the --set list of its runs: the user's overrides except those
+  // the scenario fixes, then the scenario's (run_map_cells and
+  // map_cell_scene add the axis values and the end time).
+  struct FactMap
+  {
+    MapGrid grid;
+    std::vector<std::size_t> unknown_of_axis; // for each grid axis, its index among the unknowns (none for the start)
+    std::vector<std::string> overrides;
+  };
+  FactMap system1_fact_map(const System1Fact &fact, const MapGrid &unknowns, const std::vector<std::string> &overrides);
 
   // Partial scores, shared by the criteria and their tests.
   FactCheck flag_check(const std::string &what, bool met, const std::string &value);
