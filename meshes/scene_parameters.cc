@@ -151,7 +151,6 @@ namespace beamslider
         prm_.declare_entry(name, default_text, pattern, doc);
         prm_.add_action(name, on_value); // runs once now, with the default
       }
-      const std::string &section() const { return section_; }
 
     private:
       ParameterHandler &prm_;
