@@ -47,20 +47,27 @@ namespace beamslider
       return quoted + "'";
     }
 
-    // command.prm's text ("" until main() records the parsed command).
-    std::string &command_settings()
+    // The parsed command and its options, for command.prm (no command until
+    // main() records it); formatted only when a folder is written.
+    struct RecordedCommand
     {
-      static std::string text;
-      return text;
+      std::string name;
+      std::vector<CommandSetting> settings;
+    };
+    RecordedCommand &recorded_command()
+    {
+      static RecordedCommand command;
+      return command;
     }
 
     void write_run_record(const std::string &dir, const Scene &scene, const RunRecord record)
     {
-      if (!command_settings().empty())
+      const RecordedCommand &command = recorded_command();
+      if (!command.name.empty())
         write_text_file(dir + "/command.prm",
                         "# The options of this beamslider command with their effective values (given on the command "
                         "line or default); the scene is in parameters.prm.\n" +
-                          command_settings());
+                          command_settings_text(command.name, command.settings));
       write_text_file(dir + "/parameters.prm",
                       "# The scene '" + scene.name + "' as this run used it (after --set and --case), written by "
                       "beamslider. Repeat the run with the command line in run.txt and this file as the scene.\n" +
@@ -77,7 +84,7 @@ namespace beamslider
           << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
           << " (git describe of the source tree when the build was configured)\n"
           << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
-      if (!command_settings().empty())
+      if (!command.name.empty())
         run << "options:   command.prm (every option of the command, given or default)\n";
       const bool append = record == RunRecord::append && fs::exists(dir + "/run.txt", ec);
       OutputFile file(dir + "/run.txt", append);
@@ -93,7 +100,7 @@ namespace beamslider
 
   void record_command_settings(const std::string &command, const std::vector<CommandSetting> &settings)
   {
-    command_settings() = command_settings_text(command, settings);
+    recorded_command() = {command, settings};
   }
 
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
