@@ -12,7 +12,6 @@
 // published_cases.csv, map_*.png (scripts/plot_map.py).
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
-#include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/cli/commands.h"
@@ -58,9 +57,7 @@ namespace beamslider
             model = line.substr(line.find(':') + 2);
             break;
           }
-      // A CSV cell: no commas (CsvWriter does not quote).
-      std::replace(model.begin(), model.end(), ',', ' ');
-      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores; " + model;
+      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
     }
 
     // Strong scaling of `beamslider map` on MPI. The same small map (24
