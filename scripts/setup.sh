@@ -1,8 +1,20 @@
 #!/usr/bin/env bash
 # Installs the Debian packages beamslider needs (if missing) and builds it in
 # ./build (Release). Safe to run again: apt-get and CMake skip what is done.
+#
+#   bash scripts/setup.sh           the `beamslider` program only (what the
+#                                   README's first command needs)
+#   bash scripts/setup.sh --tests   everything: also the GoogleTest programs
+#                                   and the benchmarks (the second command, CI)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+target=(--target beamslider)
+case "${1:-}" in
+  "") ;;
+  --tests) target=() ;;
+  *) echo "setup.sh: unknown argument '$1' (allowed: none, or --tests)" >&2; exit 2 ;;
+esac
 
 packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
           libbenchmark-dev libcli11-dev python3-matplotlib openmpi-bin)
@@ -17,7 +29,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "== building (Release) in ./build"
+if [ ${#target[@]} -gt 0 ]; then what="build/beamslider"; else what="build/beamslider, the tests and the benchmarks"; fi
+echo "== building $what (Release) in ./build"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
-cmake --build build -j "$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
-echo "== built build/beamslider"
+cmake --build build -j "$(nproc)" "${target[@]}" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
+echo "== built $what"

@@ -1,7 +1,7 @@
 // Runs the built `beamslider` executable as a user would, for end-to-end
 // tests: its own process (fork + exec with an argument vector), stdout and
 // stderr captured to files, an optional file-size limit, an optional signal
-// sent after a delay, and a time limit after which the child is killed (so a
+// sent once a file appears, and a time limit after which the child is killed (so a
 // test that would hang fails instead).
 #pragma once
 
@@ -33,18 +33,22 @@ namespace beamslider::testing
   {
     double timeout_seconds      = 120;
     long file_size_limit        = -1;  // bytes (RLIMIT_FSIZE), -1 = none
-    int send_signal             = 0;   // sent once after signal_delay_seconds
-    double signal_delay_seconds = 0;
+    // A signal sent once `signal_after_file` exists: tied to what the run
+    // has done (its first checkpoint), it arrives at the same point of the
+    // run however fast or loaded the machine is, where a delay would not.
+    int send_signal = 0;
+    std::string signal_after_file;
     std::string working_directory; // "" = the test's
 
-    // Named settings for a call site, e.g. CliLimits().signal(SIGKILL, 1.5)
+    // Named settings for a call site, e.g. CliLimits().timeout(60)
     // (designated initializers would need C++20).
     CliLimits &timeout(const double seconds) { timeout_seconds = seconds; return *this; }
     CliLimits &file_size(const long bytes) { file_size_limit = bytes; return *this; }
-    CliLimits &signal(const int sig, const double delay_seconds)
+    // The signal once `path` exists (checked every 20 ms while the run goes on).
+    CliLimits &signal_when_file_exists(const int sig, const std::string &path)
     {
-      send_signal          = sig;
-      signal_delay_seconds = delay_seconds;
+      send_signal       = sig;
+      signal_after_file = path;
       return *this;
     }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
@@ -113,7 +117,7 @@ namespace beamslider::testing
         if (done == pid)
           break;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (limits.send_signal && !signalled && elapsed >= limits.signal_delay_seconds)
+        if (limits.send_signal && !signalled && std::filesystem::exists(limits.signal_after_file))
           {
             kill(pid, limits.send_signal);
             signalled = true;

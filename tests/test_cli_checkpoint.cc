@@ -65,9 +65,11 @@ TEST(Resume, AfterKillNineNothingIsLostAndNothingIsWrittenTwice)
   const fs::path dir = fresh_folder("resume_kill");
   CliRun run = run_beamslider({"simulate", scene, "--end-time", "60", "--output", (dir / "straight").string()});
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  // kill -9 once the first checkpoint is on disk: 59 simulated seconds are
+  // still to go then, so the kill lands mid-run on any machine.
   run = run_beamslider({"simulate", scene, "--end-time", "60", "--checkpoint-every", "1", "--output",
                         (dir / "killed").string()},
-                       CliLimits().signal(SIGKILL, 1.5));
+                       CliLimits().signal_when_file_exists(SIGKILL, (dir / "killed" / "checkpoint.bin").string()));
   ASSERT_EQ(run.signal, SIGKILL) << "the run ended before it was killed: " << run.out;
   ASSERT_TRUE(fs::exists(dir / "killed" / "checkpoint.bin")) << run.out;
   run = run_beamslider({"simulate", "--resume", (dir / "killed").string()});

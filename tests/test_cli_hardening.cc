@@ -291,10 +291,12 @@ TEST(Interruption, CtrlCFinishesTheStepWritesCompleteRowsAndTheSummary)
   for (const auto &[signal, code] : std::vector<std::pair<int, int>>{{SIGINT, 130}, {SIGTERM, 143}})
     {
       const fs::path dir = fresh_folder("interrupt");
-      // 600 s of simulated time take ~30 s on one core: the signal at 2.5 s
-      // always arrives mid-run, also on a machine faster than this one.
-      const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "600", "--output", dir.string()},
-                                          CliLimits().timeout(60).signal(signal, 2.5));
+      // The signal once the run has written its first checkpoint (after 1 s
+      // of simulated time, with rows in trace.csv): 599 s are still to go
+      // then, so it arrives mid-run on any machine and under any load.
+      const CliRun run =
+        run_beamslider({"simulate", scene, "--end-time", "600", "--checkpoint-every", "1", "--output", dir.string()},
+                       CliLimits().timeout(120).signal_when_file_exists(signal, (dir / "checkpoint.bin").string()));
       EXPECT_EQ(run.exit_code, code) << run.err;
       const std::string summary = read_file(dir / "summary.md");
       EXPECT_NE(summary.find("Status: interrupted"), std::string::npos) << summary;
