@@ -272,7 +272,10 @@ namespace beamslider
       e.leave();
 
       e.enter("Time stepping");
-      e.bind("Time step", s.time_stepping.time_step, Double(0), "Delta t [s], > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
+      e.bind("Time step", s.time_stepping.time_step, Double(0), "Delta t [s] of the reduced model, > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
+      e.bind("FE time step", s.time_stepping.fe_time_step, Double(0),
+             "Delta t [s] of the FE model (every --model fe run), > 0, at most 1/20 of the excitation period; "
+             "the FE's end state converges only where the step resolves its undamped high bending modes");
       e.bind("End time", s.time_stepping.end_time, Double(0), "[s], at most 1e11 time steps");
       e.bind("Output rate", s.time_stepping.output_rate, Double(0), "samples per second in trace.csv [1/s]");
       e.leave();
@@ -639,13 +642,27 @@ namespace beamslider
               "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
                 " s, to resolve the excitation");
     }
+    require(std::isfinite(s.time_stepping.fe_time_step) && s.time_stepping.fe_time_step > 0,
+            "Time stepping/FE time step", s.time_stepping.fe_time_step, "must be > 0 s");
+    {
+      const double period = 1. / s.excitation.frequency_hz;
+      require(s.time_stepping.fe_time_step <= period / 20., "Time stepping/FE time step",
+              s.time_stepping.fe_time_step,
+              "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
+                " s, to resolve the excitation");
+    }
     require(std::isfinite(s.time_stepping.end_time) && s.time_stepping.end_time >= 0, "Time stepping/End time",
             s.time_stepping.end_time, "must be >= 0 s");
-    require(s.time_stepping.end_time / s.time_stepping.time_step <= max_time_steps, "Time stepping/End time",
-            s.time_stepping.end_time,
-            "would need " + num(s.time_stepping.end_time / s.time_stepping.time_step) + " time steps of " +
-              num(s.time_stepping.time_step) + " s; at most " + num(max_time_steps) + " (End time <= " +
-              num(max_time_steps * s.time_stepping.time_step) + " s) are allowed");
+    {
+      // The smaller of the two steps sets the longest run.
+      const double dt = std::min(s.time_stepping.time_step, s.time_stepping.fe_time_step);
+      const std::string which =
+        dt == s.time_stepping.time_step ? "Time stepping/Time step" : "Time stepping/FE time step";
+      require(s.time_stepping.end_time / dt <= max_time_steps, "Time stepping/End time", s.time_stepping.end_time,
+              "would need " + num(s.time_stepping.end_time / dt) + " time steps of " + num(dt) + " s (" + which +
+                "); at most " + num(max_time_steps) + " (End time <= " + num(max_time_steps * dt) +
+                " s) are allowed");
+    }
     require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
     if (s.supports.elastic())
       {

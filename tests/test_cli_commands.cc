@@ -404,3 +404,19 @@ TEST(Commands, ReadmeTourRunsAsWritten)
   EXPECT_EQ(n_lines, 6u) << "modes, coefficients, backbone, simulate, sweep, verify";
   fs::remove_all(dir);
 }
+
+// Each model runs at its own step: the FE at the scene's `FE time step`, the
+// ROM at its `Time step` (doc/scenes.md). 0.01 s is 1000 FE steps of 1e-5 s
+// and 500 ROM steps of 2e-5 s; the console line states the count.
+TEST(Commands, TheFERunsAtTheScenesFETimeStepAndTheROMAtItsTimeStep)
+{
+  for (const auto &[model, steps] : std::vector<std::pair<std::string, std::string>>{{"fe", "1000"}, {"rom", "500"}})
+    {
+      const fs::path dir = fresh_folder("model_step_" + model);
+      const CliRun run   = run_beamslider({"simulate", "--model", model, "--end-time", "0.01", "--set",
+                                           "Time stepping/FE time step=1e-5", "--output", dir.string()});
+      ASSERT_EQ(run.exit_code, 0) << run.err;
+      EXPECT_NE(run.out.find("(" + steps + " steps)"), std::string::npos) << model << ": " << run.out;
+      fs::remove_all(dir);
+    }
+}

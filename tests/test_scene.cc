@@ -272,3 +272,17 @@ TEST(SceneErrors, SectionPropertiesOutsideTheNormalDoublesAreRefused)
   expect_contains(m, "'Beam/Width' = 1e+308");
   expect_contains(m, "stiffness EI = E b h^3/12 = inf");
 }
+
+TEST(SceneErrors, FETimeStepMustBePositiveAndResolveTheExcitation)
+{
+  std::string m = error_for("Time stepping/FE time step=-1e-6");
+  expect_contains(m, "Time stepping/FE time step");
+  expect_contains(m, "-1e-6");
+  m = error_for("Time stepping/FE time step=0");
+  expect_contains(m, "Time stepping/FE time step");
+  expect_contains(m, "> 0");
+  // 124 Hz: a twentieth of the period is 4.03e-4 s.
+  m = error_for("Time stepping/FE time step=1e-3");
+  expect_contains(m, "Time stepping/FE time step");
+  expect_contains(m, "a twentieth of the excitation period");
+}

@@ -30,7 +30,9 @@ namespace beamslider
   {
     if (options.model != "fe" && options.model != "rom")
       throw InputError("--model '" + options.model + "' is not one of fe, rom");
-    const Scene scene     = read_command_scene(common, options.case_name);
+    Scene scene = read_command_scene(common, options.case_name);
+    const ModelSetting setting    = scene_model(scene, options.model);
+    scene.time_stepping.time_step = setting.time_step; // the FE runs at the scene's FE time step
     const double end_time = options.end_time.value_or(0.2);
     if (!(options.start_time < end_time))
       throw InputError("--start-time " + std::to_string(options.start_time) + " s must lie before the end time " +
@@ -43,7 +45,7 @@ namespace beamslider
                        " frames; lower --frame-rate or shorten the window (--start-time, --end-time)");
     const std::string dir = prepare_output_dir(common, scene, "animate");
 
-    std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, options.model));
+    std::unique_ptr<BeamSystem> beam = make_beam_model(scene, setting);
 
     console() << "animate " << scene.name << " --model " << options.model << ": " << end_time << " s at dt = " << dt
               << " s, " << static_cast<long>(n_frames) << " frames from t = " << options.start_time << " s into "

@@ -103,7 +103,7 @@ namespace beamslider
     settings.model.integrator = options.integrator;
     settings.model.n_modes   = scene.discretisation.n_modes;
     settings.model.n_elements = scene.discretisation.n_elements;
-    settings.model.time_step = scene.time_stepping.time_step;
+    settings.model.time_step = scene_model(scene, options.model).time_step;
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
     console() << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "

@@ -202,6 +202,7 @@ namespace beamslider
     // scene's error ladder puts within the tolerance of the FE reference's.
     ModelSetting &setting = outcome.setting;
     setting = scene_model(scene, options.model == "fe" ? "fe" : "rom");
+    scene.time_stepping.time_step = setting.time_step; // the FE runs at the scene's FE time step
     std::string &why = outcome.why;
     if (resuming)
       {

@@ -80,7 +80,7 @@ namespace beamslider
       // ladder's converged reference.
       const unsigned int fe_step_divisor = full ? 4 : 2;
       Scene fe_scene                     = scene;
-      fe_scene.time_stepping.time_step   = scene.time_stepping.time_step / fe_step_divisor;
+      fe_scene.time_stepping.fe_time_step = scene.time_stepping.time_step / fe_step_divisor;
       settings.model        = "fe";
       const PcsStudy fe     = run_pcs_sweep(fe_scene, settings, fe_dir);
       settings.model        = "rom";

@@ -40,7 +40,9 @@ namespace beamslider
     s.family     = family;
     s.n_modes    = scene.discretisation.n_modes;
     s.n_elements = scene.discretisation.n_elements;
-    s.time_step  = scene.time_stepping.time_step;
+    // Each model family at its own step: the ROM at the scene's Time step,
+    // the FE at its FE time step (scene.h says why they differ).
+    s.time_step = family == "fe" ? scene.time_stepping.fe_time_step : scene.time_stepping.time_step;
     return s;
   }
 

@@ -52,7 +52,8 @@ namespace beamslider
   };
 
   // The scene's own model of a family ("rom" | "fe", else InputError): its N
-  // modes or elements, analytic coefficients, the explicit ROM step, its Δt.
+  // modes or elements, analytic coefficients, the explicit ROM step; Δt is
+  // the scene's Time step for the ROM and its FE time step for the FE.
   ModelSetting scene_model(const Scene &scene, const std::string &family);
 
   // The beam model of a setting for `scene` (the scene's mesh, damping and

@@ -205,6 +205,7 @@ namespace beamslider
           {
             ModelSetting model = scene_model(member_scene, settings.model.family);
             model.integrator   = settings.model.integrator;
+            member_scene.time_stepping.time_step = model.time_step; // the FE at the scene's FE time step
             const std::unique_ptr<BeamSystem> beam = make_beam_model(member_scene, model);
             RunOptions options        = RunOptions::from_scene(member_scene);
             options.progress_interval = 1e300;

@@ -59,8 +59,11 @@ namespace beamslider
     }
   } // namespace
 
-  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir)
+  PcsStudy run_pcs_sweep(const Scene &scene_in, const PcsStudySettings &settings, const std::string &dir)
   {
+    // The model runs at its own step (the FE at the scene's FE time step).
+    Scene scene                   = scene_in;
+    scene.time_stepping.time_step = scene_model(scene, settings.model).time_step;
     settings.sweep.validate(scene);
     if (!(settings.free_time >= 0.))
       throw InputError("--free-time " + std::to_string(settings.free_time) + " s is outside [0, inf)");
