@@ -93,28 +93,37 @@ namespace beamslider
       }
     woodbury_rhs_.resize(rank);
     woodbury_v_.resize(rank);
+    block_rhs_.resize(n, max_block_columns);
+    block_v_.resize(rank, max_block_columns);
+    block_w_.resize(rank, max_block_columns);
+    block_column_.resize(n);
+    block_solution_.resize(n);
+    Z_.resize(n, rank);
+    Dg_.resize(rank);
+    capacitance_matrix_.resize(rank, rank);
+    capacitance_ = Eigen::PartialPivLU<Eigen::MatrixXd>(rank);
 
-    // M in row-major form for the residual's product; S₀'s lower triangle
+    // M in row-major form for the residual's product; S₀'s upper triangle
     // on the FE matrices' pattern with M's values in it, analysed once.
     {
-      std::vector<Eigen::Triplet<double>> triplets, lower;
+      std::vector<Eigen::Triplet<double>> triplets, upper;
       for (auto e = M_.begin(); e != M_.end(); ++e)
         {
           triplets.emplace_back(e->row(), e->column(), e->value());
-          if (e->row() >= e->column())
-            lower.emplace_back(e->row(), e->column(), e->value());
+          if (e->row() <= e->column())
+            upper.emplace_back(e->row(), e->column(), e->value());
         }
       M_eigen_.resize(n, n);
       M_eigen_.setFromTriplets(triplets.begin(), triplets.end());
       M_eigen_.makeCompressed();
       S0_.resize(n, n);
-      S0_.setFromTriplets(lower.begin(), lower.end());
+      S0_.setFromTriplets(upper.begin(), upper.end());
       S0_.makeCompressed();
       M_in_S0_ = Eigen::Map<const Eigen::VectorXd>(S0_.valuePtr(), S0_.nonZeros());
       ldlt_.analyzePattern(S0_);
     }
     const auto entry_of = [&](const unsigned int i, const unsigned int j) -> std::ptrdiff_t {
-      if (constrained_[i] || constrained_[j] || i < j)
+      if (constrained_[i] || constrained_[j] || i > j)
         return -1;
       return &S0_.coeffRef(i, j) - S0_.valuePtr(); // in the pattern: i, j share a cell
     };
@@ -181,7 +190,7 @@ namespace beamslider
     for (const auto &[dof, k] : springs_)
       spring_entry_.push_back(entry_of(dof, dof));
 
-    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &q_end_, &f_end_})
+    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
       v->setZero(n);
   }
 
@@ -194,41 +203,64 @@ namespace beamslider
       qu[i] = q[cell.u_dofs[i]];
   }
 
-  void FETransientBeam::internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const
+  template <unsigned int n_u>
+  void FETransientBeam::internal_force_cells(const Eigen::VectorXd &q, Eigen::VectorXd &f) const
   {
     // f = ∫ N δε + M δκ dx with N = EA ε, M = EI κ, δε = δu' + w' δw'
-    // (doc/physics.md §2–3; FEBeam::assemble_internal_force), plus the
-    // springs; cell by cell, the cell's DoF values gathered once.
-    f.setZero(q.size());
+    // (doc/physics.md §2–3; FEBeam::assemble_internal_force), cell by cell,
+    // the cell's DoF values gathered once. n_u, the axial DoFs per cell, is a
+    // compile-time constant here so that the inner loops unroll: this runs
+    // once per Newton iteration and was a fifth of the FE step.
     const bool nonlinear = beam_->geometric_nonlinearity();
     for (const CellData &cell : cells_)
       {
         const double EA = cell.EA, EI = cell.EI;
-        std::array<double, 4> qw, fw{};
-        std::array<double, max_axial_dofs> qu, fu{};
-        gather(cell, q, qw, qu);
-        for (unsigned int k = 0; k < cell.n_qp; ++k)
+        double qw[4], qu[n_u], fw[4] = {0., 0., 0., 0.}, fu[n_u];
+        for (unsigned int a = 0; a < 4; ++a)
+          qw[a] = q[cell.w_dofs[a]];
+        for (unsigned int i = 0; i < n_u; ++i)
           {
-            const QuadraturePointData &d = quadrature_[cell.first_qp + k];
+            qu[i] = q[cell.u_dofs[i]];
+            fu[i] = 0.;
+          }
+        const QuadraturePointData *d = &quadrature_[cell.first_qp];
+        for (unsigned int k = 0; k < cell.n_qp; ++k, ++d)
+          {
             double du = 0, dw = 0, ddw = 0;
-            for (unsigned int i = 0; i < cell.n_u; ++i)
-              du += d.du[i] * qu[i];
+            for (unsigned int i = 0; i < n_u; ++i)
+              du += d->du[i] * qu[i];
             for (unsigned int a = 0; a < 4; ++a)
               {
-                dw += d.dN[a] * qw[a];
-                ddw += d.ddN[a] * qw[a];
+                dw += d->dN[a] * qw[a];
+                ddw += d->ddN[a] * qw[a];
               }
-            const double N = EA * (du + (nonlinear ? 0.5 * dw * dw : 0.)) * d.JxW;
-            const double M = EI * ddw * d.JxW, Nw = nonlinear ? N * dw : 0.;
-            for (unsigned int i = 0; i < cell.n_u; ++i)
-              fu[i] += N * d.du[i];
+            const double N = EA * (du + (nonlinear ? 0.5 * dw * dw : 0.)) * d->JxW;
+            const double M = EI * ddw * d->JxW, Nw = nonlinear ? N * dw : 0.;
+            for (unsigned int i = 0; i < n_u; ++i)
+              fu[i] += N * d->du[i];
             for (unsigned int a = 0; a < 4; ++a)
-              fw[a] += Nw * d.dN[a] + M * d.ddN[a];
+              fw[a] += Nw * d->dN[a] + M * d->ddN[a];
           }
         for (unsigned int a = 0; a < 4; ++a)
           f[cell.w_dofs[a]] += fw[a];
-        for (unsigned int i = 0; i < cell.n_u; ++i)
+        for (unsigned int i = 0; i < n_u; ++i)
           f[cell.u_dofs[i]] += fu[i];
+      }
+  }
+
+  void FETransientBeam::internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const
+  {
+    f.setZero(q.size());
+    // Every cell has the same axial degree p, so p + 1 axial DoFs.
+    switch (cells_.front().n_u)
+      {
+        case 2: internal_force_cells<2>(q, f); break;
+        case 3: internal_force_cells<3>(q, f); break;
+        case 4: internal_force_cells<4>(q, f); break;
+        case 5: internal_force_cells<5>(q, f); break;
+        case 6: internal_force_cells<6>(q, f); break;
+        case 7: internal_force_cells<7>(q, f); break;
+        default: throw std::logic_error("FE transient: unexpected number of axial DoFs per cell");
       }
     for (const auto &[dof, k] : springs_)
       f[dof] += k * q[dof];
@@ -301,8 +333,8 @@ namespace beamslider
   {
     assemble_iteration_matrix(q_bar, dt);
     // (The factorisation is a copy of its own: unchanged.)
-    const Eigen::MatrixXd lower(S0_);
-    return lower.selfadjointView<Eigen::Lower>();
+    const Eigen::MatrixXd upper(S0_);
+    return upper.selfadjointView<Eigen::Upper>();
   }
 
   void FETransientBeam::to_dealii(const Eigen::VectorXd &a, dealii::Vector<double> &b)
@@ -354,7 +386,7 @@ namespace beamslider
   void FETransientBeam::factorise(const Eigen::VectorXd &q_bar, const double dt)
   {
     assemble_iteration_matrix(q_bar, dt);
-    ldlt_.factorize(S0_);
+    ldlt_.factorize_upper(S0_);
     if (ldlt_.info() != Eigen::Success)
       throw std::runtime_error("FE transient: the LDL^T factorisation of S = M + dt^2/4 K_t failed (dt = " +
                                std::to_string(dt) + " s)");
@@ -363,11 +395,18 @@ namespace beamslider
     const unsigned int rank = damping_->rank();
     if (rank > 0)
       {
-        Z_ = ldlt_.solve(U_);
+        // Into storage sized once (a refactorisation allocates nothing).
+        for (unsigned int k = 0; k < rank; ++k)
+          {
+            block_column_   = U_.col(k);
+            block_solution_ = ldlt_.solve(block_column_);
+            Z_.col(k)       = block_solution_;
+          }
         Dg_ = (0.5 * dt) * modal_c_;
-        const Eigen::MatrixXd cap =
-          Eigen::MatrixXd::Identity(rank, rank) + Dg_.asDiagonal() * (U_.transpose() * Z_);
-        capacitance_.compute(cap);
+        capacitance_matrix_.noalias() = U_.transpose() * Z_;
+        capacitance_matrix_           = Dg_.asDiagonal() * capacitance_matrix_;
+        capacitance_matrix_.diagonal().array() += 1.;
+        capacitance_.compute(capacitance_matrix_);
       }
     factorised_       = true;
     factorised_dt_    = dt;
@@ -486,7 +525,13 @@ namespace beamslider
           }
         for (const unsigned int i : constrained_list_)
           res_[i] = 0.;
-        solve(res_, du_);
+        // The correction with S₀ alone: the damping's part of S, Δt/2 C,
+        // is of relative size Δt D ω_n ≤ 1e-4 on the N damped modes, so
+        // leaving it out of the iteration matrix only adds that factor to
+        // the contraction of this (already modified) Newton iteration; the
+        // residual keeps the damping exactly, so the converged u_free is
+        // the same. The contact impulses still see the full S (solve()).
+        du_.noalias() = ldlt_.solve(res_);
         u_ -= du_;
         ++stats_.newton_iterations;
 
@@ -548,17 +593,36 @@ namespace beamslider
     // All right-hand sides at once (the contact directions, up to 8): one
     // pass of the sparse triangular solves over a block, then the Woodbury
     // correction as a block.
-    block_rhs_ = B;
+    // Scratch of the largest block (the contact directions: at most
+    // max_block_columns), used by its leading columns: no allocation.
+    const Eigen::Index m = B.cols();
+    if (m > block_rhs_.cols())
+      throw std::logic_error("FE transient: more right-hand sides than the scratch holds");
+    auto rhs = block_rhs_.leftCols(m);
+    rhs      = B;
     for (const unsigned int i : constrained_list_)
-      block_rhs_.row(i).setZero();
-    X = ldlt_.solve(block_rhs_);
+      rhs.row(i).setZero();
+    for (Eigen::Index j = 0; j < m; ++j)
+      {
+        // Through plain vectors: Eigen's permuted solve into a column of a
+        // Ref allocates a temporary.
+        block_column_   = rhs.col(j);
+        block_solution_ = ldlt_.solve(block_column_);
+        X.col(j)        = block_solution_;
+      }
     const unsigned int rank = damping_->rank();
     if (rank > 0)
       {
-        block_v_.noalias() = U_.transpose() * X;
-        block_v_           = Dg_.asDiagonal() * block_v_;
-        block_w_           = capacitance_.solve(block_v_);
-        X.noalias() -= Z_ * block_w_;
+        auto v = block_v_.leftCols(m);
+        auto w = block_w_.leftCols(m);
+        v.noalias() = U_.transpose() * X;
+        for (Eigen::Index j = 0; j < m; ++j)
+          {
+            woodbury_rhs_ = Dg_.cwiseProduct(v.col(j));
+            woodbury_v_   = capacitance_.solve(woodbury_rhs_);
+            w.col(j)      = woodbury_v_;
+          }
+        X.noalias() -= Z_ * w;
       }
     stats_.iteration_matrix_solves += B.cols();
   }
@@ -577,19 +641,24 @@ namespace beamslider
   {
     // V(q) = ∫₀¹ f(s q)·q ds; f(s q)·q is a cubic in s (von Kármán), so
     // two-point Gauss–Legendre on [0, 1] is exact.
+    // The forces from the cached quadrature data into scratch (this runs at
+    // every period's end for the energy balance: FEBeam's FEValues assembly
+    // allocated there).
     const double g = 0.5 / std::sqrt(3.);
     double V       = 0;
     for (const double s : {0.5 - g, 0.5 + g})
-      V += 0.5 * internal_force(s * q).dot(q);
+      {
+        energy_q_ = s * q;
+        internal_force_cached(energy_q_, energy_f_);
+        V += 0.5 * energy_f_.dot(q);
+      }
     return V;
   }
 
   double FETransientBeam::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
   {
-    dealii::Vector<double> ud, Mu(n_dofs());
-    to_dealii(u, ud);
-    M_.vmult(Mu, ud);
-    return 0.5 * (ud * Mu) + strain_energy(q);
+    energy_Mu_.noalias() = M_eigen_ * u;
+    return 0.5 * u.dot(energy_Mu_) + strain_energy(q);
   }
 
   BeamFieldSamples FETransientBeam::sample_fields(const Eigen::VectorXd &q) const

@@ -27,16 +27,23 @@
 // Linear algebra. S = S₀ + U diag(Δt/2 · 2Dω_n) Uᵀ with the sparse, banded
 // S₀ = M + Δt²/4 K_t and the rank-N damping U = [M φ_n]. S₀ is symmetric
 // (K_t is the Hessian of the strain energy); it is factorised by a sparse
-// LDLᵀ (Eigen::SimplicialLDLT on the lower triangle, ordering and symbolic
-// analysis once, numeric factorisation on refactorisation). We started with
-// deal.II's UMFPACK: on the 131-DoF default mesh a factorisation cost about
-// 100 µs and a solve about 10 µs, mostly call overhead. LAPACK's band
-// Cholesky (dpbtrf/dpbtrs, half-bandwidth 6 after Cuthill–McKee) was tried
-// too: with Debian's reference BLAS its solve was no faster than Eigen's.
+// LDLᵀ (Eigen::SimplicialLDLT on the upper triangle in the DoFs' own, banded
+// order; symbolic analysis once, numeric factorisation on refactorisation).
+// We started with deal.II's UMFPACK: on the 131-DoF default mesh a
+// factorisation cost about 100 µs and a solve about 10 µs, mostly call
+// overhead. LAPACK's band Cholesky (dpbtrf/dpbtrs) was tried twice: with
+// Debian's reference BLAS a solve takes 3.9 µs against Eigen's 2.6 µs
+// (measured 2026-11-25, half-bandwidth 7, one core).
 // The damping is folded in by Sherman–Morrison–Woodbury:
 //   S⁻¹ b = y − Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ y,   y = S₀⁻¹ b,  Z = S₀⁻¹ U,
 // which costs N extra solves per factorisation and an N × N dense solve per
-// right-hand side. Newton runs with the last factorisation (modified
+// right-hand side; only the contact impulses use it. Newton's corrections
+// are solved with S₀ alone: Δt/2 C is of relative size Δt D ω_n ≤ 1e-4, so
+// leaving it out only slows the contraction by that factor, and the residual
+// keeps the damping exactly (the converged u_free is unchanged). Every
+// scratch is sized once: a step, a refactorisation included, allocates
+// nothing (FeContact's allocations/step).
+// Newton runs with the last factorisation (modified
 // Newton) and refactorises K_t(q̄) when a correction shrinks by less than
 // `max_contraction` (0.01), or every `refactor_interval` steps (default:
 // never by count); for a linear beam S is factorised once. It stops when
@@ -163,7 +170,8 @@ namespace beamslider
     void save_state(CheckpointWriter &out) const override;
     void load_state(CheckpointReader &in) override;
 
-    // Strain energy V(q) [J] and internal force f(q) [N, N m] (FEBeam's assembly).
+    // Strain energy V(q) [J] (from the cached quadrature data) and internal
+    // force f(q) [N, N m] (FEBeam's assembly, for tests of the cached one).
     double strain_energy(const Eigen::VectorXd &q) const;
     Eigen::VectorXd internal_force(const Eigen::VectorXd &q) const;
     // The same f(q) from shape values cached at the quadrature points (what
@@ -203,10 +211,13 @@ namespace beamslider
   private:
     // Factorises S₀ = M + Δt²/4 K_t(q̄) and the Woodbury terms of the damping.
     void factorise(const Eigen::VectorXd &q_bar, double dt);
-    // S₀'s values (lower triangle) from the cached quadrature data.
+    // S₀'s values (upper triangle) from the cached quadrature data.
     void assemble_iteration_matrix(const Eigen::VectorXd &q_bar, double dt);
     // f(q̄) from the cached quadrature data, zero on constrained DoFs.
     void internal_force_cached(const Eigen::VectorXd &q, Eigen::VectorXd &f) const;
+    // Its loop over the cells, n_u axial DoFs per cell.
+    template <unsigned int n_u>
+    void internal_force_cells(const Eigen::VectorXd &q, Eigen::VectorXd &f) const;
     // x = S⁻¹ b (b zero on constrained DoFs).
     void solve(const Eigen::VectorXd &b, Eigen::VectorXd &x) const;
 
@@ -228,21 +239,40 @@ namespace beamslider
     Eigen::MatrixXd U_;            // [M φ_n]
     Eigen::VectorXd modal_c_;      // 2 D ω_n [1/s]
 
-    // S₀ (Eigen's sparse LDLᵀ on the pattern of the FE matrices, lower
-    // triangle; ordering and symbolic analysis once) and the Woodbury terms.
+    // S₀ (Eigen's sparse LDLᵀ on the pattern of the FE matrices, upper
+    // triangle; symbolic analysis once) and the Woodbury terms.
     Eigen::SparseMatrix<double> S0_;
     Eigen::VectorXd M_in_S0_;          // M's values in S0_'s layout
     std::vector<std::ptrdiff_t> spring_entry_; // S0_ value index of each spring's diagonal
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+    // Eigen's sparse LDLᵀ of S₀'s upper triangle in the DoFs' own order:
+    // deal.II numbers a 1D mesh's DoFs along the beam, so S₀ is banded
+    // (half-bandwidth 7 on the default mesh) and its factor has 444 entries
+    // below the diagonal against AMD's 382; a fill-reducing ordering costs
+    // two permutations per solve, and Eigen's in-place inverse permutation
+    // allocates on every solve. factorize_upper goes straight to the numeric
+    // factorisation (SimplicialLDLT::factorize builds an empty n × n matrix
+    // first, an allocation per refactorisation, even when it copies nothing).
+    class BandOrderLDLT
+      : public Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>>
+    {
+    public:
+      void factorize_upper(const Eigen::SparseMatrix<double> &upper) { this->template factorize_preordered<true>(upper); }
+    };
+    BandOrderLDLT ldlt_;
     bool factorised_        = false;
     double factorised_dt_   = 0;
     unsigned long factorised_step_ = 0;
     Eigen::VectorXd factorised_q_bar_; // where K_t of the factorisation was taken
     Eigen::MatrixXd Z_;            // S₀⁻¹ U
     Eigen::VectorXd Dg_;           // Δt/2 · 2 D ω_n
-    Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_; // I + Dg UᵀZ
+    Eigen::MatrixXd capacitance_matrix_;              // I + Dg UᵀZ
+    Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_; // its LU
     mutable Eigen::VectorXd woodbury_rhs_, woodbury_v_; // scratch of size rank
-    mutable Eigen::MatrixXd block_rhs_, block_v_, block_w_;       // scratch for solve_iteration_matrix
+    // Scratch for solve_iteration_matrix, sized once for the largest block:
+    // the contact directions, two per slider corner.
+    static constexpr Eigen::Index max_block_columns = 8;
+    mutable Eigen::MatrixXd block_rhs_, block_v_, block_w_;
+    mutable Eigen::VectorXd block_column_, block_solution_;
 
     // Last step, for the predictor and step_work.
     double last_dt_ = 0, last_acceleration_ = 0;
@@ -285,5 +315,6 @@ namespace beamslider
     std::vector<unsigned int> massless_axial_;
     Eigen::VectorXd q_end_, f_end_;
     mutable Eigen::VectorXd u_mean_;
+    mutable Eigen::VectorXd energy_q_, energy_f_, energy_Mu_; // scratch of energy()
   };
 } // namespace beamslider
