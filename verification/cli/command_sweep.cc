@@ -63,8 +63,9 @@ namespace beamslider
     console() << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
               << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
               << n_positions << " positions per direction), " << simulated << " s simulated in all (ROM: ~"
-              << std::ceil(simulated / 5.) << " s wall; FE about 2 s wall per simulated second), into " << dir
-              << std::endl;
+              << std::ceil(simulated / 5.) << " s wall; FE at its step of " << scene.time_stepping.fe_time_step
+              << " s: about " << std::ceil(15e-6 / scene.time_stepping.fe_time_step) // ~15 µs per FE step
+              << " s wall per simulated second), into " << dir << std::endl;
 
     const PcsStudy study = run_pcs_sweep(scene, settings, dir);
     std::string text = describe(study, scene);
