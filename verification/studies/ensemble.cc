@@ -144,15 +144,12 @@ namespace beamslider
                                          const EnsembleMember &m)
   {
     const RunResult &r = m.result;
-    // Periods as "index t_start t_end x_C/L amplitude", separated by ';'.
+    // Periods as "index t_start t_end x_C/L amplitude;", each ended by ';':
+    // a line cut inside its last number (still a number) lacks the ';'.
     std::string periods;
     for (const PeriodRecord &p : m.periods)
-      {
-        if (!periods.empty())
-          periods += ';';
-        periods += std::to_string(p.index) + ' ' + exact(p.t_start) + ' ' + exact(p.t_end) + ' ' +
-                   exact(p.slider_x_over_L) + ' ' + exact(p.amplitude_over_h);
-      }
+      periods += std::to_string(p.index) + ' ' + exact(p.t_start) + ' ' + exact(p.t_end) + ' ' +
+                 exact(p.slider_x_over_L) + ' ' + exact(p.amplitude_over_h) + ';';
     return {std::to_string(group),
             group_name,
             std::to_string(m.index),
@@ -195,6 +192,8 @@ namespace beamslider
     m.result.solver_iterations     = read_unsigned(c[13], "solver_iterations");
     m.wall_seconds                 = read_double(c[14], "wall_s");
     const std::size_t n_periods    = read_unsigned(c[15], "n_periods");
+    if (!c[16].empty() && c[16].back() != ';')
+      throw std::invalid_argument("member record: the periods end without ';' (a line cut short)");
     std::istringstream periods(c[16]);
     std::string period;
     while (std::getline(periods, period, ';'))

@@ -69,7 +69,8 @@ namespace beamslider
 
   // A finished member as the cells of one CSV row and back, bit for bit
   // (doubles in their shortest round-trip form): the status and figures of
-  // the run, and each period's index, start, end, mean x_C/L and amplitude
+  // the run, and each period's index, start, end, mean x_C/L and amplitude,
+  // each period ended by ';'
   // (what the trace analysis and the output files read; the energy budget
   // of the periods is not kept). The analysis is recomputed from them with
   // the scene's thresholds. Every member of a persisted study goes through
