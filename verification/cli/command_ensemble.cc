@@ -126,6 +126,8 @@ namespace beamslider
     const std::string dir =
       prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
     runs.dir = dir;
+    std::size_t n_kept = 0;
+    runs.n_kept        = &n_kept;
     console() << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
               << settings.n_members << " members of " << settings.model.label() << ", "
               << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
@@ -177,7 +179,8 @@ namespace beamslider
        << scene.initial.slider_position_over_L << " + m × " << settings.perturbation << "; " << scene.time_stepping.end_time
        << " s simulated each.\n- Wall time of this run: " << fixed(wall, 1) << " s on "
        << (mpi.size() > 1 ? std::to_string(mpi.size()) + " MPI ranks" : std::string("the cores of one process"))
-       << " (members kept from an earlier run of the same command cost nothing here; member_runs.csv).\n"
+       << "; " << n_kept << " of the members read back from member_runs.csv (an earlier, stopped run of this "
+          "build and settings), the others computed now.\n"
        << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
           "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
           "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("

@@ -83,7 +83,7 @@ namespace beamslider
   std::string member_runs_key(const std::vector<MemberGroup> &groups, const std::string &study)
   {
     std::ostringstream key;
-    key << study;
+    key << study << "; " << build_revision();
     for (std::size_t g = 0; g < groups.size(); ++g)
       {
         const MemberGroup &r = groups[g];
@@ -137,6 +137,8 @@ namespace beamslider
     const std::string key                  = member_runs_key(groups, settings.study);
     std::optional<CsvWriter> rows;
     std::size_t n_kept = 0;
+    if (settings.n_kept)
+      *settings.n_kept = 0;
     const std::string path = settings.dir.empty() ? std::string() : settings.dir + "/member_runs.csv";
     if (!path.empty())
       {
@@ -181,6 +183,8 @@ namespace beamslider
         rows.emplace(path, columns, append);
       }
 
+    if (settings.n_kept)
+      *settings.n_kept = n_kept;
     std::vector<std::size_t> todo;
     for (const std::size_t run : longest_first(groups))
       {

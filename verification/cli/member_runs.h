@@ -9,7 +9,8 @@
 // through the same record, ensemble.h's member_record).
 //
 // member_runs.csv:
-//   # <key>   what was asked: the study, the scene's content key
+//   # <key>   what was asked, and by which build: the study, beamslider's
+//             version and source revision, the scene's content key
 //             (model_choice.h), end time, ε, members, and every group's
 //             name, model and exact time step
 //   group,rung,member,…,n_periods,periods   one row per finished member
@@ -34,6 +35,7 @@ namespace beamslider
     const MpiSession *mpi = nullptr; // nullptr: this process alone
     unsigned int n_threads = 0;      // without MPI: threads (0: one per core)
     std::string progress_prefix;     // before each progress line
+    std::size_t *n_kept = nullptr;   // if given: set to the members read back
   };
 
   // A stop (Ctrl-C, SIGTERM) before every member was done; the finished ones

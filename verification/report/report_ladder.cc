@@ -144,6 +144,8 @@ namespace beamslider
     runs.study           = "ladder";
     runs.mpi             = MpiSession::active();
     runs.progress_prefix = settings.progress_prefix;
+    std::size_t n_kept   = 0;
+    runs.n_kept          = &n_kept;
     const LadderStudy study = run_ladder(
       scene, rungs, reference, end_time, n_members,
       [&](const LadderRung &rung, const std::size_t i) {
@@ -265,7 +267,13 @@ namespace beamslider
         md << ". Every other step is within the ensembles' own scatter.\n";
       }
     md << "\n![The ladder: final positions per rung, and speed against accuracy](ladder.png)\n\n"
-       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv. The ladder took " << seconds_since(start) << ".\n\n";
+       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv; member_runs.csv holds every member as it finished "
+          "(the same command started again into this folder runs only the members not there yet). "
+       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(rungs.size() * n_members) +
+                      " members were read back from there, computed by an earlier, stopped run of this same build "
+                      "and settings. "
+                  : std::string())
+       << "This run of the ladder took " << seconds_since(start) << ".\n\n";
     run_plot_script("plot_ladder.py", {dir, scene.name});
     return md.str();
   }
