@@ -1,7 +1,9 @@
 // Ensembles (verification/studies/ensemble.h): members are reproducible and really
 // differ; order statistics and two-sample distances against values worked
 // out by hand.
+#include "contact/csv_writer.h"
 #include "verification/studies/ensemble.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <gtest/gtest.h>
 
@@ -51,6 +53,66 @@ TEST(Ensemble, MembersAreReproducibleAndActuallyDiffer)
   for (std::size_t k = 0; k < first[0].periods.size(); ++k)
     largest = std::max(largest, std::abs(first[0].periods[k].amplitude_over_h - first[1].periods[k].amplitude_over_h));
   EXPECT_GT(largest, 1e-3) << "members 0 and 1 did not part";
+}
+
+// A member through its record (one CSV line, as member_runs.csv holds it and
+// MPI carries it) comes back bit for bit: the run's figures, the periods'
+// start, end, x_C/L and amplitude, and so the trace analysis recomputed from
+// them. A line cut short (a kill during the write) is refused.
+TEST(Ensemble, MemberRecordReadsBackBitForBit)
+{
+  Scene scene                  = read_scene(mueller);
+  scene.time_stepping.end_time = 1.0;
+  const EnsembleMember m = run_member(scene, rom_settings(scene, 1, 0).model, 3, 1e-9);
+  ASSERT_GT(m.periods.size(), 20u);
+  const std::string line = CsvWriter::line(member_record(2, "a, \"rung\"", m));
+  std::size_t group = 0;
+  std::string name;
+  const EnsembleMember back = member_from_record(CsvWriter::cells(line), trace_thresholds(scene), group, name);
+  EXPECT_EQ(group, 2u);
+  EXPECT_EQ(name, "a, \"rung\"");
+  EXPECT_EQ(back.index, 3u);
+  EXPECT_EQ(back.perturbation, 3 * 1e-9);
+  EXPECT_EQ(back.result.status, m.result.status);
+  EXPECT_EQ(back.result.t_end, m.result.t_end);
+  EXPECT_EQ(back.result.slider_x_over_L, m.result.slider_x_over_L);
+  EXPECT_EQ(back.result.n_steps, m.result.n_steps);
+  EXPECT_EQ(back.wall_seconds, m.wall_seconds);
+  ASSERT_EQ(back.periods.size(), m.periods.size());
+  for (std::size_t k = 0; k < m.periods.size(); ++k)
+    {
+      EXPECT_EQ(back.periods[k].index, m.periods[k].index);
+      EXPECT_EQ(back.periods[k].t_start, m.periods[k].t_start);
+      EXPECT_EQ(back.periods[k].t_end, m.periods[k].t_end);
+      EXPECT_EQ(back.periods[k].slider_x_over_L, m.periods[k].slider_x_over_L);
+      EXPECT_EQ(back.periods[k].amplitude_over_h, m.periods[k].amplitude_over_h);
+    }
+  EXPECT_EQ(back.analysis.final_position, m.analysis.final_position);
+  EXPECT_EQ(back.analysis.final_amplitude, m.analysis.final_amplitude);
+  EXPECT_EQ(back.analysis.jumped, m.analysis.jumped);
+  EXPECT_EQ(back.analysis.outcome, m.analysis.outcome);
+  for (const std::size_t cut : {line.size() - 1, line.size() / 2, line.size() / 10})
+    EXPECT_THROW(member_from_record(CsvWriter::cells(line.substr(0, cut)), trace_thresholds(scene), group, name),
+                 std::invalid_argument)
+      << cut;
+}
+
+// The runs of several ensembles longest first by the stated cost model: an
+// FE group before a ROM group at a smaller step before the published ROM;
+// within a group, by member index.
+TEST(Ensemble, RunsAreHandedOutLongestFirst)
+{
+  Scene scene                  = read_scene(mueller);
+  scene.time_stepping.end_time = 1.0;
+  ModelSetting rom = rom_settings(scene, 1, 0).model, fine = rom, fe = rom;
+  fine.time_step /= 4;
+  fe.family     = "fe";
+  fe.n_elements = scene.discretisation.n_elements;
+  const std::vector<MemberGroup> groups = {{"rom", scene, rom, 2, 1e-9}, {"fe", scene, fe, 2, 1e-9},
+                                           {"fine", scene, fine, 1, 1e-9}};
+  EXPECT_EQ(n_runs(groups), 5u);
+  EXPECT_EQ(group_and_member(groups, 3), (std::pair<std::size_t, unsigned int>{1, 1}));
+  EXPECT_EQ(longest_first(groups), (std::vector<std::size_t>{2, 3, 4, 0, 1}));
 }
 
 TEST(EnsembleStatistics, QuartilesOfAConstructedSampleByHand)

@@ -179,4 +179,9 @@ namespace beamslider
                           "); the CSV files beside it are complete");
     return result.succeeded();
   }
+
+  std::string build_revision()
+  {
+    return std::string("beamslider ") + BEAMSLIDER_VERSION_STRING + " " + BEAMSLIDER_REVISION;
+  }
 } // namespace beamslider

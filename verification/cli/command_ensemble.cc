@@ -1,8 +1,13 @@
 // `beamslider ensemble [SCENE] --model rom|fe [--case NAME] [--members K]
 // [--perturbation EPS] [--end-time S] [--against DIR]`: K runs that differ
-// only by the start x_C/L + m·EPS (verification/studies/ensemble.h), in parallel.
+// only by the start x_C/L + m·EPS (verification/studies/ensemble.h), in
+// threads, or under `mpirun -n P` on P ranks (verification/cli/member_runs.h).
 //
 // Writes into the output folder:
+//   member_runs.csv    every finished member, appended as it finishes (all
+//                      of the run, bit for bit): a stopped ensemble started
+//                      again the same way into the same folder runs only
+//                      the members not there yet (member_runs.h)
 //   members.csv        member,perturbation,status,jump_time_s,turn_x_over_L,
 //                      final_x_over_L,final_amplitude_over_h,wall_s,outcome
 //                      (an empty field where the event did not happen)
@@ -18,6 +23,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/member_runs.h"
 #include "verification/studies/console.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
@@ -81,6 +87,8 @@ namespace beamslider
 
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options)
   {
+    // Under mpirun every rank runs this; only rank 0 writes and prints.
+    MpiSession mpi(launched_by_mpi_launcher());
     if (options.model != "rom" && options.model != "fe")
       throw InputError("--model '" + options.model + "' is not one of rom, fe");
     Scene scene = read_command_scene(common, options.case_name);
@@ -93,8 +101,6 @@ namespace beamslider
     if (!(x_last <= 1.))
       throw InputError("--perturbation " + std::to_string(options.perturbation) +
                        " moves the last member's start beyond the beam");
-    const std::string dir =
-      prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
 
     EnsembleSettings settings;
     settings.model.family    = options.model;
@@ -106,20 +112,39 @@ namespace beamslider
     settings.model.time_step = scene_model(scene, options.model).time_step;
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
+    const std::vector<MemberGroup> groups = {{"", scene, settings.model, settings.n_members, settings.perturbation}};
+    MemberRunsSettings runs;
+    runs.study           = "ensemble";
+    runs.mpi             = &mpi;
+    runs.progress_prefix = "  ";
+    if (mpi.rank() != 0)
+      {
+        run_member_groups(groups, runs); // computes what rank 0 hands out
+        return 0;
+      }
+
+    const std::string dir =
+      prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
+    runs.dir = dir;
+    std::size_t n_kept = 0;
+    runs.n_kept        = &n_kept;
     console() << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
               << settings.n_members << " members of " << settings.model.label() << ", "
               << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
               << ", into " << dir << std::endl;
 
     const auto start = std::chrono::steady_clock::now();
-    unsigned int done = 0;
-    const std::vector<EnsembleMember> members = run_ensemble(scene, settings, [&](const EnsembleMember &m) {
-      console() << "  member " << m.index << " (" << ++done << "/" << settings.n_members << ", "
-                << fixed(m.wall_seconds, 1) << " s): " << m.analysis.line << std::endl;
-    });
+    std::vector<EnsembleMember> members;
+    try
+      {
+        members = run_member_groups(groups, runs).front();
+      }
+    catch (const MemberRunsStopped &e)
+      {
+        std::cerr << "ensemble: " << e.what() << std::endl;
+        return interruption_exit_code();
+      }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (interruption_requested())
-      std::cerr << "ensemble: interrupted; the files hold what the members computed until then" << std::endl;
 
     {
       CsvWriter csv(dir + "/members.csv", {"member", "perturbation", "status", "jump_time_s", "turn_x_over_L",
@@ -152,8 +177,10 @@ namespace beamslider
     md << "# Ensemble: scene `" << scene.name << "`" << (options.case_name.empty() ? "" : ", case `" + options.case_name + "`")
        << "\n\n- Model: " << settings.model.label() << "; " << settings.n_members << " members, member m starts at x_C/L = "
        << scene.initial.slider_position_over_L << " + m × " << settings.perturbation << "; " << scene.time_stepping.end_time
-       << " s simulated each.\n- Wall time: " << fixed(wall, 1) << " s in all, "
-       << fixed(wall / settings.n_members, 2) << " s per member (parallel threads).\n"
+       << " s simulated each.\n- Wall time of this run: " << fixed(wall, 1) << " s on "
+       << (mpi.size() > 1 ? std::to_string(mpi.size()) + " MPI ranks" : std::string("the cores of one process"))
+       << "; " << n_kept << " of the members read back from member_runs.csv (an earlier, stopped run of this "
+          "build and settings), the others computed now.\n"
        << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
           "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
           "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("
@@ -218,9 +245,6 @@ namespace beamslider
     run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
                                                 " (" + settings.model.label() + ")"});
     console() << md.str();
-    for (const auto &m : members)
-      if (m.result.status == RunStatus::interrupted)
-        return interruption_exit_code();
     return 0;
   }
 } // namespace beamslider

@@ -1,15 +1,23 @@
 // `beamslider ladder`: the error ladder of report section 5 on its own. Each
 // rung is a model setting run as an ensemble; every rung is compared with
 // the reference (the FE at a quarter of the scene's time step) and with the
-// rung before it. Writes ladder.csv, ladder_members.csv, ladder_steps.csv,
-// ladder.png and summary.md (the same tables and verdict as the report).
+// rung before it. Writes member_runs.csv (each member as it finishes),
+// ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png and summary.md
+// (the same tables and verdict as the report). Under `mpirun -n P` the
+// members run on P ranks; stopped and started again the same way into the
+// same folder, it runs only the members not yet in member_runs.csv
+// (verification/cli/member_runs.h).
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/member_runs.h"
 #include "verification/report/report_ladder.h"
 #include "verification/studies/console.h"
 #include "verification/studies/error_ladder.h"
 
+#include "contact/interruption.h"
 #include "contact/output_file.h"
+
+#include <iostream>
 
 #include <sstream>
 
@@ -52,6 +60,8 @@ namespace beamslider
 
   int run_ladder_command(const CommonOptions &common, const LadderOptions &options)
   {
+    // Under mpirun every rank runs this; only rank 0 writes and prints.
+    MpiSession mpi(launched_by_mpi_launcher());
     const Scene scene = read_command_scene(common, "");
     const bool full   = options.full || !options.rungs.empty();
     std::size_t reference = 0;
@@ -64,6 +74,11 @@ namespace beamslider
     settings.end_time        = options.end_time.value_or(options.full ? 40. : 25.);
     settings.quick_ladder    = !full;
     settings.progress_prefix = "ladder: ";
+    if (mpi.rank() != 0)
+      {
+        work_on_ladder(scene, rungs, settings);
+        return 0;
+      }
     const std::string dir = prepare_output_dir(common, scene, "ladder");
 
     std::ostringstream md;
@@ -71,7 +86,15 @@ namespace beamslider
        << "Written by `beamslider ladder`" << (options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
        << settings.members << " members over " << settings.end_time << " s. The same study as report section 5.1–5.2 "
        << "(doc/verification.md §6).\n\n";
-    md << run_and_describe_ladder(dir, scene, rungs, reference, settings);
+    try
+      {
+        md << run_and_describe_ladder(dir, scene, rungs, reference, settings);
+      }
+    catch (const MemberRunsStopped &e)
+      {
+        std::cerr << "ladder: " << e.what() << std::endl;
+        return interruption_exit_code();
+      }
     write_text_file(dir + "/summary.md", md.str());
     console() << "wrote " << dir << "/summary.md, ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png"
               << std::endl;

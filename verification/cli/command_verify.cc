@@ -1,8 +1,15 @@
-// `beamslider verify`: the verification report on one scene.
+// `beamslider verify`: the verification report on one scene. Under
+// `mpirun -n P` rank 0 writes the report and the other ranks compute the
+// members of the error ladder (section 5) with it; the ladder's members are
+// kept in the report folder (member_runs.csv), so that a verify stopped and
+// started again into the same folder does not run them again.
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/member_runs.h"
+#include "verification/cli/mpi_cells.h"
+#include "verification/report/report_ladder.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 
@@ -16,7 +23,32 @@ namespace beamslider
 {
   int run_verify(const CommonOptions &common, const VerifyOptions &options)
   {
+    MpiSession mpi(launched_by_mpi_launcher());
     const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
+    const bool ladder_section =
+      options.sections.empty() || std::find(options.sections.begin(), options.sections.end(), 5u) != options.sections.end();
+    if (mpi.rank() != 0)
+      {
+        // The other ranks' share of the report: the ladder's members.
+        if (ladder_section)
+          {
+            const ReportLadder ladder = report_ladder(scene, options.full);
+            work_on_ladder(scene, ladder.rungs, ladder.settings);
+          }
+        return 0;
+      }
+    // If rank 0 ends before the ladder (an error, a stop), the other ranks,
+    // waiting for its members, are told to stop.
+    struct ReleaseWorkers
+    {
+      const MpiSession &mpi;
+      bool waiting;
+      ~ReleaseWorkers()
+      {
+        if (waiting && mpi.n_distributions() == 0)
+          release_workers(mpi);
+      }
+    } release{mpi, ladder_section};
     Report report;
     report.dir        = prepare_output_dir(common, scene, "");
     report.scene_file = resolve_scene_path(common.scene_file);
@@ -63,7 +95,15 @@ namespace beamslider
         if (!options.sections.empty() &&
             std::find(options.sections.begin(), options.sections.end(), k + 1) == options.sections.end())
           continue;
-        sections[k]();
+        try
+          {
+            sections[k]();
+          }
+        catch (const MemberRunsStopped &e)
+          {
+            // The ladder stopped with a signal: its finished members are kept.
+            report.text << "\n_The error ladder " << e.what() << "._\n";
+          }
         flush();
         if (interrupted())
           return interruption_exit_code();

@@ -179,6 +179,11 @@ namespace beamslider
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
                                  RunRecord record = RunRecord::replace);
 
+  // This build's version and source revision ("beamslider 0.9.0 1a2b3c…"),
+  // as run.txt records it: part of what a resumable study's records were
+  // computed with (member_runs.h).
+  std::string build_revision();
+
   // The process's command line, for run.txt (main() records it first).
   void record_command_line(int argc, const char *const *argv);
   // The sub-command's options with their effective values, for command.prm

@@ -1,6 +1,8 @@
 // Manager–worker distribution of cells over MPI, see mpi_cells.h.
 #include "verification/cli/mpi_cells.h"
 
+#include "verification/studies/parallel_for.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <mpi.h>
@@ -26,6 +28,18 @@ namespace beamslider
         throw std::runtime_error(std::string("MPI: ") + what + " failed (error code " + std::to_string(error) + ")");
     }
   } // namespace
+
+  namespace
+  {
+    const MpiSession *active_session = nullptr; // MpiSession::active()
+  }
+
+  // distribute_cells counts itself on the session (MpiSession::n_distributions).
+  class DistributionCount
+  {
+  public:
+    static void add(const MpiSession &mpi) { ++mpi.n_distributions_; }
+  };
 
   bool launched_by_mpi_launcher()
   {
@@ -58,15 +72,23 @@ namespace beamslider
     rank_       = rank;
     size_       = size;
     serialized_ = provided >= MPI_THREAD_SERIALIZED;
+    active_session = this;
   }
 
-  MpiSession::~MpiSession() = default;
+  const MpiSession *MpiSession::active() { return active_session; }
+
+  MpiSession::~MpiSession()
+  {
+    if (active_session == this)
+      active_session = nullptr;
+  }
 
   void distribute_cells(const MpiSession &mpi, const std::vector<std::size_t> &todo,
                         const std::function<std::string(std::size_t)> &work,
                         const std::function<void(std::size_t, const std::string &, unsigned int)> &done,
-                        const std::function<bool()> &stop)
+                        const std::function<bool()> &stop, const unsigned int n_threads)
   {
+    DistributionCount::add(mpi);
     std::atomic<std::size_t> next{0};
     std::mutex done_mutex;
     // The next cell to hand out, or npos when all are out or we stop.
@@ -85,8 +107,18 @@ namespace beamslider
 
     if (mpi.size() == 1)
       {
-        for (std::size_t cell = take(); cell != std::string::npos; cell = take())
-          finish(cell, work(cell), 0);
+        if (n_threads == 1)
+          {
+            for (std::size_t cell = take(); cell != std::string::npos; cell = take())
+              finish(cell, work(cell), 0);
+            return;
+          }
+        // Threads take the cells in the order of `todo`, as the ranks would.
+        parallel_for(todo.size(), n_threads, [&](std::size_t) {
+          const std::size_t cell = take();
+          if (cell != std::string::npos)
+            finish(cell, work(cell), 0);
+        });
         return;
       }
 
@@ -149,9 +181,19 @@ namespace beamslider
     while (true)
       {
         check(MPI_Send(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD), "MPI_Send");
-        std::uint64_t cell = 0;
+        // Waiting by probing and sleeping, not in a blocking receive (which
+        // Open MPI spins in): the answer may be long in coming when rank 0
+        // does other work first (verify's sections before the ladder), and
+        // the core is rank 0's meanwhile.
         MPI_Status status;
-        check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
+        for (int flag = 0; !flag;)
+          {
+            check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+            if (!flag)
+              std::this_thread::sleep_for(std::chrono::milliseconds(2));
+          }
+        std::uint64_t cell = 0;
+        check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, status.MPI_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
         if (status.MPI_TAG == tag_stop)
           return;
         const std::string result = work(cell);
@@ -159,5 +201,13 @@ namespace beamslider
         std::memcpy(message.data(), &cell, 8);
         std::memcpy(message.data() + 8, result.data(), result.size());
       }
+  }
+
+  void release_workers(const MpiSession &mpi)
+  {
+    if (mpi.size() > 1 && mpi.rank() == 0)
+      distribute_cells(
+        mpi, {}, [](std::size_t) { return std::string(); }, [](std::size_t, const std::string &, unsigned int) {},
+        [] { return true; });
   }
 } // namespace beamslider

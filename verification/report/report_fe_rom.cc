@@ -6,6 +6,9 @@
 // periods, so models are judged by the distributions of their outcomes.
 //
 // Files written into the report folder:
+//   member_runs.csv     every finished member of the ladder, appended as it
+//                       finishes: `verify` started again into the same folder
+//                       runs only the members not there yet (report_ladder.h)
 //   ladder.csv          one row per rung (index = place in the ladder): settings, cost, outcome statistics,
 //                       W₁ distance of the final position to the reference
 //   ladder_members.csv  one row per rung and member (the trace analysis)
@@ -40,15 +43,8 @@ namespace beamslider
     // 5.1 and 5.2: the ladder.
     std::string ladder_subsections(Report &report, const Scene &scene, const bool full)
     {
-      std::size_t reference = 0;
-      const auto rungs      = default_ladder(scene, full, reference);
-      LadderRunSettings settings;
-      settings.members         = full ? 8 : 4;
-      settings.end_time        = full ? 40. : 25.;
-      settings.quick_ladder    = !full;
-      settings.numbering       = "5.";
-      settings.progress_prefix = "[verify] FE against ROM: ";
-      return run_and_describe_ladder(report.dir, scene, rungs, reference, settings);
+      const ReportLadder ladder = report_ladder(scene, full);
+      return run_and_describe_ladder(report.dir, scene, ladder.rungs, ladder.reference, ladder.settings);
     }
 
     // 5.3: F̄_x(x_C) and the amplitude branches of FE and ROM on the same

@@ -2,6 +2,7 @@
 #include "verification/report/report_ladder.h"
 
 #include "verification/cli/commands.h"
+#include "verification/cli/member_runs.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
@@ -138,20 +139,25 @@ namespace beamslider
                                         : "### " + settings.numbering + std::to_string(k) + " " + title + "\n\n";
     };
 
-    LadderFiles files(dir);
+    MemberRunsSettings runs;
+    runs.dir             = dir;
+    runs.study           = "ladder";
+    runs.mpi             = MpiSession::active();
+    runs.progress_prefix = settings.progress_prefix;
+    std::size_t n_kept   = 0;
+    runs.n_kept          = &n_kept;
     const LadderStudy study = run_ladder(
       scene, rungs, reference, end_time, n_members,
-      [&](const LadderRung &rung, std::size_t) {
-        console() << settings.progress_prefix << "ladder rung " << rung.name << " (" << rung.model.label() << ") at "
-                  << seconds_since(start) << std::endl;
+      [&](const LadderRung &rung, const std::size_t i) {
+        console() << settings.progress_prefix << "rung " << i << ": " << rung.name << " (" << rung.model.label()
+                  << ")" << std::endl;
       },
-      [&](const LadderRungResult &r) {
-        std::size_t index = 0;
-        while (rungs[index].name != r.rung.name)
-          ++index;
-        files.add_rung(r, index, index == reference);
-      });
+      member_runs_runner(runs));
 
+    // The tables in ladder order, from the members (read back or computed).
+    LadderFiles files(dir);
+    for (std::size_t i = 0; i < study.rungs.size(); ++i)
+      files.add_rung(study.rungs[i], i, i == reference);
     files.write_steps(study);
 
     const LadderRungResult &ref = study.rungs[reference];
@@ -261,8 +267,34 @@ namespace beamslider
         md << ". Every other step is within the ensembles' own scatter.\n";
       }
     md << "\n![The ladder: final positions per rung, and speed against accuracy](ladder.png)\n\n"
-       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv. The ladder took " << seconds_since(start) << ".\n\n";
+       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv; member_runs.csv holds every member as it finished "
+          "(the same command started again into this folder runs only the members not there yet). "
+       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(rungs.size() * n_members) +
+                      " members were read back from there, computed by an earlier, stopped run of this same build "
+                      "and settings. "
+                  : std::string())
+       << "This run of the ladder took " << seconds_since(start) << ".\n\n";
     run_plot_script("plot_ladder.py", {dir, scene.name});
     return md.str();
+  }
+
+  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings)
+  {
+    MemberRunsSettings runs;
+    runs.study = "ladder";
+    runs.mpi   = MpiSession::active();
+    run_member_groups(ladder_groups(scene, rungs, settings.end_time, settings.members), runs);
+  }
+
+  ReportLadder report_ladder(const Scene &scene, const bool full)
+  {
+    ReportLadder l;
+    l.rungs                    = default_ladder(scene, full, l.reference);
+    l.settings.members         = full ? 8 : 4;
+    l.settings.end_time        = full ? 40. : 25.;
+    l.settings.quick_ladder    = !full;
+    l.settings.numbering       = "5.";
+    l.settings.progress_prefix = "[verify] FE against ROM: ";
+    return l;
   }
 } // namespace beamslider

@@ -1,7 +1,12 @@
 // The error ladder as report section 5.1–5.2 and the `beamslider ladder`
 // command show it: run_and_describe_ladder runs the rungs, writes the files
-// and returns the Markdown. The CSV files are written as the rungs finish (so
-// a ladder that is interrupted keeps the rungs it completed):
+// and returns the Markdown. The members of all rungs run as one list, longest
+// first, over the MPI ranks under mpirun, else over the cores
+// (verification/cli/member_runs.h); each finished member is appended to
+// member_runs.csv at once, so that a ladder stopped (Ctrl-C, kill -9) and
+// started again into the same folder runs only the members not there yet and
+// ends with the same files. The tables are written when every member is done:
+//   member_runs.csv     every finished member (the resume record)
 //   ladder.csv          one row per rung (index = place in the ladder):
 //                       settings, cost, outcome statistics, W₁ to the reference
 //   ladder_members.csv  one row per rung and member (the trace analysis)
@@ -49,9 +54,25 @@ namespace beamslider
   };
 
   // Runs `rungs` (reference: rungs[reference]) as ensembles into `dir`
-  // (LadderFiles and ladder.png) and returns the Markdown: the headline table
-  // of every rung against the reference, the verdict on the end state, and
-  // what each step of the ladder contributes (computed from this run).
+  // (member_runs.csv, LadderFiles and ladder.png) and returns the Markdown:
+  // the headline table of every rung against the reference, the verdict on
+  // the end state, and what each step of the ladder contributes (computed
+  // from this run). Throws MemberRunsStopped (member_runs.h) when stopped
+  // before every member is done. Under MPI this is rank 0's part.
   std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
                                       std::size_t reference, const LadderRunSettings &settings);
+
+  // The other MPI ranks' part of run_and_describe_ladder (same arguments
+  // but the folder): compute the members rank 0 hands out.
+  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings);
+
+  // The ladder of report section 5: quick (4 rungs, 4 members over 25 s) or
+  // full (`verify --full`: every rung, 8 members over 40 s).
+  struct ReportLadder
+  {
+    std::vector<LadderRung> rungs;
+    std::size_t reference = 0;
+    LadderRunSettings settings;
+  };
+  ReportLadder report_ladder(const Scene &scene, bool full);
 } // namespace beamslider

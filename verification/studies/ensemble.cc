@@ -6,62 +6,253 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <algorithm>
-#include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <random>
+#include <sstream>
 #include <stdexcept>
-#include <thread>
 
 namespace beamslider
 {
-  std::vector<EnsembleMember> run_ensemble(const Scene &scene, const EnsembleSettings &settings,
-                                           const std::function<void(const EnsembleMember &)> &on_member)
+  namespace
   {
     using clock = std::chrono::steady_clock;
-    const unsigned int K = settings.n_members;
-    if (K == 0)
-      throw InputError("--members 0: an ensemble needs at least one member");
-    const TraceThresholds thresholds = trace_thresholds(scene);
 
-    // The models are built here, one after another (the eigensolver behind
-    // them is not thread-safe); only the time stepping runs in parallel.
-    std::vector<EnsembleMember> members(K);
-    std::vector<std::unique_ptr<BeamSystem>> models(K);
-    std::vector<Scene> scenes(K, scene);
-    for (unsigned int m = 0; m < K; ++m)
+    // The model set-up (the FE modes behind every model and behind the
+    // trace thresholds) one at a time: its eigensolver is not thread-safe.
+    std::mutex &setup_mutex()
+    {
+      static std::mutex m;
+      return m;
+    }
+
+    // Doubles in their shortest form that reads back to the same bits.
+    std::string exact(const double x)
+    {
+      char buffer[32];
+      const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, x);
+      if (error != std::errc())
+        throw std::logic_error("exact: to_chars failed");
+      return std::string(buffer, end);
+    }
+
+    double read_double(const std::string &text, const char *what)
+    {
+      double x               = 0;
+      const char *const last = text.data() + text.size();
+      const auto [end, error] = std::from_chars(text.data(), last, x);
+      if (error != std::errc() || end != last || text.empty())
+        throw std::invalid_argument(std::string("member record: ") + what + " '" + text + "' is not a number");
+      return x;
+    }
+
+    unsigned long read_unsigned(const std::string &text, const char *what)
+    {
+      unsigned long x        = 0;
+      const char *const last = text.data() + text.size();
+      const auto [end, error] = std::from_chars(text.data(), last, x);
+      if (error != std::errc() || end != last || text.empty())
+        throw std::invalid_argument(std::string("member record: ") + what + " '" + text + "' is not a count");
+      return x;
+    }
+
+    RunStatus read_status(const std::string &text)
+    {
+      for (int k = 0; k <= static_cast<int>(RunStatus::interrupted); ++k)
+        if (to_string(static_cast<RunStatus>(k)) == text)
+          return static_cast<RunStatus>(k);
+      throw std::invalid_argument("member record: unknown status '" + text + "'");
+    }
+  } // namespace
+
+  EnsembleMember run_member(const Scene &scene, const ModelSetting &model, const unsigned int index,
+                            const double perturbation)
+  {
+    const auto start = clock::now();
+    EnsembleMember member;
+    member.index        = index;
+    member.perturbation = index * perturbation;
+    Scene s             = scene;
+    s.initial.slider_position_over_L += member.perturbation;
+    s.time_stepping.time_step = model.time_step;
+    validate_scene(s);
+    std::unique_ptr<BeamSystem> beam;
+    TraceThresholds thresholds;
+    {
+      const std::lock_guard<std::mutex> lock(setup_mutex());
+      beam       = make_beam_model(s, model);
+      thresholds = trace_thresholds(scene);
+    }
+    RunOptions options        = RunOptions::from_scene(s);
+    options.progress_interval = 1e300;
+    AdaptationRun run(s, *beam, options);
+    run.on_period       = [&member](const PeriodRecord &p) { member.periods.push_back(p); };
+    member.result       = run.run();
+    member.analysis     = analyse_trace(member.periods, member.result.status, thresholds);
+    member.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+    return member;
+  }
+
+  std::size_t n_runs(const std::vector<MemberGroup> &groups)
+  {
+    std::size_t n = 0;
+    for (const MemberGroup &g : groups)
+      n += g.n_members;
+    return n;
+  }
+
+  std::pair<std::size_t, unsigned int> group_and_member(const std::vector<MemberGroup> &groups, std::size_t run)
+  {
+    for (std::size_t g = 0; g < groups.size(); ++g)
       {
-        const auto start        = clock::now();
-        members[m].index        = m;
-        members[m].perturbation = m * settings.perturbation;
-        scenes[m].initial.slider_position_over_L += members[m].perturbation;
-        scenes[m].time_stepping.time_step = settings.model.time_step;
-        validate_scene(scenes[m]);
-        models[m]               = make_beam_model(scenes[m], settings.model);
-        members[m].wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+        if (run < groups[g].n_members)
+          return {g, static_cast<unsigned int>(run)};
+        run -= groups[g].n_members;
       }
+    throw std::out_of_range("group_and_member: run " + std::to_string(run) + " beyond the list");
+  }
 
+  std::vector<std::size_t> longest_first(const std::vector<MemberGroup> &groups)
+  {
+    std::vector<std::size_t> order(n_runs(groups));
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<double> cost(order.size());
+    for (std::size_t r = 0; r < order.size(); ++r)
+      {
+        const MemberGroup &g = groups[group_and_member(groups, r).first];
+        cost[r]              = cost_per_simulated_second(g.model, g.scene) * g.scene.time_stepping.end_time;
+      }
+    std::stable_sort(order.begin(), order.end(), [&cost](const std::size_t a, const std::size_t b) {
+      return cost[a] > cost[b];
+    });
+    return order;
+  }
+
+  std::vector<std::string> member_record_columns()
+  {
+    return {"group",        "rung",         "member",          "perturbation",          "status",
+            "message",      "t_end_s",      "slider_x_over_L", "n_steps",               "run_wall_s",
+            "steps_per_s",  "max_solver_iterations", "n_contact_steps", "solver_iterations", "wall_s",
+            "n_periods",    "periods"};
+  }
+
+  std::vector<std::string> member_record(const std::size_t group, const std::string &group_name,
+                                         const EnsembleMember &m)
+  {
+    const RunResult &r = m.result;
+    // Periods as "index t_start t_end x_C/L amplitude;", each ended by ';':
+    // a line cut inside its last number (still a number) lacks the ';'.
+    std::string periods;
+    for (const PeriodRecord &p : m.periods)
+      periods += std::to_string(p.index) + ' ' + exact(p.t_start) + ' ' + exact(p.t_end) + ' ' +
+                 exact(p.slider_x_over_L) + ' ' + exact(p.amplitude_over_h) + ';';
+    return {std::to_string(group),
+            group_name,
+            std::to_string(m.index),
+            exact(m.perturbation),
+            to_string(r.status),
+            r.message,
+            exact(r.t_end),
+            exact(r.slider_x_over_L),
+            std::to_string(r.n_steps),
+            exact(r.wall_seconds),
+            exact(r.steps_per_second),
+            std::to_string(r.max_solver_iterations),
+            std::to_string(r.n_contact_steps),
+            std::to_string(r.solver_iterations),
+            exact(m.wall_seconds),
+            std::to_string(m.periods.size()),
+            periods};
+  }
+
+  EnsembleMember member_from_record(const std::vector<std::string> &c, const TraceThresholds &thresholds,
+                                    std::size_t &group, std::string &group_name)
+  {
+    if (c.size() != member_record_columns().size())
+      throw std::invalid_argument("member record: " + std::to_string(c.size()) + " cells, not " +
+                                  std::to_string(member_record_columns().size()));
+    EnsembleMember m;
+    group                          = read_unsigned(c[0], "group");
+    group_name                     = c[1];
+    m.index                        = read_unsigned(c[2], "member");
+    m.perturbation                 = read_double(c[3], "perturbation");
+    m.result.status                = read_status(c[4]);
+    m.result.message               = c[5];
+    m.result.t_end                 = read_double(c[6], "t_end_s");
+    m.result.slider_x_over_L       = read_double(c[7], "slider_x_over_L");
+    m.result.n_steps               = read_unsigned(c[8], "n_steps");
+    m.result.wall_seconds          = read_double(c[9], "run_wall_s");
+    m.result.steps_per_second      = read_double(c[10], "steps_per_s");
+    m.result.max_solver_iterations = read_unsigned(c[11], "max_solver_iterations");
+    m.result.n_contact_steps       = read_unsigned(c[12], "n_contact_steps");
+    m.result.solver_iterations     = read_unsigned(c[13], "solver_iterations");
+    m.wall_seconds                 = read_double(c[14], "wall_s");
+    const std::size_t n_periods    = read_unsigned(c[15], "n_periods");
+    if (!c[16].empty() && c[16].back() != ';')
+      throw std::invalid_argument("member record: the periods end without ';' (a line cut short)");
+    std::istringstream periods(c[16]);
+    std::string period;
+    while (std::getline(periods, period, ';'))
+      {
+        std::istringstream fields(period);
+        std::string index, t_start, t_end, x, a, extra;
+        if (!(fields >> index >> t_start >> t_end >> x >> a) || (fields >> extra))
+          throw std::invalid_argument("member record: period '" + period + "' is not 5 numbers");
+        PeriodRecord p;
+        p.index            = read_unsigned(index, "period index");
+        p.t_start          = read_double(t_start, "period start");
+        p.t_end            = read_double(t_end, "period end");
+        p.slider_x_over_L  = read_double(x, "period x_C/L");
+        p.amplitude_over_h = read_double(a, "period amplitude");
+        m.periods.push_back(p);
+      }
+    if (m.periods.size() != n_periods) // a line cut short
+      throw std::invalid_argument("member record: " + std::to_string(m.periods.size()) + " periods of " +
+                                  std::to_string(n_periods));
+    m.analysis = analyse_trace(m.periods, m.result.status, thresholds);
+    return m;
+  }
+
+  std::vector<std::vector<EnsembleMember>>
+  run_groups_in_threads(const std::vector<MemberGroup> &groups, const unsigned int n_threads,
+                        const std::function<void(std::size_t, const EnsembleMember &)> &on_member)
+  {
+    std::vector<std::vector<EnsembleMember>> members(groups.size());
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      members[g].resize(groups[g].n_members);
+    const std::vector<std::size_t> order = longest_first(groups);
     std::mutex report;
-    parallel_for(K, settings.n_threads, [&](const std::size_t m) {
-      const auto start = clock::now();
-      EnsembleMember &member = members[m];
-      RunOptions options        = RunOptions::from_scene(scenes[m]);
-      options.progress_interval = 1e300;
-      AdaptationRun run(scenes[m], *models[m], options);
-      run.on_period    = [&member](const PeriodRecord &p) { member.periods.push_back(p); };
-      member.result    = run.run();
-      member.analysis  = analyse_trace(member.periods, member.result.status, thresholds);
-      member.wall_seconds += std::chrono::duration<double>(clock::now() - start).count();
-      models[m].reset(); // its memory back as soon as it is done
+    parallel_for(order.size(), n_threads, [&](const std::size_t i) {
+      const auto [g, m]     = group_and_member(groups, order[i]);
+      EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
+      const std::lock_guard<std::mutex> lock(report);
+      members[g][m] = std::move(member);
       if (on_member)
-        {
-          const std::lock_guard<std::mutex> lock(report);
-          on_member(member);
-        }
+        on_member(g, members[g][m]);
     });
     return members;
+  }
+
+  std::vector<EnsembleMember> run_ensemble(const Scene &scene, const EnsembleSettings &settings,
+                                           const std::function<void(const EnsembleMember &)> &on_member,
+                                           const MemberGroupRunner &runner)
+  {
+    if (settings.n_members == 0)
+      throw InputError("--members 0: an ensemble needs at least one member");
+    const std::vector<MemberGroup> groups = {
+      {"", scene, settings.model, settings.n_members, settings.perturbation}};
+    if (runner)
+      return runner(groups).front();
+    return run_groups_in_threads(groups, settings.n_threads,
+                                 [&on_member](std::size_t, const EnsembleMember &m) {
+                                   if (on_member)
+                                     on_member(m);
+                                 })
+      .front();
   }
 
   double quantile(std::vector<double> sample, const double q)

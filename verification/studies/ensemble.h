@@ -19,6 +19,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace beamslider
@@ -41,10 +42,63 @@ namespace beamslider
     double wall_seconds = 0; // model set-up + run
   };
 
-  // Runs the members (models built one after another, runs in parallel
-  // threads); `on_member` (optional) is called, serialised, as each finishes.
+  // One member as a unit of work: `scene` (its end time is the member's)
+  // with the model's time step, started at x_C/L + index·perturbation. The
+  // same arguments give the same member on any thread or MPI rank. Safe to
+  // call from several threads (the model set-up, whose eigensolver is not
+  // thread-safe, runs one at a time).
+  EnsembleMember run_member(const Scene &scene, const ModelSetting &model, unsigned int index, double perturbation);
+
+  // The members of several ensembles (the rungs of a ladder, or one
+  // ensemble) as one list of runs.
+  struct MemberGroup
+  {
+    std::string name;       // the rung's name ("" for a lone ensemble)
+    Scene scene;            // end time set; the time step is the model's
+    ModelSetting model;
+    unsigned int n_members = 0;
+    double perturbation    = 0; // ε [-]
+  };
+  // Member m of group g is run number offset(g) + m of the list.
+  std::size_t n_runs(const std::vector<MemberGroup> &groups);
+  std::pair<std::size_t, unsigned int> group_and_member(const std::vector<MemberGroup> &groups, std::size_t run);
+  // The runs longest first by the stated cost model (cost_per_simulated_second
+  // × end time; fe_rom_study.h), ties in list order: handed out in this
+  // order, runs of very different cost keep every worker busy to the end.
+  std::vector<std::size_t> longest_first(const std::vector<MemberGroup> &groups);
+
+  // A finished member as the cells of one CSV row and back, bit for bit
+  // (doubles in their shortest round-trip form): the status and figures of
+  // the run, and each period's index, start, end, mean x_C/L and amplitude,
+  // each period ended by ';'
+  // (what the trace analysis and the output files read; the energy budget
+  // of the periods is not kept). The analysis is recomputed from them with
+  // the scene's thresholds. Every member of a persisted study goes through
+  // this record, the one just computed as much as the one read back, so that
+  // a resumed study gives the numbers of an uninterrupted one.
+  std::vector<std::string> member_record_columns();
+  std::vector<std::string> member_record(std::size_t group, const std::string &group_name, const EnsembleMember &m);
+  // Throws std::invalid_argument for a row that is not a complete record (a
+  // line cut short by a kill).
+  EnsembleMember member_from_record(const std::vector<std::string> &cells, const TraceThresholds &thresholds,
+                                    std::size_t &group, std::string &group_name);
+
+  // Runs every member of every group and returns members[group][m]. The
+  // default runs them in threads of this process; a command that persists
+  // members or spreads them over MPI ranks passes its own.
+  using MemberGroupRunner =
+    std::function<std::vector<std::vector<EnsembleMember>>(const std::vector<MemberGroup> &groups)>;
+  // In `n_threads` threads (0: one per core), longest first; `on_member`
+  // (optional) is called, serialised, as each finishes.
+  std::vector<std::vector<EnsembleMember>>
+  run_groups_in_threads(const std::vector<MemberGroup> &groups, unsigned int n_threads = 0,
+                        const std::function<void(std::size_t, const EnsembleMember &)> &on_member = {});
+
+  // The members of one ensemble (in threads, or by `runner`); `on_member`
+  // (optional, threads only) is called, serialised, as each finishes.
   std::vector<EnsembleMember> run_ensemble(const Scene &scene, const EnsembleSettings &settings,
-                                           const std::function<void(const EnsembleMember &)> &on_member = {});
+                                           const std::function<void(const EnsembleMember &)> &on_member = {},
+                                           const MemberGroupRunner &runner = {});
 
   // Order statistics of one outcome over the members where it exists.
   struct OutcomeStatistics

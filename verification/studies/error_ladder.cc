@@ -101,45 +101,60 @@ namespace beamslider
     return rungs;
   }
 
+  std::vector<MemberGroup> ladder_groups(const Scene &scene, const std::vector<LadderRung> &rungs, const double end_time,
+                                         const unsigned int members)
+  {
+    if (members == 0)
+      throw InputError("--members 0: a ladder rung needs at least one member");
+    Scene s                  = scene;
+    s.time_stepping.end_time = end_time;
+    std::vector<MemberGroup> groups;
+    for (const LadderRung &rung : rungs)
+      groups.push_back({rung.name, s, rung.model, members, EnsembleSettings().perturbation});
+    return groups;
+  }
+
   LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
                          const double end_time, const unsigned int members,
                          const std::function<void(const LadderRung &, std::size_t)> &before_rung,
-                         const std::function<void(const LadderRungResult &)> &on_rung)
+                         const MemberGroupRunner &runner)
   {
     if (reference >= rungs.size())
       throw std::invalid_argument("run_ladder: reference rung " + std::to_string(reference) + " of " +
                                   std::to_string(rungs.size()));
+    const std::vector<MemberGroup> groups = ladder_groups(scene, rungs, end_time, members);
+    if (before_rung)
+      for (std::size_t i = 0; i < rungs.size(); ++i)
+        before_rung(rungs[i], i);
+    std::vector<std::vector<EnsembleMember>> results = runner ? runner(groups) : run_groups_in_threads(groups);
+    return assemble_ladder(scene, rungs, reference, end_time, std::move(results));
+  }
+
+  LadderStudy assemble_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
+                              const double end_time, std::vector<std::vector<EnsembleMember>> members)
+  {
+    if (reference >= rungs.size() || members.size() != rungs.size())
+      throw std::invalid_argument("assemble_ladder: reference rung " + std::to_string(reference) + ", " +
+                                  std::to_string(members.size()) + " member sets for " + std::to_string(rungs.size()) +
+                                  " rungs");
     LadderStudy study;
     study.end_time  = end_time;
-    study.members   = members;
+    study.members   = members.front().size();
     study.reference = reference;
     study.rungs.resize(rungs.size());
+    Scene s                  = scene;
+    s.time_stepping.end_time = end_time;
 
-    // The reference first: every other rung is compared with it as it ends.
-    std::vector<std::size_t> order{reference};
+    std::vector<OutcomeSamples> samples(rungs.size());
     for (std::size_t i = 0; i < rungs.size(); ++i)
-      if (i != reference)
-        order.push_back(i);
-
-    OutcomeSamples reference_samples;
-    for (const std::size_t i : order)
       {
-        const LadderRung &rung = rungs[i];
-        if (before_rung)
-          before_rung(rung, i);
-        Scene s                    = scene;
-        s.time_stepping.end_time = end_time;
-        EnsembleSettings settings;
-        settings.model     = rung.model;
-        settings.n_members = members;
-
         LadderRungResult &r = study.rungs[i];
-        r.rung              = rung;
-        r.members           = run_ensemble(s, settings);
-        const OutcomeSamples samples = outcome_samples(r.members);
-        r.final_position             = statistics("final x_C/L", samples.final_position);
-        r.final_amplitude            = statistics("final amplitude [h]", samples.final_amplitude);
-        r.jump_time                  = statistics("jump time [s]", samples.jump_time);
+        r.rung              = rungs[i];
+        r.members           = std::move(members[i]);
+        samples[i]          = outcome_samples(r.members);
+        r.final_position    = statistics("final x_C/L", samples[i].final_position);
+        r.final_amplitude   = statistics("final amplitude [h]", samples[i].final_amplitude);
+        r.jump_time         = statistics("jump time [s]", samples[i].jump_time);
         for (const auto &m : r.members)
           {
             r.wall_seconds_per_member += m.wall_seconds / r.members.size();
@@ -148,24 +163,19 @@ namespace beamslider
             if (m.analysis.valid)
               ++r.outcome_classes[to_string(m.analysis.outcome)];
           }
-        r.cost_units = cost_per_simulated_second(rung.model, s) * end_time;
-        if (i == reference)
-          reference_samples = samples;
-        else if (!samples.final_position.empty() && !reference_samples.final_position.empty())
-          {
-            r.position_to_reference  = compare_samples(samples.final_position, reference_samples.final_position);
-            r.amplitude_to_reference = compare_samples(samples.final_amplitude, reference_samples.final_amplitude);
-          }
-        if (on_rung)
-          on_rung(r);
+        r.cost_units = cost_per_simulated_second(rungs[i].model, s) * end_time;
       }
+    const OutcomeSamples &ref = samples[reference];
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      if (i != reference && !samples[i].final_position.empty() && !ref.final_position.empty())
+        {
+          study.rungs[i].position_to_reference  = compare_samples(samples[i].final_position, ref.final_position);
+          study.rungs[i].amplitude_to_reference = compare_samples(samples[i].final_amplitude, ref.final_amplitude);
+        }
     study.steps.resize(rungs.size());
     for (std::size_t i = 1; i < rungs.size(); ++i)
-      {
-        const OutcomeSamples a = outcome_samples(study.rungs[i - 1].members), b = outcome_samples(study.rungs[i].members);
-        if (!a.final_position.empty() && !b.final_position.empty())
-          study.steps[i] = compare_samples(a.final_position, b.final_position);
-      }
+      if (!samples[i - 1].final_position.empty() && !samples[i].final_position.empty())
+        study.steps[i] = compare_samples(samples[i - 1].final_position, samples[i].final_position);
     return study;
   }
 } // namespace beamslider

@@ -75,11 +75,23 @@ namespace beamslider
   // converged).
   std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
 
-  // Runs every rung as an ensemble of `members` members over [0, end_time].
-  // `on_rung` (optional) sees each rung as it finishes (for progress and to
-  // write partial results); `before_rung` announces the next one.
+  // Every rung's ensemble as one list of member runs (ensemble.h): rung i
+  // is group i, `members` members over [0, end_time], ε = 1e-9.
+  std::vector<MemberGroup> ladder_groups(const Scene &scene, const std::vector<LadderRung> &rungs, double end_time,
+                                         unsigned int members);
+
+  // Runs every rung as an ensemble of `members` members over [0, end_time]:
+  // all members of all rungs as one list, longest first (in threads of this
+  // process, or by `runner`: spread over MPI ranks and persisted, see
+  // verification/cli/member_runs.h). `before_rung` (optional) announces
+  // each rung, in ladder order, before the runs start.
   LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
                          double end_time, unsigned int members,
                          const std::function<void(const LadderRung &, std::size_t)> &before_rung = {},
-                         const std::function<void(const LadderRungResult &)> &on_rung = {});
+                         const MemberGroupRunner &runner = {});
+
+  // The study from the members of every rung (members[i]: rung i's):
+  // statistics, comparisons with the reference and between neighbours.
+  LadderStudy assemble_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
+                              double end_time, std::vector<std::vector<EnsembleMember>> members);
 } // namespace beamslider

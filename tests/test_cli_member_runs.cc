@@ -1,0 +1,239 @@
+// Ensembles and the error ladder as persisted, distributed member runs
+// (verification/cli/member_runs.h), end to end: a ladder killed with
+// SIGKILL and started again ends with the files of an uninterrupted run; a
+// members file cut short is resumed, its complete rows kept (not run
+// again); a members file of other settings is not reused; two MPI ranks give
+// the members of one process.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fcntl.h>
+#include <fstream>
+#include <spawn.h>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+extern char **environ;
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  // Runs a program with an argument vector (no shell), without the MPI
+  // variables of this test process (its MPI is a singleton: a child must not
+  // take it for an mpirun launch); SIGKILL after `kill_after` seconds if
+  // positive. Returns the exit status, or 128 + the signal.
+  int run_program(const std::vector<std::string> &args, const double kill_after = 0)
+  {
+    std::vector<std::string> env;
+    for (char **e = environ; *e; ++e)
+      {
+        const std::string v = *e;
+        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
+          continue;
+        env.push_back(v);
+      }
+    // Root in a container (CI): Open MPI's opt-in.
+    env.push_back("OMPI_ALLOW_RUN_AS_ROOT=1");
+    env.push_back("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+    std::vector<char *> argv, envp;
+    for (const auto &a : args)
+      argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    for (const auto &v : env)
+      envp.push_back(const_cast<char *>(v.c_str()));
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+      return -1;
+    const auto start = std::chrono::steady_clock::now();
+    int status       = 0;
+    while (waitpid(pid, &status, WNOHANG) != pid)
+      {
+        if (kill_after > 0 &&
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kill_after)
+          {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            break;
+          }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+  std::string read_file(const fs::path &p)
+  {
+    std::ifstream in(p);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  std::vector<std::string> lines(const fs::path &p)
+  {
+    std::vector<std::string> out;
+    std::istringstream in(read_file(p));
+    std::string l;
+    while (std::getline(in, l))
+      out.push_back(l);
+    return out;
+  }
+
+  // The lines of a CSV file without the column `drop` (a wall-clock time,
+  // which no two runs share); the other cells as written.
+  std::vector<std::string> without_column(const fs::path &p, const std::string &drop)
+  {
+    std::vector<std::string> out;
+    std::size_t column = std::string::npos;
+    for (const std::string &line : lines(p))
+      {
+        std::vector<std::string> cells;
+        std::stringstream row(line);
+        std::string cell;
+        while (std::getline(row, cell, ','))
+          cells.push_back(cell);
+        if (column == std::string::npos)
+          for (std::size_t k = 0; k < cells.size(); ++k)
+            if (cells[k] == drop)
+              column = k;
+        std::string kept;
+        for (std::size_t k = 0; k < cells.size(); ++k)
+          if (k != column)
+            kept += cells[k] + ",";
+        out.push_back(kept);
+      }
+    EXPECT_NE(column, std::string::npos) << drop << " in " << p;
+    return out;
+  }
+
+  fs::path fresh(const std::string &name)
+  {
+    const auto dir = fs::temp_directory_path() / ("beamslider_member_runs_" + name + "_" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    return dir;
+  }
+
+  // A small ladder: the ROM N=10 rung and the FE reference, 3 members each
+  // over 0.3 s (37 periods: enough for the trace analysis).
+  std::vector<std::string> small_ladder(const fs::path &out)
+  {
+    return {BEAMSLIDER_EXECUTABLE, "ladder", "--rung", "ROM N=10", "--members", "3", "--end-time", "0.3",
+            "--output", out.string()};
+  }
+
+  std::vector<std::string> small_ensemble(const fs::path &out, const std::string &end_time = "1.5")
+  {
+    return {BEAMSLIDER_EXECUTABLE, "ensemble", "--members", "4", "--end-time", end_time, "--output", out.string()};
+  }
+
+  void expect_same_ladder(const fs::path &a, const fs::path &b)
+  {
+    EXPECT_EQ(without_column(b / "ladder.csv", "wall_s_per_member"), without_column(a / "ladder.csv", "wall_s_per_member"));
+    EXPECT_EQ(without_column(b / "ladder_members.csv", "wall_s"), without_column(a / "ladder_members.csv", "wall_s"));
+    EXPECT_EQ(read_file(b / "ladder_steps.csv"), read_file(a / "ladder_steps.csv"));
+  }
+
+  // member_runs.csv's rows: the key line, the header, one row per member.
+  const std::size_t head_lines = 2;
+} // namespace
+
+TEST(MemberRuns, LadderKilledAndStartedAgainEndsWithTheFilesOfAnUninterruptedRun)
+{
+  const fs::path whole = fresh("whole"), killed = fresh("killed");
+  ASSERT_EQ(run_program(small_ladder(whole)), 0);
+  ASSERT_EQ(lines(whole / "member_runs.csv").size(), head_lines + 6);
+
+  // kill -9 while the members run (whenever it lands, the second start must
+  // end with the same files), then the same command again.
+  run_program(small_ladder(killed), 3.0);
+  ASSERT_EQ(run_program(small_ladder(killed)), 0);
+  expect_same_ladder(whole, killed);
+  EXPECT_EQ(lines(killed / "member_runs.csv").size(), head_lines + 6);
+  fs::remove_all(whole);
+  fs::remove_all(killed);
+}
+
+TEST(MemberRuns, AMembersFileCutShortIsResumedKeepingItsCompleteRows)
+{
+  const fs::path whole = fresh("whole_cut"), cut = fresh("cut");
+  ASSERT_EQ(run_program(small_ladder(whole)), 0);
+  // What a kill leaves: the key, the header, two complete members and a row
+  // cut in the middle. The wall time of the first kept member is set to a
+  // mark: if it is read back (not run again), ladder_members.csv shows it.
+  std::vector<std::string> rows = lines(whole / "member_runs.csv");
+  ASSERT_EQ(rows.size(), head_lines + 6);
+  const std::string wall_mark = "4321"; // as ladder_members.csv writes it (4 digits)
+  {
+    std::string &kept = rows[head_lines];
+    // wall_s is the 15th of 17 cells; the periods (last) hold no commas.
+    std::size_t at = 0;
+    for (int k = 0; k < 14; ++k)
+      at = kept.find(',', at) + 1;
+    kept.replace(at, kept.find(',', at) - at, wall_mark);
+  }
+  fs::create_directories(cut);
+  {
+    std::ofstream out(cut / "member_runs.csv");
+    out << rows[0] << '\n' << rows[1] << '\n' << rows[2] << '\n' << rows[3] << '\n' << rows[4].substr(0, rows[4].size() / 2);
+  }
+  ASSERT_EQ(run_program(small_ladder(cut)), 0);
+  expect_same_ladder(whole, cut);
+  EXPECT_NE(read_file(cut / "ladder_members.csv").find(wall_mark), std::string::npos)
+    << "the complete member was run again instead of read back";
+  EXPECT_EQ(lines(cut / "member_runs.csv").size(), head_lines + 6);
+  fs::remove_all(whole);
+  fs::remove_all(cut);
+}
+
+TEST(MemberRuns, AMembersFileOfOtherSettingsIsNotReused)
+{
+  const fs::path dir = fresh("other"), shorter = fresh("shorter");
+  ASSERT_EQ(run_program(small_ensemble(dir)), 0);
+  const std::string first_key = lines(dir / "member_runs.csv").front();
+  // The same folder, another end time: the old members are moved aside and
+  // every member runs afresh, to the numbers of a fresh folder.
+  ASSERT_EQ(run_program(small_ensemble(dir, "1.0")), 0);
+  EXPECT_EQ(lines(dir / "member_runs.other.csv").front(), first_key);
+  EXPECT_NE(lines(dir / "member_runs.csv").front(), first_key);
+  EXPECT_EQ(lines(dir / "member_runs.csv").size(), head_lines + 4);
+  ASSERT_EQ(run_program(small_ensemble(shorter, "1.0")), 0);
+  EXPECT_EQ(without_column(dir / "members.csv", "wall_s"), without_column(shorter / "members.csv", "wall_s"));
+  EXPECT_EQ(read_file(dir / "statistics.csv"), read_file(shorter / "statistics.csv"));
+  fs::remove_all(dir);
+  fs::remove_all(shorter);
+}
+
+TEST(MemberRuns, TwoRanksUnderMpirunGiveTheMembersOfOneProcess)
+{
+  const fs::path one = fresh("one"), two = fresh("two"), ladder_one = fresh("ladder_one"),
+                 ladder_two = fresh("ladder_two");
+  const std::vector<std::string> mpirun = {"mpirun", "-np", "2", "--oversubscribe"};
+  ASSERT_EQ(run_program(small_ensemble(one)), 0);
+  std::vector<std::string> args = mpirun;
+  for (const auto &a : small_ensemble(two))
+    args.push_back(a);
+  ASSERT_EQ(run_program(args), 0);
+  EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
+  EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+
+  ASSERT_EQ(run_program(small_ladder(ladder_one)), 0);
+  args = mpirun;
+  for (const auto &a : small_ladder(ladder_two))
+    args.push_back(a);
+  ASSERT_EQ(run_program(args), 0);
+  expect_same_ladder(ladder_one, ladder_two);
+  for (const auto &d : {one, two, ladder_one, ladder_two})
+    fs::remove_all(d);
+}
