@@ -5,6 +5,8 @@
 #include "verification/report/report.h"
 #include "verification/studies/operating_map.h"
 
+#include "tests/clean_mpi_program.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,51 +14,17 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <fcntl.h>
-#include <spawn.h>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
-
-extern char **environ;
 
 using namespace beamslider;
 
 namespace
 {
-  // Runs a program with an argument vector (no shell) and an environment
-  // without the MPI variables of this test process (its MPI is a singleton:
-  // a child must not take it for an mpirun launch). Returns the exit status.
-  int run_program(const std::vector<std::string> &args, const std::vector<std::string> &extra_env = {})
+  int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {})
   {
-    std::vector<std::string> env;
-    for (char **e = environ; *e; ++e)
-      {
-        const std::string v = *e;
-        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
-          continue;
-        env.push_back(v);
-      }
-    env.insert(env.end(), extra_env.begin(), extra_env.end());
-    std::vector<char *> argv, envp;
-    for (const auto &a : args)
-      argv.push_back(const_cast<char *>(a.c_str()));
-    argv.push_back(nullptr);
-    for (const auto &v : env)
-      envp.push_back(const_cast<char *>(v.c_str()));
-    envp.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (spawned != 0)
-      return -1;
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return beamslider::testing::run_clean_mpi_program(args, kill_when);
   }
 
   std::string read_file(const std::filesystem::path &p)
@@ -182,7 +150,7 @@ TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
   const std::vector<std::string> map = small_map(two);
   args.insert(args.end(), map.begin(), map.end());
   // Root in a container (CI): Open MPI's opt-in.
-  ASSERT_EQ(run_program(args, {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"}), 0);
+  ASSERT_EQ(run_program(args), 0);
   EXPECT_EQ(sorted_lines(two / "map.csv"), sorted_lines(one / "map.csv"));
   // Both ranks computed cells.
   std::set<std::string> ranks;

@@ -4,73 +4,27 @@
 // members file cut short is resumed, its complete rows kept (not run
 // again); a members file of other settings is not reused; two MPI ranks give
 // the members of one process.
+#include "tests/clean_mpi_program.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <csignal>
 #include <filesystem>
-#include <fcntl.h>
 #include <fstream>
-#include <spawn.h>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
-
-extern char **environ;
 
 namespace fs = std::filesystem;
 
 namespace
 {
-  // Runs a program with an argument vector (no shell), without the MPI
-  // variables of this test process (its MPI is a singleton: a child must not
-  // take it for an mpirun launch); SIGKILL after `kill_after` seconds if
-  // positive. Returns the exit status, or 128 + the signal.
-  int run_program(const std::vector<std::string> &args, const double kill_after = 0)
+  int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {})
   {
-    std::vector<std::string> env;
-    for (char **e = environ; *e; ++e)
-      {
-        const std::string v = *e;
-        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
-          continue;
-        env.push_back(v);
-      }
-    // Root in a container (CI): Open MPI's opt-in.
-    env.push_back("OMPI_ALLOW_RUN_AS_ROOT=1");
-    env.push_back("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
-    std::vector<char *> argv, envp;
-    for (const auto &a : args)
-      argv.push_back(const_cast<char *>(a.c_str()));
-    argv.push_back(nullptr);
-    for (const auto &v : env)
-      envp.push_back(const_cast<char *>(v.c_str()));
-    envp.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    pid_t pid = 0;
-    const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (spawned != 0)
-      return -1;
-    const auto start = std::chrono::steady_clock::now();
-    int status       = 0;
-    while (waitpid(pid, &status, WNOHANG) != pid)
-      {
-        if (kill_after > 0 &&
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > kill_after)
-          {
-            kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
-            break;
-          }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return beamslider::testing::run_clean_mpi_program(args, kill_when);
   }
 
   std::string read_file(const fs::path &p)
@@ -155,9 +109,10 @@ TEST(MemberRuns, LadderKilledAndStartedAgainEndsWithTheFilesOfAnUninterruptedRun
   ASSERT_EQ(run_program(small_ladder(whole)), 0);
   ASSERT_EQ(lines(whole / "member_runs.csv").size(), head_lines + 6);
 
-  // kill -9 while the members run (whenever it lands, the second start must
-  // end with the same files), then the same command again.
-  run_program(small_ladder(killed), 3.0);
+  // kill -9 once the first member is persisted (five still to run, the
+  // longest first), then the same command again.
+  const fs::path record = killed / "member_runs.csv";
+  run_program(small_ladder(killed), [&] { return fs::exists(record) && lines(record).size() > head_lines; });
   ASSERT_EQ(run_program(small_ladder(killed)), 0);
   expect_same_ladder(whole, killed);
   EXPECT_EQ(lines(killed / "member_runs.csv").size(), head_lines + 6);

@@ -1,0 +1,67 @@
+// Starts a program for the MPI end-to-end tests (map, ensembles, the
+// ladder): an argument vector (no shell), standard output to /dev/null, and
+// an environment without this test process's MPI variables (its MPI is a
+// singleton: a child must not take it for an mpirun launch), plus Open MPI's
+// opt-in for root (CI runs as root in a container).
+#pragma once
+
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
+#include <functional>
+#include <spawn.h>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <vector>
+
+extern char **environ;
+
+namespace beamslider::testing
+{
+  // Returns the exit status, or 128 + the signal that ended it. With
+  // `kill_when`, SIGKILL is sent the first time it returns true (checked
+  // every 20 ms while the program runs): a kill tied to what the run has
+  // done, not to a clock.
+  inline int run_clean_mpi_program(const std::vector<std::string> &args,
+                                   const std::function<bool()> &kill_when = {})
+  {
+    std::vector<std::string> env;
+    for (char **e = environ; *e; ++e)
+      {
+        const std::string v = *e;
+        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
+          continue;
+        env.push_back(v);
+      }
+    env.push_back("OMPI_ALLOW_RUN_AS_ROOT=1");
+    env.push_back("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
+    std::vector<char *> argv, envp;
+    for (const auto &a : args)
+      argv.push_back(const_cast<char *>(a.c_str()));
+    argv.push_back(nullptr);
+    for (const auto &v : env)
+      envp.push_back(const_cast<char *>(v.c_str()));
+    envp.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    pid_t pid = 0;
+    const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+      return -1;
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) != pid)
+      {
+        if (kill_when && kill_when())
+          {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            break;
+          }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+} // namespace beamslider::testing
