@@ -141,3 +141,30 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   std::filesystem::remove_all(dir);
 }
 
+
+// The full ladder runs its diagnostic rungs (the attribution steps and the FE
+// at other time steps) with half the members, and the published ROM, the
+// converged ROM and the FE reference with all of them; the quick ladder has
+// no diagnostic rung.
+TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
+{
+  const Scene scene = read_scene(mueller);
+  std::size_t reference = 0;
+  const std::vector<LadderRung> full = default_ladder(scene, true, reference);
+  const std::vector<MemberGroup> groups = ladder_groups(scene, full, 40., 8);
+  ASSERT_EQ(groups.size(), full.size());
+  unsigned int n_diagnostic = 0;
+  for (std::size_t i = 0; i < full.size(); ++i)
+    {
+      const bool kept_whole = i == reference || (full[i].model.family == "rom" && full[i].model.n_modes <= 20);
+      EXPECT_EQ(full[i].diagnostic, !kept_whole) << full[i].name;
+      EXPECT_EQ(groups[i].n_members, kept_whole ? 8u : 4u) << full[i].name;
+      n_diagnostic += full[i].diagnostic;
+    }
+  EXPECT_EQ(n_diagnostic, 8u);
+  EXPECT_EQ(rung_members(full.back(), 3), 2u); // never fewer than two (W₁ needs a spread)
+
+  const std::vector<LadderRung> quick = default_ladder(scene, false, reference);
+  for (const MemberGroup &g : ladder_groups(scene, quick, 25., 4))
+    EXPECT_EQ(g.n_members, 4u) << g.name;
+}

@@ -53,6 +53,7 @@ namespace beamslider
           if (i == full_reference)
             reference = picked.size();
           picked.push_back(full[i]);
+          picked.back().diagnostic = false; // rungs picked by name run --members each
         }
       return picked;
     }

@@ -82,6 +82,11 @@ namespace beamslider
     };
     // The sections in order; --section picks some (a section alone takes
     // what it needs from the scene, none reads another's results).
+    const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
+                                             "Backbone curves",       "Slider contact dynamics",
+                                             "FE against ROM",        "Operating range",
+                                             "The seed's System 1 facts"};
+    std::vector<std::pair<std::size_t, double>> section_seconds; // section index, wall time [s]
     const std::vector<std::function<void()>> sections = {
       [&] { add_frequency_section(report, scene); },
       [&] { add_coefficient_section(report, scene, options.full); },
@@ -95,6 +100,7 @@ namespace beamslider
         if (!options.sections.empty() &&
             std::find(options.sections.begin(), options.sections.end(), k + 1) == options.sections.end())
           continue;
+        const auto section_start = std::chrono::steady_clock::now();
         try
           {
             sections[k]();
@@ -104,13 +110,25 @@ namespace beamslider
             // The ladder stopped with a signal: its finished members are kept.
             report.text << "\n_The error ladder " << e.what() << "._\n";
           }
+        section_seconds.emplace_back(
+          k, std::chrono::duration<double>(std::chrono::steady_clock::now() - section_start).count());
         flush();
         if (interrupted())
           return interruption_exit_code();
       }
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    report.text << "---\nTotal time of this report: " << seconds << " s.\n";
+    // How this report was made: enough to reproduce it and to read its
+    // wall times (run.txt beside it has the exact command line).
+    report.text << "---\n## How this report was made\n\n"
+                << "- build: " << build_revision() << " (run.txt: the exact command line; parameters.prm: the scene)\n"
+                << "- machine: " << machine_description() << "; " << mpi.size() << " MPI rank(s)"
+                << (mpi.size() > 1 ? "" : ", the ensembles' members over the cores") << "\n"
+                << "- studies: " << (options.full ? "full (`--full`)" : "quick") << "\n\n"
+                << "| section | wall time [s] |\n|---|---|\n";
+    for (const auto &[k, s] : section_seconds)
+      report.text << "| " << k + 1 << ". " << titles[k] << " | " << fixed(s, 0) << " |\n";
+    report.text << "| total | " << fixed(seconds, 0) << " |\n";
     flush();
     console() << "Wrote " << report.dir << "/report.md (" << seconds << " s)" << std::endl;
     return 0;

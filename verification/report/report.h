@@ -47,6 +47,10 @@ namespace beamslider
     return (x >= 0 ? "+" : "") + fixed(x, digits);
   }
 
+  // "2 cores, <CPU model>": the machine a report's wall times were measured
+  // on (report_map.cc).
+  std::string machine_description();
+
   // Section 1: linear frequencies. FE against the clamped–clamped and the
   // spring-supported characteristic equations on refined meshes (error and
   // observed order per mode), the bonded slider against seed Eq. 5, and the

@@ -129,11 +129,19 @@ namespace beamslider
     const unsigned int n_members = settings.members;
     const double end_time        = settings.end_time;
     double expected              = 0;
+    unsigned int n_diagnostic = 0;
     for (const auto &r : rungs)
-      expected += expected_member_seconds(r.model, scene, end_time) * n_members / 2; // two cores
+      {
+        expected += expected_member_seconds(r.model, scene, end_time) * rung_members(r, n_members) / 2; // two cores
+        n_diagnostic += r.diagnostic;
+      }
+    const std::string diagnostic_members =
+      n_diagnostic == 0 ? std::string()
+                        : " (" + std::to_string(rung_members(LadderRung{"", "", {}, true}, n_members)) + " on the " +
+                            std::to_string(n_diagnostic) + " diagnostic rungs)";
     console() << settings.progress_prefix << "error ladder, " << rungs.size() << " rungs × " << n_members
-              << " members over " << end_time << " s, expected about " << fixed(expected / 60, 1) << " min"
-              << std::endl;
+              << " members" << diagnostic_members << " over " << end_time << " s, expected about "
+              << fixed(expected / 60, 1) << " min" << std::endl;
     auto heading = [&](const unsigned int k, const std::string &title) {
       return settings.numbering.empty() ? "## " + title + "\n\n"
                                         : "### " + settings.numbering + std::to_string(k) + " " + title + "\n\n";
@@ -162,15 +170,15 @@ namespace beamslider
 
     const LadderRungResult &ref = study.rungs[reference];
     std::ostringstream md;
-    md << "Every model runs as an ensemble of " << n_members << " members over " << end_time
-       << " s; member m starts at x_C/L + m·1e-9, nothing else differs. The outcomes come from the one trace analysis "
+    md << "Every model runs as an ensemble of " << n_members << " members" << diagnostic_members << " over "
+       << end_time << " s; member m starts at x_C/L + m·1e-9, nothing else differs. The outcomes come from the one trace analysis "
           "(doc/verification.md §5): the final x_C/L and amplitude are means over the last seconds, the jump time is "
           "that of the first jump to the upper branch. Two ensembles are compared by the Wasserstein distance W₁ of "
           "their final positions (in x_C/L; the mean distance the members must move to match) with a 90 % bootstrap "
           "interval; the spread is W₁ between the halves of one ensemble, i.e. what its own scatter gives at this size. "
           "A model is distinguishable from another when the interval's lower end exceeds the spread. Reference: **"
        << ref.rung.name << "** (" << ref.rung.model.label() << ")"
-       << (!settings.quick_ladder ? "" : "; `verify --full` runs 8 members over 40 s and adds the implicit ROM with 20 modes and with all "
+       << (!settings.quick_ladder ? "" : "; `verify --full` runs 8 members over 40 s (4 on its diagnostic rungs) and adds the implicit ROM with 20 modes and with all "
                        "the mesh's bending modes (damping 20, then all), the FE without axial inertia (damping all, "
                        "then 20), the FE damping 20 and the FE at Δt, Δt/2 and Δt/8")
        << ". Cost: the stated model of `fe_rom_study.h` in units of one step of the published ROM (not a clock reading); "

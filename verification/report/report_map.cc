@@ -46,20 +46,6 @@ namespace beamslider
       return c == AdaptationClass::signature_move || c == AdaptationClass::trivial_adaption;
     }
 
-    // "2 cores, <CPU model>" for the scaling chart's title.
-    std::string machine_description()
-    {
-      std::string model = "unknown CPU";
-      std::ifstream cpuinfo("/proc/cpuinfo");
-      for (std::string line; std::getline(cpuinfo, line);)
-        if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
-          {
-            model = line.substr(line.find(':') + 2);
-            break;
-          }
-      return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
-    }
-
     // Strong scaling of `beamslider map` on MPI. The same small map (24
     // ROM cells of 10 s) run by this executable as one process and under
     // `mpirun -np 2`, each as a child process started with an argument
@@ -126,6 +112,19 @@ namespace beamslider
       return md.str();
     }
   } // namespace
+
+  std::string machine_description()
+  {
+    std::string model = "unknown CPU";
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);)
+      if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos)
+        {
+          model = line.substr(line.find(':') + 2);
+          break;
+        }
+    return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
+  }
 
   void add_map_section(Report &report, const Scene &scene, const bool full)
   {

@@ -33,7 +33,15 @@ namespace beamslider
     std::string name;   // e.g. "ROM N=5 (published)"
     std::string change; // what this rung changes against the one before
     ModelSetting model; // its damped_modes keeps the damped set of the rungs beside it
+    // A diagnostic rung of the full ladder (a step of the attribution or of
+    // the time-step study, not the published model, the converged ROM or the
+    // reference) runs half the ladder's members, at least 2: its W₁ interval
+    // is wider, and the full ladder fits its time budget (rung_members).
+    bool diagnostic = false;
   };
+
+  // The members rung `rung` runs when the ladder runs `members` per rung.
+  unsigned int rung_members(const LadderRung &rung, unsigned int members);
 
   struct LadderRungResult
   {
