@@ -40,5 +40,9 @@ namespace beamslider
 
   int interruption_exit_code() { return 128 + interruption_signal(); }
 
+  void request_interruption(const int signal) { on_signal(signal); }
+
+  void clear_interruption() { received_signal.store(0, std::memory_order_relaxed); }
+
   void set_interruption_for_testing(const int signal) { received_signal.store(signal, std::memory_order_relaxed); }
 } // namespace beamslider

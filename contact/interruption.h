@@ -28,6 +28,14 @@ namespace beamslider
   // 128 + the signal, the exit status of an interrupted command.
   int interruption_exit_code();
 
+  // As if `signal` had arrived: a caller in another thread (the Python
+  // module's interrupt()) stops the run at its next step. The first signal
+  // is kept, as with real ones.
+  void request_interruption(int signal);
+
+  // Forgets a signal that arrived: a new command starts in the same process.
+  void clear_interruption();
+
   // For tests: pretend that `signal` arrived (0 clears the flag).
   void set_interruption_for_testing(int signal);
 } // namespace beamslider

@@ -153,6 +153,8 @@ namespace beamslider
 
   const std::vector<std::string> &output_failures() { return failed_outputs(); }
 
+  void clear_output_failures() { failed_outputs().clear(); }
+
   bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments)
   {
     // The interpreter was found once, at configure time (CMake); the script

@@ -216,4 +216,6 @@ namespace beamslider
   // chart): printed on stderr at once and remembered; main() exits with 1.
   void note_output_failure(const std::string &what);
   const std::vector<std::string> &output_failures();
+  // Forgets them: a new command starts (the Python module runs many in one process).
+  void clear_output_failures();
 } // namespace beamslider

@@ -5,7 +5,9 @@
 // switch this stream off without losing anything.
 #pragma once
 
+#include <functional>
 #include <ostream>
+#include <string>
 
 namespace beamslider
 {
@@ -13,4 +15,9 @@ namespace beamslider
   std::ostream &console();
 
   void set_quiet(bool quiet);
+
+  // Sends console() to `sink`, one call per line (without its '\n'), instead
+  // of standard output; an empty function restores standard output. The
+  // Python module hands progress to a user's callback this way.
+  void set_console_sink(std::function<void(const std::string &)> sink);
 } // namespace beamslider

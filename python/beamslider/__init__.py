@@ -1,0 +1,316 @@
+"""beamslider from Python: scenes, modes, coefficients, backbones and
+adaptation runs of the beam with a sliding mass, as NumPy arrays.
+
+Every function runs the same computation as the command line
+(``beamslider COMMAND ...``) inside this process, with the same checks and
+the same files, and returns what those files hold::
+
+    import beamslider
+    scene = beamslider.Scene("mueller2023")
+    scene.set("Excitation/Frequency", 124.0)
+    run = beamslider.simulate(scene, model="rom", case="signature-move", end_time=20)
+    run.trace["t_s"], run.trace["slider_x_over_L"]   # NumPy arrays
+    run.verdict, run.outcome                         # one line, its class
+
+Bad input raises ``ValueError`` with the command line's one-line message; a
+failed run or solver raises ``RuntimeError`` saying where and why. Ctrl-C
+stops a long run at its next step and raises ``Interrupted`` (a
+``KeyboardInterrupt``) carrying what was computed (``.result``); so does
+``interrupt()`` called from another thread. ``progress=print`` shows the
+progress lines the command line would print. Columns and units of every
+table: doc/python.md and doc/cli.md.
+"""
+
+import csv
+import os
+import shutil
+import tempfile
+
+import numpy as np
+
+from . import _core
+
+__all__ = ["Scene", "Result", "Interrupted", "interrupt", "modes", "coefficients", "backbone", "simulate",
+           "ensemble", "sweep", "map", "read_table"]
+
+
+class Interrupted(KeyboardInterrupt):
+    """A run stopped by Ctrl-C, SIGTERM or interrupt(); ``result`` holds what it
+    had computed (the rows written before it stopped), or None."""
+
+    def __init__(self, message, result=None):
+        super().__init__(message)
+        self.result = result
+
+
+def interrupt():
+    """Stops the running beamslider command (in another thread) at its next
+    step, as Ctrl-C does; the command then raises Interrupted."""
+    _core.interrupt()
+
+
+class Scene:
+    """A scene file (a path, or a name in the project's meshes/, default
+    mueller2023) with parameter overrides, as ``--set`` gives them on the
+    command line. Each ``set`` is checked at once."""
+
+    def __init__(self, scene="mueller2023"):
+        self.path = _core.resolve_scene(str(scene))
+        self._overrides = []
+        self._text = _core.scene_text(self.path, self._overrides)
+
+    def set(self, parameter, value):
+        """Sets "Section/Name" (e.g. "Excitation/Frequency") to value; raises
+        ValueError naming the parameter, its value and the allowed range."""
+        if isinstance(value, bool):
+            value = "true" if value else "false"
+        elif isinstance(value, float):
+            value = repr(value)  # shortest exact decimal: read back to the same double
+        kept = [o for o in self._overrides if o.split("=", 1)[0] != parameter]
+        overrides = kept + [f"{parameter}={value}"]
+        self._text = _core.scene_text(self.path, overrides)
+        self._overrides = overrides
+        return self
+
+    def get(self, parameter):
+        """The value of "Section/Name" after the overrides: a float where it is
+        a number, else the text."""
+        text = _parameter_values(self._text).get(parameter)
+        if text is None:
+            raise ValueError(f"error: no parameter '{parameter}' in scene '{self.path}'")
+        try:
+            return float(text)
+        except ValueError:
+            return text
+
+    def parameters(self):
+        """Every parameter of the scene as {"Section/Name": text}."""
+        return dict(_parameter_values(self._text))
+
+    def write(self, path):
+        """Writes the scene with its overrides as a scene file (.prm) that the
+        command line and Scene(path) read back exactly."""
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(self._text)
+
+    @property
+    def name(self):
+        return self.get("Scene/Name") if "Scene/Name" in self.parameters() else os.path.basename(self.path)
+
+    def arguments(self):
+        """The scene as command-line arguments: the file, then each --set."""
+        args = [self.path]
+        for o in self._overrides:
+            args += ["--set", o]
+        return args
+
+    def __repr__(self):
+        return f"Scene({self.path!r}, overrides={self._overrides!r})"
+
+
+def _parameter_values(text):
+    """{"Section/Sub/Name": value} of a ParameterHandler file."""
+    values, path = {}, []
+    for raw in text.splitlines():
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        if line.startswith("subsection "):
+            path.append(line[len("subsection "):].strip())
+        elif line == "end":
+            path.pop()
+        elif line.startswith("set ") and "=" in line:
+            name, value = line[4:].split("=", 1)
+            values["/".join(path + [name.strip()])] = value.strip()
+    return values
+
+
+def read_table(path):
+    """A CSV file of beamslider as {column: array}: float arrays where every
+    cell is a number (an empty cell is NaN), else arrays of str."""
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    if not rows:
+        return {}
+    header, body = rows[0], rows[1:]
+    table = {}
+    for i, name in enumerate(header):
+        cells = [r[i] if i < len(r) else "" for r in body]
+        try:
+            table[name] = np.array([float(c) if c != "" else np.nan for c in cells], dtype=float)
+        except ValueError:
+            table[name] = np.array(cells, dtype=str)
+    return table
+
+
+class Result:
+    """What a command wrote: ``tables`` ({file stem: {column: array}}) for every
+    CSV file of its folder, ``summary`` (summary.md), ``output`` (the folder,
+    or None when it was a temporary one, removed after reading)."""
+
+    def __init__(self, folder, keep):
+        self.output = folder if keep else None
+        self.tables = {}
+        for name in sorted(os.listdir(folder)):
+            if name.endswith(".csv"):
+                self.tables[name[:-4]] = read_table(os.path.join(folder, name))
+        summary = os.path.join(folder, "summary.md")
+        self.summary = open(summary, encoding="utf-8").read() if os.path.exists(summary) else ""
+
+    def __getattr__(self, name):
+        tables = self.__dict__.get("tables", {})
+        if name in tables:
+            return tables[name]
+        raise AttributeError(name)
+
+    def __repr__(self):
+        return f"<beamslider result: tables {sorted(self.tables)}{', in ' + self.output if self.output else ''}>"
+
+
+def _summary_line(summary, key):
+    for line in summary.splitlines():
+        if line.startswith(f"- {key}: "):
+            return line[len(f"- {key}: "):].rstrip(".")
+    return None
+
+
+def _run(command, scene, options, output, progress, read=Result):
+    """Runs `beamslider command scene options --output DIR` and reads DIR."""
+    if not isinstance(scene, Scene):
+        scene = Scene(scene)
+    keep = output is not None
+    folder = str(output) if keep else tempfile.mkdtemp(prefix=f"beamslider-{command}-")
+    args = [command] + scene.arguments() + options + ["--output", folder]
+    if progress is None:
+        args.append("--quiet")
+    try:
+        status, errors, signal = _core.run(args, progress)
+        message = next((line for line in errors.splitlines() if line.strip()), "")
+        if signal:
+            try:
+                partial = read(folder, keep)
+            except Exception:  # nothing readable was written yet
+                partial = None
+            raise Interrupted(message or f"interrupted by signal {signal}", partial)
+        if status == 2:
+            raise ValueError(message)
+        if status != 0:
+            raise RuntimeError(message or f"beamslider {command} failed with status {status}")
+        return read(folder, keep)
+    finally:
+        if not keep:
+            shutil.rmtree(folder, ignore_errors=True)
+
+
+def _options(**given):
+    """--name value for every option given (None: the command's default)."""
+    args = []
+    for name, value in given.items():
+        if value is None or value is False:
+            continue
+        flag = "--" + name.replace("_", "-")
+        if value is True:
+            args.append(flag)
+        elif isinstance(value, (list, tuple)):
+            for v in value:
+                args += [flag, str(v)]
+        else:
+            args += [flag, repr(value) if isinstance(value, float) else str(value)]
+    return args
+
+
+def modes(scene="mueller2023", modes=7, slider_at=None, elements=None, output=None, progress=None):
+    """The lowest bending modes (SLEPc): ``.modes`` with frequency_hz per mode."""
+    return _run("modes", scene, _options(modes=modes, slider_at=slider_at, elements=elements), output, progress)
+
+
+class CoefficientsResult(Result):
+    """``tensor[n, j, k, l]`` (0-based, NumPy): the cubic modal coefficients with
+    f_n = Σ_jkl tensor[n, j, k, l] q_j q_k q_l, symmetric in j, k, l (each
+    sorted entry of coefficients.csv, a sum over its permutations, spread
+    evenly over them); ``table``: coefficients.csv as written."""
+
+    def __init__(self, folder, keep):
+        super().__init__(folder, keep)
+        self.table = self.tables["coefficients"]
+        index = [self.table[c].astype(int) - 1 for c in ("n", "j", "k", "l")]
+        size = int(max(i.max() for i in index)) + 1 if len(index[0]) else 0
+        self.tensor = np.zeros((size, size, size, size))
+        for n, j, k, l, value in zip(*index, self.table["value"]):
+            permutations = {(a, b, c) for a, b, c in
+                            [(j, k, l), (j, l, k), (k, j, l), (k, l, j), (l, j, k), (l, k, j)]}
+            for a, b, c in permutations:
+                self.tensor[n, a, b, c] = value / len(permutations)
+
+
+def coefficients(scene="mueller2023", method="analytic", modes=None, output=None, progress=None):
+    """Cubic modal coefficients by "analytic", "step", "step-condensed" or "ice"."""
+    return _run("coefficients", scene, _options(method=method, modes=modes), output, progress,
+                read=CoefficientsResult)
+
+
+def backbone(scene="mueller2023", model="rom", modes=None, harmonics=None, max_amplitude=None, output=None,
+             progress=None):
+    """The mode-1 backbone by harmonic balance: ``.backbone`` (amplitude_over_h,
+    frequency_hz, ...), ``.eq4`` (seed Eq. 4)."""
+    return _run("backbone", scene,
+                _options(model=model, modes=modes, harmonics=harmonics, max_amplitude=max_amplitude),
+                output, progress)
+
+
+class SimulationResult(Result):
+    """``trace`` and ``periods`` ({column: array}, as trace.csv and periods.csv),
+    ``status`` (completed, interrupted, slider_at_support, ...) with
+    ``status_message`` (the whole status line: when and where it stopped),
+    ``verdict`` (the one-line trace analysis) and ``outcome`` (its class:
+    signature move, trivial adaption, ...)."""
+
+    def __init__(self, folder, keep):
+        super().__init__(folder, keep)
+        self.trace = self.tables.get("trace", {})
+        self.periods = self.tables.get("periods", {})
+        self.status_message = _summary_line(self.summary, "Status")
+        self.status = self.status_message.split(":", 1)[0] if self.status_message else None
+        self.verdict = _summary_line(self.summary, "Verdict")
+        self.outcome = self.verdict.rsplit(": ", 1)[-1] if self.verdict else None
+
+
+def simulate(scene="mueller2023", model="rom", case=None, end_time=None, output=None, progress=None,
+             checkpoint_every=None, tolerance=None):
+    """A free-slider adaptation run (the command `simulate`)."""
+    return _run("simulate", scene,
+                _options(model=model, case=case, end_time=end_time, checkpoint_every=checkpoint_every,
+                         tolerance=tolerance),
+                output, progress, read=SimulationResult)
+
+
+def ensemble(scene="mueller2023", model="rom", case=None, members=8, end_time=None, perturbation=None,
+             integrator=None, against=None, output=None, progress=None):
+    """K runs differing by a tiny start shift: ``.members`` (one row per member:
+    final_x_over_L, outcome, ...), ``.statistics``, ``.comparison`` with
+    ``against`` (another ensemble's folder)."""
+    return _run("ensemble", scene,
+                _options(model=model, case=case, members=members, end_time=end_time, perturbation=perturbation,
+                         integrator=integrator, against=against),
+                output, progress)
+
+
+def sweep(scene="mueller2023", model="rom", case=None, step=None, from_=None, to=None, settle_time=None,
+          average_time=None, free_time=None, output=None, progress=None):
+    """Prescribed slider position sweeps (the slow manifold): ``.pcs`` and the
+    other tables of the command `sweep`."""
+    options = _options(model=model, case=case, step=step, to=to, settle_time=settle_time,
+                       average_time=average_time, free_time=free_time)
+    if from_ is not None:
+        options += ["--from", repr(float(from_))]
+    return _run("sweep", scene, options, output, progress)
+
+
+def map(scene="mueller2023", frequency=None, acceleration=None, start=None, axis=None, model="rom", members=None,
+        end_time=None, output=None, progress=None):
+    """The adaptation over a parameter grid: ``.map`` (one row per cell and
+    member). Axes as on the command line: "A:B:STEP" or one value."""
+    return _run("map", scene,
+                _options(frequency=frequency, acceleration=acceleration, start=start, axis=axis, model=model,
+                         members=members, end_time=end_time),
+                output, progress)

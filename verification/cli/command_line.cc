@@ -1,0 +1,308 @@
+// The `beamslider` command line as a library function: the CLI11 parser of
+// every sub-command, the dispatch to the run_* functions (commands.h) and the
+// mapping of errors to exit statuses and one-line messages. The executable's
+// main() (beamslider.cc) and the Python module (python/) both call it, so that
+// a study run from Python is the same run, with the same checks and the same
+// messages, as from the shell.
+#include "verification/cli/command_line.h"
+
+#include "contact/interruption.h"
+#include "contact/output_file.h"
+#include "meshes/scene.h"
+#include "verification/cli/cli_validators.h"
+#include "verification/cli/commands.h"
+#include "verification/studies/console.h"
+
+#include <deal.II/base/exceptions.h>
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+namespace beamslider
+{
+namespace
+{
+// The parsed sub-command's options with their effective values (given, or
+// the default), recorded for the output folder's command.prm.
+void record_effective_options(const CLI::App &command)
+{
+  std::vector<beamslider::CommandSetting> settings;
+  for (const CLI::Option *option : command.get_options())
+    {
+      const std::string name = option->get_single_name(); // "end-time" for --end-time
+      if (name == "help" || name.empty())
+        continue;
+      std::string value;
+      if (option->count() > 0)
+        for (const std::string &r : option->results())
+          value += (value.empty() ? "" : ", ") + r;
+      else if (option->get_default_str() != "[]") // an empty list: nothing
+        value = option->get_default_str();
+      settings.push_back({name, value, option->get_description()});
+    }
+  beamslider::record_command_settings(command.get_name(), settings);
+}
+
+int parse_and_run(int argc, char **argv, std::ostream &errors)
+{
+  CLI::App app{"beamslider: FE and reduced-order models of a beam with a sliding mass (cross-verification suite)"};
+  app.require_subcommand(1);
+  // Every option keeps its default as text, for command.prm.
+  app.option_defaults()->always_capture_default();
+
+  CommonOptions common;
+  bool quiet = false;
+  // The same options mean the same on every sub-command: the scene (a path or
+  // a name in meshes/, default mueller2023), --set, --output, --quiet.
+  common.scene_file = "mueller2023";
+  auto add_common = [&common, &quiet](CLI::App *sub) {
+    sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
+    sub->add_option("--set", common.overrides, "override a parameter: \"Section/Name=value\" (repeatable)");
+    sub->add_option("--output,-o", common.output_dir, "output folder (default reports/<scene>/<command>)");
+    sub->add_flag("--quiet,-q", quiet,
+                  "nothing on standard output (no progress, timing or summary); the results are in the output "
+                  "folder, errors and warnings still on standard error");
+  };
+
+  ModesOptions modes;
+  auto *modes_cmd = app.add_subcommand("modes", "linear bending modes of the bare beam or with a bonded slider");
+  add_common(modes_cmd);
+  modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)")
+    ->check(finite_in(0., 1.));
+  modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(integer_in(1, 50));
+  modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(integer_in(1, 4096));
+
+  CoefficientsOptions coefficients;
+  auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
+  add_common(coefficients_cmd);
+  coefficients_cmd->add_option("--method", coefficients.method, "analytic | step | step-condensed | ice")
+    ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
+  coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
+
+  BackboneOptions backbone;
+  auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
+  add_common(backbone_cmd);
+  backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
+  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
+  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h, in (0.01, 10]")->check(finite_in(0.01, 10., Bound::open, Bound::closed));
+
+  SimulateOptions simulate;
+  auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
+  add_common(simulate_cmd);
+  simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
+  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
+  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
+  simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
+  simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
+                           "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
+    ->check(finite_positive());
+  simulate_cmd->add_option("--resume", simulate.resume_dir,
+                           "continue the run whose checkpoint.bin is in DIR (scene, case, model and parameters from "
+                           "it; --end-time may extend it)");
+  simulate_cmd->add_flag("--allow-large-output", simulate.allow_large_output,
+                         "allow a trace of more than " + std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
+                           " rows (End time x Output rate)");
+
+  SweepOptions sweep;
+  auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
+  add_common(sweep_cmd);
+  sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see README)");
+  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
+  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
+    ->check(finite_non_negative());
+  sweep_cmd->add_option("--average-time", sweep.average_time, "simulated time averaged per position [s]")
+    ->check(finite_positive());
+  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)")
+    ->check(finite_in(0., 1.));
+  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
+  sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
+    ->check(finite_non_negative());
+  sweep_cmd->add_option("--against", sweep.against,
+                        "another sweep's folder (same positions, e.g. the other model) to compare with: "
+                        "comparison.csv, crossings.csv, pcs_compare.png");
+
+  AnimateOptions animate;
+  auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
+  add_common(animate_cmd);
+  animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
+  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see README)");
+  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
+  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
+  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
+  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(finite_positive());
+
+  EnsembleOptions ensemble;
+  auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
+  add_common(ensemble_cmd);
+  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  ensemble_cmd->add_option("--integrator", ensemble.integrator,
+                           "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
+    ->check(CLI::IsMember({"explicit", "implicit"}));
+  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see README)");
+  ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
+  ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
+  ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
+
+  MapOptions map;
+  auto *map_cmd = app.add_subcommand("map", "the adaptation over a grid of parameters, one run or ensemble per cell "
+                                            "(under mpirun: cells spread over the ranks); restartable");
+  add_common(map_cmd);
+  map_cmd->add_option("--frequency", map.frequency, "excitation frequency axis [Hz]: A:B:STEP or one value");
+  map_cmd->add_option("--acceleration", map.acceleration, "base acceleration amplitude axis [m/s^2]: A:B:STEP or one value");
+  map_cmd->add_option("--start", map.start, "start position axis x_C/L: A:B:STEP or one value");
+  map_cmd->add_option("--axis", map.axes, "any scene parameter as an axis: \"Section/Name=A:B:STEP\" (repeatable)");
+  map_cmd->add_option("--model", map.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  map_cmd->add_option("--members", map.members, "K members per cell (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  map_cmd->add_option("--perturbation", map.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  map_cmd->add_option("--end-time", map.end_time, "simulated time per member [s]")->check(finite_positive());
+
+  IdentifyOptions identify;
+  auto *identify_cmd = app.add_subcommand("identify", "the seed's System 1 facts over a grid of unknown parameters "
+                                                      "(one map per fact); scores each candidate");
+  add_common(identify_cmd);
+  identify_cmd->add_option("--axis", identify.axes, "an unknown scene parameter: \"Section/Name=A:B:STEP\" (repeatable)");
+  identify_cmd->add_option("--fact", identify.facts, "only this fact, by id (repeatable; default: every fact)");
+  identify_cmd->add_option("--members", identify.members, "K members per run (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  identify_cmd->add_option("--perturbation", identify.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+
+  VerifyOptions verify;
+  auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
+  add_common(verify_cmd);
+  verify_cmd->add_flag("--full", verify.full, "run the long studies too");
+  verify_cmd->add_option("--section", verify.sections, "write only this section (1-7; repeatable)")
+    ->check(integer_in(1, 7));
+
+  LadderOptions ladder;
+  auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
+                                                  "as ensembles against the FE reference");
+  add_common(ladder_cmd);
+  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
+  ladder_cmd->add_option("--rung", ladder.rungs,
+                         "run only this rung of the full ladder, by name (repeatable; the reference FE Δt/4 always runs)");
+  ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
+    ->check(integer_in(2, 1000));
+  ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")
+    ->check(finite_positive());
+
+  auto *template_cmd = app.add_subcommand("scene-template", "print a scene file with every parameter, its unit and range");
+
+  try
+    {
+      app.parse(argc, argv);
+    }
+  catch (const CLI::CallForHelp &e)
+    {
+      return app.exit(e);
+    }
+  catch (const CLI::CallForAllHelp &e)
+    {
+      return app.exit(e);
+    }
+  catch (const CLI::ParseError &e)
+    {
+      // One readable line and status 2, like every other input error.
+      errors << "error: " << describe_parse_error(app, e, argc, argv) << "\n(see 'beamslider --help' or 'beamslider COMMAND --help')"
+                << std::endl;
+      return 2;
+    }
+
+  set_quiet(quiet);
+  record_effective_options(*app.get_subcommands().front());
+  try
+    {
+      if (*modes_cmd)
+        return run_modes(common, modes);
+      if (*coefficients_cmd)
+        return run_coefficients(common, coefficients);
+      if (*backbone_cmd)
+        return run_backbone(common, backbone);
+      if (*simulate_cmd)
+        {
+          if (!simulate.resume_dir.empty())
+            for (const char *given : {"scene", "--set", "--case", "--model", "--output"})
+              if (simulate_cmd->get_option(given)->count() > 0)
+                throw InputError(std::string("simulate --resume takes the scene, case, model, parameters and folder "
+                                             "from the checkpoint; ") +
+                                 given + " cannot be given with it (only --end-time, --checkpoint-every)");
+          return run_simulate(common, simulate);
+        }
+      if (*sweep_cmd)
+        return run_sweep(common, sweep);
+      if (*animate_cmd)
+        return run_animate(common, animate);
+      if (*ensemble_cmd)
+        return run_ensemble_command(common, ensemble);
+      if (*map_cmd)
+        return run_map(common, map);
+      if (*identify_cmd)
+        return run_identify(common, identify);
+      if (*verify_cmd)
+        return run_verify(common, verify);
+      if (*ladder_cmd)
+        return run_ladder_command(common, ladder);
+      if (*template_cmd)
+        {
+          std::cout << scene_template();
+          return 0;
+        }
+    }
+  catch (const InputError &e)
+    {
+      errors << "error: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const std::invalid_argument &e)
+    {
+      // The library's checks of values that came from the scene or the
+      // options (a time step above the model's stability limit, ...).
+      errors << "error: " << e.what() << std::endl;
+      return 2;
+    }
+  catch (const OutputError &e)
+    {
+      errors << "error: results not written: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's what() carries a stack trace and source lines that mean
+      // nothing to a user; its name and additional information do.
+      std::ostringstream info;
+      e.print_info(info);
+      errors << "beamslider failed: " << e.get_exc_name() << ": " << info.str() << std::endl;
+      return 1;
+    }
+  catch (const std::exception &e)
+    {
+      const std::string what = e.what();
+      errors << "beamslider failed: " << (what.empty() ? "unknown error" : what) << std::endl;
+      return 1;
+    }
+  return 0;
+}
+} // namespace
+
+int run_beamslider(int argc, char **argv, std::ostream &errors)
+{
+  clear_output_failures();
+  int status = parse_and_run(argc, argv, errors);
+  if (status == 0 && !output_failures().empty())
+    status = 1; // a chart or another result file was not written
+  if (interruption_requested())
+    {
+      errors << "interrupted by signal " << interruption_signal() << std::endl;
+      status = interruption_exit_code();
+    }
+  return status;
+}
+} // namespace beamslider
