@@ -4,8 +4,9 @@
 #
 #   bash scripts/setup.sh           the `beamslider` program only (what the
 #                                   README's first command needs)
-#   bash scripts/setup.sh --tests   everything: also the GoogleTest programs
-#                                   and the benchmarks (the second command, CI)
+#   bash scripts/setup.sh --tests   everything: also the GoogleTest programs,
+#                                   the benchmarks and the Python module
+#                                   (the second command, CI)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -17,7 +18,8 @@ case "${1:-}" in
 esac
 
 packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
-          libbenchmark-dev libcli11-dev python3-matplotlib openmpi-bin)
+          libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-dev
+          pybind11-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -29,7 +31,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-if [ ${#target[@]} -gt 0 ]; then what="build/beamslider"; else what="build/beamslider, the tests and the benchmarks"; fi
+if [ ${#target[@]} -gt 0 ]; then what="build/beamslider"; else what="build/beamslider, the tests, the benchmarks and the Python module"; fi
 echo "== building $what (Release) in ./build"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
 cmake --build build -j "$(nproc)" "${target[@]}" >> build.log 2>&1 || { tail -50 build.log; exit 1; }

@@ -95,7 +95,9 @@ class Scene:
 
     @property
     def name(self):
-        return self.get("Scene/Name") if "Scene/Name" in self.parameters() else os.path.basename(self.path)
+        """The scene's name, as the command line names it: the file's name
+        without .prm (reports go to reports/<name>/)."""
+        return os.path.splitext(os.path.basename(self.path))[0]
 
     def arguments(self):
         """The scene as command-line arguments: the file, then each --set."""

@@ -92,7 +92,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
   add_common(simulate_cmd);
   simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
-  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see README)");
+  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see doc/scenes.md)");
   simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
   simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
   simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
@@ -110,7 +110,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
   add_common(sweep_cmd);
   sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see README)");
+  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see doc/scenes.md)");
   sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
   sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
     ->check(finite_non_negative());
@@ -129,7 +129,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
   add_common(animate_cmd);
   animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
-  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see README)");
+  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see doc/scenes.md)");
   animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
   animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
   animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
@@ -142,7 +142,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   ensemble_cmd->add_option("--integrator", ensemble.integrator,
                            "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
     ->check(CLI::IsMember({"explicit", "implicit"}));
-  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see README)");
+  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see doc/scenes.md)");
   ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
   ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
     ->check(finite_in(0., 1e-3));
