@@ -77,3 +77,21 @@ TEST(EarlyChild, AMissingProgramIsNamed)
   EXPECT_FALSE(result.started);
   EXPECT_NE(result.error.find("/nonexistent/python3"), std::string::npos) << result.error;
 }
+
+// A measurement that starts `mpirun` or `beamslider` from a rank of an MPI
+// launch (the map scaling study under `mpirun -n 2 beamslider verify`) must
+// not hand that launch's variables on: the child would take them for its own
+// launch and abort in MPI_Init. The child here checks its own environment
+// (a fixed script, no user text).
+TEST(RunChild, WithoutTheMPILaunchTheChildSeesNoneOfItsVariablesButTheRootOptIn)
+{
+  ASSERT_EQ(setenv("OMPI_COMM_WORLD_RANK", "1", 1), 0);
+  ASSERT_EQ(setenv("PMIX_RANK", "1", 1), 0);
+  ASSERT_EQ(setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1), 0);
+  const std::vector<std::string> check = {
+    "/bin/sh", "-c", "test -z \"$OMPI_COMM_WORLD_RANK\" && test -z \"$PMIX_RANK\" && test \"$OMPI_ALLOW_RUN_AS_ROOT\" = 1"};
+  EXPECT_TRUE(run_child(check, ChildEnvironment::without_mpi_launch).succeeded());
+  EXPECT_FALSE(run_child(check, ChildEnvironment::inherited).succeeded());
+  unsetenv("OMPI_COMM_WORLD_RANK");
+  unsetenv("PMIX_RANK");
+}

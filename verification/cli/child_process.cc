@@ -2,6 +2,7 @@
 #include "verification/cli/child_process.h"
 
 #include <cerrno>
+#include <string_view>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
@@ -19,8 +20,24 @@ namespace beamslider
     // process ignores both: interruption.h, and writes check their errors);
     // `input` >= 0 becomes the child's standard input; `own_group` puts the
     // child in a process group of its own. Returns 0 or an errno value.
-    int spawn(const std::vector<std::string> &argv, const int input, const bool own_group, pid_t &pid)
+    int spawn(const std::vector<std::string> &argv, const int input, const bool own_group, pid_t &pid,
+              const ChildEnvironment environment = ChildEnvironment::inherited)
     {
+      std::vector<char *> envp;
+      if (environment == ChildEnvironment::without_mpi_launch)
+        {
+          for (char **e = environ; *e; ++e)
+            {
+              const std::string_view v(*e);
+              const bool opt_in = v.rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) == 0;
+              if (!opt_in && (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0))
+                continue;
+              envp.push_back(*e);
+            }
+          envp.push_back(nullptr);
+        }
+      char **const child_environment = environment == ChildEnvironment::inherited ? environ : envp.data();
+
       std::vector<char *> args;
       for (const auto &a : argv)
         args.push_back(const_cast<char *>(a.c_str()));
@@ -46,8 +63,8 @@ namespace beamslider
         posix_spawn_file_actions_adddup2(&actions, input, STDIN_FILENO);
 
       const int status = argv[0].find('/') == std::string::npos
-                           ? posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), environ)
-                           : posix_spawn(&pid, args[0], &actions, &attributes, args.data(), environ);
+                           ? posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), child_environment)
+                           : posix_spawn(&pid, args[0], &actions, &attributes, args.data(), child_environment);
       posix_spawn_file_actions_destroy(&actions);
       posix_spawnattr_destroy(&attributes);
       return status;
@@ -76,7 +93,7 @@ namespace beamslider
     }
   } // namespace
 
-  ChildResult run_child(const std::vector<std::string> &argv)
+  ChildResult run_child(const std::vector<std::string> &argv, const ChildEnvironment environment)
   {
     ChildResult result;
     if (argv.empty())
@@ -85,7 +102,7 @@ namespace beamslider
         return result;
       }
     pid_t pid        = 0;
-    const int status = spawn(argv, -1, false, pid);
+    const int status = spawn(argv, -1, false, pid, environment);
     if (status != 0)
       {
         result.error = "cannot start '" + argv[0] + "': " + std::strerror(status);

@@ -21,9 +21,22 @@ namespace beamslider
     bool succeeded() const { return started && signal == 0 && exit_code == 0; }
   };
 
+  // What a child inherits of this process's environment.
+  enum class ChildEnvironment
+  {
+    inherited, // all of it
+    // all but the variables an MPI launcher set for this process (OMPI_*,
+    // PMIX_*, PMI_*; Open MPI's two run-as-root opt-ins are kept): a child
+    // started by a process that itself runs under mpirun (a measurement
+    // that starts `beamslider` or `mpirun` of its own) would otherwise take
+    // them as its own launch and abort in MPI_Init.
+    without_mpi_launch
+  };
+
   // Runs argv[0] (an absolute path, or a name looked up in PATH) with the
   // arguments argv[1...], waits for it, and says how it ended.
-  ChildResult run_child(const std::vector<std::string> &argv);
+  ChildResult run_child(const std::vector<std::string> &argv,
+                        ChildEnvironment environment = ChildEnvironment::inherited);
 
   // A child started before its input exists, so that its own start-up (for
   // the charts: Python importing matplotlib, ~0.35 s) overlaps the work

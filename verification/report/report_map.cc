@@ -79,7 +79,9 @@ namespace beamslider
           argv.insert(argv.end(), {"--output", out});
           console() << "    scaling: " << ranks << " rank(s)" << std::endl;
           const auto start         = std::chrono::steady_clock::now();
-          const ChildResult result = run_child(argv);
+          // Under `mpirun -n K beamslider verify` this process is an MPI launch's
+          // rank: its children must not inherit that launch.
+          const ChildResult result = run_child(argv, ChildEnvironment::without_mpi_launch);
           const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           if (!result.succeeded())
             {
