@@ -5,6 +5,8 @@
 // opt-in for root (CI runs as root in a container).
 #pragma once
 
+#include "verification/cli/child_process.h"
+
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
@@ -28,12 +30,8 @@ namespace beamslider::testing
   {
     std::vector<std::string> env;
     for (char **e = environ; *e; ++e)
-      {
-        const std::string v = *e;
-        if (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0)
-          continue;
-        env.push_back(v);
-      }
+      if (!is_mpi_launch_variable(*e) && std::string_view(*e).rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) != 0)
+        env.push_back(*e);
     env.push_back("OMPI_ALLOW_RUN_AS_ROOT=1");
     env.push_back("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1");
     std::vector<char *> argv, envp;

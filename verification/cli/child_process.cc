@@ -2,7 +2,6 @@
 #include "verification/cli/child_process.h"
 
 #include <cerrno>
-#include <string_view>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
@@ -27,13 +26,8 @@ namespace beamslider
       if (environment == ChildEnvironment::without_mpi_launch)
         {
           for (char **e = environ; *e; ++e)
-            {
-              const std::string_view v(*e);
-              const bool opt_in = v.rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) == 0;
-              if (!opt_in && (v.rfind("OMPI_", 0) == 0 || v.rfind("PMIX_", 0) == 0 || v.rfind("PMI_", 0) == 0))
-                continue;
+            if (!is_mpi_launch_variable(*e))
               envp.push_back(*e);
-            }
           envp.push_back(nullptr);
         }
       char **const child_environment = environment == ChildEnvironment::inherited ? environ : envp.data();
@@ -92,6 +86,13 @@ namespace beamslider
         }
     }
   } // namespace
+
+  bool is_mpi_launch_variable(const std::string_view entry)
+  {
+    if (entry.rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) == 0) // the user's opt-in, not the launch's
+      return false;
+    return entry.rfind("OMPI_", 0) == 0 || entry.rfind("PMIX_", 0) == 0 || entry.rfind("PMI_", 0) == 0;
+  }
 
   ChildResult run_child(const std::vector<std::string> &argv, const ChildEnvironment environment)
   {

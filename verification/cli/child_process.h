@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace beamslider
@@ -32,6 +33,10 @@ namespace beamslider
     // them as its own launch and abort in MPI_Init.
     without_mpi_launch
   };
+
+  // Whether `entry` ("NAME=value" of an environment) is one of those an MPI
+  // launcher set for this process (see without_mpi_launch).
+  bool is_mpi_launch_variable(std::string_view entry);
 
   // Runs argv[0] (an absolute path, or a name looked up in PATH) with the
   // arguments argv[1...], waits for it, and says how it ended.
