@@ -299,10 +299,9 @@ namespace beamslider
         }
   }
 
-  void FEBeam::assemble_base_load(Vector<double> &r) const
+  void FEBeam::add_distributed_load(const std::function<double(const BeamSection &)> &load, Vector<double> &r) const
   {
-    r.reinit(n_dofs());
-    const QGauss<1> quadrature(3);
+    const QGauss<1> quadrature(3); // exact for the cubic Hermite functions times a constant load
     FEValues<1> fe_values(fe, quadrature, update_quadrature_points | update_JxW_values);
     std::vector<global_dof_index> dofs(fe.n_dofs_per_cell());
     std::array<double, 4> N, dN, ddN;
@@ -310,14 +309,20 @@ namespace beamslider
       {
         fe_values.reinit(cell);
         cell->get_dof_indices(dofs);
-        const double h = cell->diameter(), x_0 = cell->vertex(0)[0];
+        const double h = cell->diameter(), x_0 = cell->vertex(0)[0], q = load(section(cell));
         for (const unsigned int qp : fe_values.quadrature_point_indices())
           {
             hermite_shape((fe_values.quadrature_point(qp)[0] - x_0) / h, h, N, dN, ddN);
             for (unsigned int a = 0; a < 4; ++a)
-              r[dofs[hermite_local[a]]] -= section(cell).mass_per_length() * N[a] * fe_values.JxW(qp);
+              r[dofs[hermite_local[a]]] += q * N[a] * fe_values.JxW(qp);
           }
       }
+  }
+
+  void FEBeam::assemble_base_load(Vector<double> &r) const
+  {
+    r.reinit(n_dofs());
+    add_distributed_load([](const BeamSection &s) { return -s.mass_per_length(); }, r);
     for (const PointMass &body : beam.point_masses)
       {
         const FEPointShape s = point_shape(body.position);
@@ -325,6 +330,13 @@ namespace beamslider
           r[s.w_dofs[a]] -= body.mass * s.w_values[a];
       }
     support_constraints.set_zero(r);
+  }
+
+  void FEBeam::assemble_line_load(const double q_n_per_m, Vector<double> &F) const
+  {
+    F.reinit(n_dofs());
+    add_distributed_load([q_n_per_m](const BeamSection &) { return q_n_per_m; }, F);
+    support_constraints.set_zero(F);
   }
 
   FEPointShape FEBeam::point_shape(const double x) const

@@ -43,6 +43,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace beamslider
@@ -113,6 +114,10 @@ namespace beamslider
                                  const dealii::AffineConstraints<double> &c) const;
     // r with the base-excitation load r ẅ0(t): r = -∫ρA N_w dx - Σ m N_w(x_p).
     void assemble_base_load(dealii::Vector<double> &r) const;
+    // F with the consistent nodal forces of a uniform line load of
+    // q_n_per_m [N/m] acting in +w on the whole beam: F = ∫ q N_w dx
+    // (zero on constrained DoFs). A downward load has q < 0.
+    void assemble_line_load(double q_n_per_m, dealii::Vector<double> &F) const;
 
     // Adds a rigid body bonded at x: mass m on w(x) and rotary inertia J on
     // w'(x) (the slider held fixed to the beam, seed Eq. 5's model).
@@ -131,6 +136,9 @@ namespace beamslider
     std::array<global_dof_index, 3> support_dofs(unsigned int end) const { return end_dofs[end]; }
 
   private:
+    // r += ∫ load(section) N_w dx over the whole beam, load in N/m.
+    void add_distributed_load(const std::function<double(const BeamSection &)> &load,
+                              dealii::Vector<double> &r) const;
     // The cell containing x ∈ [0, L] (at a vertex, the cell to the right;
     // throws for x outside).
     typename dealii::DoFHandler<1>::active_cell_iterator cell_at(double x) const;

@@ -23,6 +23,38 @@ namespace beamslider
     axial_only.close();
   }
 
+  FEStatics::FEStatics(const FEBeam &beam, NewtonSettings settings)
+    : beam(beam)
+    , settings(settings)
+  {
+    beam.assemble_mass_matrix(M, beam.constraints());
+  }
+
+  std::vector<FEStatics::LoadStep> FEStatics::load_path(const Vector<double> &F, const unsigned int n_steps)
+  {
+    std::vector<LoadStep> path;
+    Vector<double> x(beam.n_dofs()), F_k(beam.n_dofs()), F_previous(beam.n_dofs());
+    for (unsigned int k = 1; k <= n_steps; ++k)
+      {
+        const double lambda = double(k) / n_steps;
+        F_k                 = F;
+        F_k *= lambda;
+        unsigned int iterations = 0;
+        try
+          {
+            iterations = solve(F_k, x, &F_previous);
+          }
+        catch (const StaticSolveError &e)
+          {
+            throw StaticSolveError("load step " + std::to_string(k) + " of " + std::to_string(n_steps) +
+                                   " (load factor " + std::to_string(lambda) + "): " + e.what());
+          }
+        path.push_back({lambda, x, iterations});
+        F_previous = F_k;
+      }
+    return path;
+  }
+
   Vector<double> FEStatics::displacement_from_modes(const Eigen::VectorXd &q) const
   {
     Vector<double> x(beam.n_dofs());
@@ -81,31 +113,37 @@ namespace beamslider
     return project(Mx);
   }
 
-  unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x)
+  unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x, const Vector<double> *F_start)
   {
     ++static_solves;
     const auto &constraints = beam.constraints();
     const double load_norm  = std::max(F.l2_norm(), 1e-300);
     double lambda = 0, step = settings.initial_load_step;
     unsigned int total_iterations = 0;
-    Vector<double> f, residual, dx(beam.n_dofs()), x_start;
+    Vector<double> f, residual, dx(beam.n_dofs()), x_start, load(beam.n_dofs());
     SparseMatrix<double> K;
     SparseDirectUMFPACK solver;
 
     while (lambda < 1.)
       {
         const double target = std::min(1., lambda + step);
+        // The load at this increment: F_start + target (F - F_start).
+        load = F;
+        if (F_start)
+          load.sadd(target, 1. - target, *F_start);
+        else
+          load *= target;
+        const double target_norm = std::max(load.l2_norm(), 1e-300 * load_norm);
         x_start             = x;
         bool converged      = false;
         double rel_residual = 0;
         for (unsigned int it = 0; it < settings.max_iterations; ++it)
           {
             beam.assemble_internal_force(x, &f, &K, constraints);
-            residual = F;
-            residual *= target;
+            residual = load;
             residual -= f;
             constraints.set_zero(residual);
-            rel_residual = residual.l2_norm() / (target * load_norm);
+            rel_residual = residual.l2_norm() / target_norm;
             if (rel_residual < settings.relative_tolerance)
               {
                 converged = true;

@@ -46,6 +46,8 @@ namespace beamslider
   public:
     // The first n_modes of `modes` form Φ.
     FEStatics(const FEBeam &beam, const FEModes &modes, unsigned int n_modes, NewtonSettings settings = {});
+    // Without a modal basis: for solve() and load_path() alone.
+    explicit FEStatics(const FEBeam &beam, NewtonSettings settings = {});
 
     // STEP callbacks: q [m kg^1/2] ↦ Φᵀ f(x) [N kg^-1/2], the full restoring
     // force including its linear part diag(ω²) q.
@@ -55,8 +57,24 @@ namespace beamslider
     Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
 
     // Solves f(x) = F for x (starting from x, which is overwritten), with
-    // load stepping. Returns the number of Newton iterations.
-    unsigned int solve(const dealii::Vector<double> &F, dealii::Vector<double> &x);
+    // load stepping from F_start (x's equilibrium load; null: zero) to F.
+    // Returns the number of Newton iterations.
+    unsigned int solve(const dealii::Vector<double> &F, dealii::Vector<double> &x,
+                       const dealii::Vector<double> *F_start = nullptr);
+
+    // One equilibrium of a load path.
+    struct LoadStep
+    {
+      double load_factor;              // λ: the load is λ F
+      dealii::Vector<double> x;        // the displacement [m, rad]
+      unsigned int newton_iterations;  // to reach it from the previous step
+    };
+    // The equilibria under λ_k F, λ_k = k / n_steps, k = 1 … n_steps: the
+    // full-order static solution a ROM is checked against. Each step's Newton
+    // solve starts from the previous equilibrium (and cuts its increment
+    // back as solve() does); a step that fails throws StaticSolveError with
+    // the load it stopped at.
+    std::vector<LoadStep> load_path(const dealii::Vector<double> &F, unsigned int n_steps);
 
     unsigned int n_linear_solves() const { return linear_solves; }
     unsigned int n_static_solves() const { return static_solves; }

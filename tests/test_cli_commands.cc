@@ -91,6 +91,32 @@ TEST(Commands, CoefficientsWritesTheDocumentedColumns)
   fs::remove_all(dir);
 }
 
+// statics: a small load is in the linear range, where the ideal-clamp strip
+// deflects qL⁴/(384 EI) at mid-span (L = 0.14 m, E = 2.1e11 Pa, b = 14.04 mm,
+// h = 1 mm in meshes/mueller2023-ideal.prm); each step's load is k/K of Q,
+// downward (w_mid < 0). A zero load is refused naming the option.
+TEST(Commands, StaticsWritesTheLoadPathAndMatchesTheLinearBeamAtSmallLoad)
+{
+  const fs::path dir = fresh_folder("cmd_statics");
+  const CliRun run   = run_beamslider({"statics", "mueller2023-ideal", "--line-load", "0.5", "--steps", "4",
+                                       "--output", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(first_line(dir / "statics.csv"), "line_load_n_per_m,w_mid_m,newton_iterations");
+  const auto rows = numeric_rows(dir / "statics.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  const double EI = 2.1e11 * 0.01404 * std::pow(1e-3, 3) / 12, L = 0.14;
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    {
+      EXPECT_DOUBLE_EQ(rows[k][0], 0.5 * double(k + 1) / 4);
+      EXPECT_NEAR(rows[k][1] / (-rows[k][0] * std::pow(L, 4) / (384 * EI)), 1., 1e-4);
+    }
+  fs::remove_all(dir);
+
+  const CliRun zero = run_beamslider({"statics", "--line-load", "0", "--output", dir.string()});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("--line-load"), std::string::npos) << zero.err;
+}
+
 TEST(Commands, BackboneWritesTheDocumentedColumnsUpToTheAskedAmplitude)
 {
   const fs::path dir = fresh_folder("cmd_backbone");

@@ -85,6 +85,25 @@ class CoefficientTensor(unittest.TestCase):
         self.assertTrue(np.allclose(f_tensor, f_csv, rtol=1e-13, atol=0))
 
 
+class Statics(unittest.TestCase):
+    def test_load_path_equals_the_command_line_and_hardens(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            done = run_cli("statics", "mueller2023-ideal", "--line-load", "5000", "--steps", "5", "--output", tmp,
+                           "--quiet")
+            self.assertEqual(done.returncode, 0, done.stderr)
+            csv = beamslider.read_table(os.path.join(tmp, "statics.csv"))
+        path = beamslider.statics("mueller2023-ideal", line_load=5000, steps=5).statics
+        for column in csv:
+            self.assertTrue(np.array_equal(path[column], csv[column]), column)
+        # Downward load, downward deflection; the membrane stiffens the strip:
+        # the compliance |w|/Q falls with every step.
+        compliance = -path["w_mid_m"] / path["line_load_n_per_m"]
+        self.assertTrue(np.all(compliance > 0))
+        self.assertTrue(np.all(np.diff(compliance) < 0))
+        with self.assertRaises(ValueError):
+            beamslider.statics("mueller2023-ideal", line_load=0.0)
+
+
 class BadInput(unittest.TestCase):
     def cli_message(self, *args):
         done = run_cli(*args)

@@ -30,7 +30,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Result", "Interrupted", "interrupt", "modes", "coefficients", "backbone", "simulate",
+__all__ = ["Scene", "Result", "Interrupted", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "read_table"]
 
 
@@ -249,6 +249,15 @@ def coefficients(scene="mueller2023", method="analytic", modes=None, output=None
     """Cubic modal coefficients by "analytic", "step", "step-condensed" or "ice"."""
     return _run("coefficients", scene, _options(method=method, modes=modes), output, progress,
                 read=CoefficientsResult)
+
+
+def statics(scene="mueller2023", line_load=None, steps=None, output=None, progress=None):
+    """Nonlinear statics under a uniform dead line load ``line_load`` [N/m],
+    positive downward, in ``steps`` equal load steps: ``.statics`` with
+    line_load_n_per_m, w_mid_m (mid-span deflection, +w up) per step."""
+    if line_load is None:
+        raise ValueError("statics needs line_load: the uniform load Q [N/m], positive downward")
+    return _run("statics", scene, _options(line_load=line_load, steps=steps), output, progress)
 
 
 def backbone(scene="mueller2023", model="rom", modes=None, harmonics=None, max_amplitude=None, output=None,

@@ -76,6 +76,21 @@ namespace beamslider
     return finite_in(0., std::numeric_limits<double>::infinity(), Bound::closed, Bound::open);
   }
 
+  // A finite number other than zero (a load of either sign).
+  inline CLI::Validator finite_nonzero()
+  {
+    return CLI::Validator(
+      [](std::string &text) -> std::string {
+        double x = 0;
+        if (!cli_detail::parse_double(text, x))
+          return "'" + text + "' is not a number";
+        if (!std::isfinite(x) || x == 0)
+          return "'" + text + "' is not allowed: a finite number other than 0";
+        return {};
+      },
+      "finite, non-zero");
+  }
+
   // A whole number in [lo, hi].
   inline CLI::Validator integer_in(const long lo, const long hi)
   {

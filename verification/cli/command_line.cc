@@ -80,6 +80,14 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
     ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
   coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
 
+  StaticsOptions statics;
+  auto *statics_cmd = app.add_subcommand("statics", "nonlinear statics under a uniform line load (statics.csv)");
+  add_common(statics_cmd);
+  statics_cmd->add_option("--line-load", statics.line_load_n_per_m, "uniform dead load Q [N/m], positive downward")
+    ->required()
+    ->check(finite_nonzero());
+  statics_cmd->add_option("--steps", statics.n_steps, "equal load steps to Q")->check(integer_in(1, 10000));
+
   BackboneOptions backbone;
   auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
   add_common(backbone_cmd);
@@ -224,6 +232,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
         return run_modes(common, modes);
       if (*coefficients_cmd)
         return run_coefficients(common, coefficients);
+      if (*statics_cmd)
+        return run_statics(common, statics);
       if (*backbone_cmd)
         return run_backbone(common, backbone);
       if (*simulate_cmd)

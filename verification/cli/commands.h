@@ -41,6 +41,15 @@ namespace beamslider
   };
   int run_coefficients(const CommonOptions &common, const CoefficientsOptions &options);
 
+  // `beamslider statics`: load-stepped nonlinear statics of the FE beam under
+  // a uniform dead line load (command_statics.cc).
+  struct StaticsOptions
+  {
+    double line_load_n_per_m = 0; // Q [N/m], positive downward
+    unsigned int n_steps     = 10; // equal load steps to Q
+  };
+  int run_statics(const CommonOptions &common, const StaticsOptions &options);
+
   struct BackboneOptions
   {
     std::string model = "rom"; // rom | fe
