@@ -255,6 +255,26 @@ namespace beamslider
     unsigned int newton_iterations  = 30;    // FE step: cap per step, refactorisations included
   };
 
+  // A continuum model of the beam (subsection Solid, fem/solid_model.h): a
+  // geometrically nonlinear St. Venant–Kirchhoff solid of the strip the
+  // subsection Beam describes (L × b × h, E, ρ), clamped at both end faces.
+  // "none" (every beam scene) leaves it out; "plane stress" is the 2D strip
+  // x ∈ [0, L], z ∈ [-h/2, h/2] with the width b as out-of-plane thickness;
+  // "3d" the strip x ∈ [0, L], y ∈ [-b/2, b/2], z ∈ [-h/2, h/2]. z, the last
+  // coordinate, is the beam's w direction in both.
+  struct SolidData
+  {
+    std::string continuum = "none";  // none | plane stress | 3d
+    double poissons_ratio = 0.3;     // ν [-], in [0, 0.5)
+    unsigned int degree   = 2;       // p of the vector FE_Q(p)
+    unsigned int elements_along_length      = 70; // generated strip's elements in x
+    unsigned int elements_across_width      = 4;  // ... in y (3d only)
+    unsigned int elements_through_thickness = 1;  // ... in z
+
+    bool enabled() const { return continuum != "none"; }
+    unsigned int dimension() const { return continuum == "3d" ? 3 : 2; }
+  };
+
   struct Scene
   {
     std::string name; // file stem, e.g. "mueller2023"
@@ -269,6 +289,7 @@ namespace beamslider
     DiscretisationData discretisation;
     TimeSteppingData   time_stepping;
     SolverData         solvers;
+    SolidData          solid;
 
     double slider_mass() const { return slider.mass * slider.mass_factor; }
     double slider_inertia() const { return slider.inertia * slider.mass_factor; }

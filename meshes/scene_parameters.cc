@@ -12,6 +12,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -295,6 +296,21 @@ namespace beamslider
              "FE time step: cap on Newton iterations per step, refactorisations included; a step that "
              "reaches it stops the run with a message");
       e.leave();
+
+      e.enter("Solid");
+      e.bind("Continuum", s.solid.continuum, Selection("none|plane stress|3d"),
+             "the strip of subsection Beam as a St. Venant-Kirchhoff continuum clamped at both end faces "
+             "(modes, coefficients): none (the beam alone), plane stress (2D, x-z plane, the width b as "
+             "out-of-plane thickness) or 3d");
+      e.bind("Poisson's ratio", s.solid.poissons_ratio, Double(0, 0.5), "nu [-], in [0, 0.5); 0 is what beam theory assumes");
+      e.bind("Degree", s.solid.degree, Integer(1, 4), "polynomial degree p of the displacement (FE_Q(p)), in [1, 4]");
+      e.bind("Elements along length", s.solid.elements_along_length, Integer(1, 100000),
+             "elements of the generated strip in x");
+      e.bind("Elements across width", s.solid.elements_across_width, Integer(1, 10000),
+             "elements of the generated strip in y (3d only)");
+      e.bind("Elements through thickness", s.solid.elements_through_thickness, Integer(1, 1000),
+             "elements of the generated strip in z");
+      e.leave();
     }
 
     // The additional-information part of a deal.II exception, without the
@@ -303,7 +319,16 @@ namespace beamslider
     {
       std::ostringstream s;
       e.print_info(s);
-      return s.str();
+      // One line: deal.II indents and breaks its message.
+      std::string line;
+      for (const char c : s.str())
+        if (!std::isspace(static_cast<unsigned char>(c)))
+          line += c;
+        else if (!line.empty() && line.back() != ' ')
+          line += ' ';
+      while (!line.empty() && line.back() == ' ')
+        line.pop_back();
+      return " " + line;
     }
 
     // Applies one "Section/Sub/Name=value" override.
@@ -575,6 +600,18 @@ namespace beamslider
             "must be at least Number of modes + 1 = " + std::to_string(s.discretisation.n_modes + 1) +
               " so that the mesh carries the reduced model's modes");
     require(s.beam.length > 0, "Beam/Length", s.beam.length, "must be > 0 m");
+    if (s.solid.enabled())
+      {
+        require(s.solid.poissons_ratio >= 0 && s.solid.poissons_ratio < 0.5, "Solid/Poisson's ratio",
+                s.solid.poissons_ratio, "must be in [0, 0.5)");
+        if (s.beam.from_mesh())
+          throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum +
+                           "' is not allowed with 'Beam/Mesh file': the solid is generated from a uniform strip");
+        if (s.supports.type() != "clamped")
+          throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum + "' is not allowed with "
+                           "'Supports/Type' = " + s.supports.type() + ": the solid strip is clamped at both end "
+                           "faces; set 'Supports/Type' = clamped");
+      }
     require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
     require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
     require(s.beam.thickness < s.beam.length / 20., "Beam/Thickness", s.beam.thickness,

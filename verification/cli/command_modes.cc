@@ -17,6 +17,14 @@ namespace beamslider
   int run_modes(const CommonOptions &common, const ModesOptions &options)
   {
     const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
+    if (scene.solid.enabled())
+      {
+        if (options.slider_at || options.n_elements)
+          throw InputError(std::string(options.slider_at ? "--slider-at" : "--elements") +
+                           " is for beam scenes; this scene's Solid/Continuum is '" + scene.solid.continuum +
+                           "' (the solid's mesh is set in its subsection Solid)");
+        return run_solid_modes(common, scene, options.n_modes);
+      }
     if (options.slider_at)
       {
         // A bonded body is a point mass and inertia: any x_C on the beam is admissible.

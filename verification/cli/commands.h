@@ -26,6 +26,9 @@ namespace beamslider
     unsigned int n_elements = 0;     // 0 = the scene's mesh
   };
   int run_modes(const CommonOptions &common, const ModesOptions &options);
+  // The modes of a scene's solid (command_modes_solid.cc); n_bending bending modes.
+  struct Scene;
+  int run_solid_modes(const CommonOptions &common, const Scene &scene, unsigned int n_bending);
 
   struct VerifyOptions
   {
@@ -154,7 +157,6 @@ namespace beamslider
   // name the file with the case's parameters (simulation_cases.h); the
   // user's overrides last. `modified` lists the case's own parameters the
   // user changed.
-  struct Scene;
   struct CommandSetting;
   Scene read_command_scene(const CommonOptions &common, const std::string &case_name,
                            std::vector<std::string> *modified = nullptr);

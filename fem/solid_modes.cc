@@ -1,0 +1,181 @@
+#include "fem/solid_modes.h"
+
+#include "fem/petsc_session.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/slepc_solver.h>
+#include <deal.II/lac/slepc_spectral_transformation.h>
+
+#include <petscsys.h>
+
+#include <algorithm>
+#include <numeric>
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // ∫ ρ φ_c² dV per component, ∫ ρ φ_z y dV and ∫ ρ y² dV (3D), and
+    // ∫ ρ φ_z (L − x) dV (for the sign), summed over the ranks.
+    template <int dim>
+    std::array<double, 6> energy_integrals(const SolidModel<dim> &model, const PETScWrappers::MPI::Vector &phi)
+    {
+      const auto &fe = model.get_dof_handler().get_fe();
+      const QGauss<dim> quadrature(fe.degree + 1);
+      FEValues<dim> fe_values(fe, quadrature, update_values | update_quadrature_points | update_JxW_values);
+      const FEValuesExtractors::Vector displacement(0);
+      std::vector<Tensor<1, dim>> values(quadrature.size());
+      std::array<double, 6> sums{};
+      for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values[displacement].get_function_values(phi, values);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              {
+                const double dm = model.density() * fe_values.JxW(q);
+                for (unsigned int c = 0; c < dim; ++c)
+                  sums[c] += dm * values[q][c] * values[q][c];
+                sums[5] += dm * values[q][dim - 1] * (model.length() - fe_values.quadrature_point(q)[0]);
+                if (dim == 3)
+                  {
+                    const double y = fe_values.quadrature_point(q)[1];
+                    sums[3] += dm * values[q][dim - 1] * y;
+                    sums[4] += dm * y * y;
+                  }
+              }
+          }
+      std::array<double, 6> total;
+      Utilities::MPI::sum(ArrayView<const double>(sums.data(), 6), model.communicator(),
+                          ArrayView<double>(total.data(), 6));
+      return total;
+    }
+
+    // Classifies the mode; returns ∫ ρ φ_z (L − x) dV, whose sign fixes the mode's.
+    template <int dim>
+    double classify(const SolidModel<dim> &model, SolidMode &mode)
+    {
+      const std::array<double, 6> s = energy_integrals(model, mode.vector);
+      double all = 0;
+      for (unsigned int c = 0; c < dim; ++c)
+        all += s[c];
+      mode.energy_share = {0., 0., 0.};
+      for (unsigned int c = 0; c < dim; ++c)
+        mode.energy_share[dim == 3 ? c : 2 * c] = s[c] / all; // 2D: x, z
+      mode.twist_correlation = dim == 3 ? s[3] * s[3] / (s[dim - 1] * s[4]) : 0.;
+      const auto &e          = mode.energy_share;
+      if (e[0] >= e[1] && e[0] >= e[2])
+        mode.shape = "axial";
+      else if (e[1] >= e[2])
+        mode.shape = "lateral";
+      else
+        mode.shape = mode.twist_correlation > 0.5 ? "torsion" : "bending";
+      return s[5];
+    }
+
+    // The n lowest eigenpairs of K φ = ω² M φ.
+    template <int dim>
+    unsigned int lowest_modes(const SolidModel<dim> &model, const PETScWrappers::MPI::SparseMatrix &K,
+                              const PETScWrappers::MPI::SparseMatrix &M, const unsigned int n,
+                              std::vector<double> &eigenvalues, std::vector<PETScWrappers::MPI::Vector> &vectors)
+    {
+      // The shifted system (K − σM) is factorised by MUMPS, chosen through
+      // PETSc's options database: deal.II 9.4.1's set_solver with its MUMPS
+      // wrapper crashes, and PETSc's own LU works on one rank only.
+      PetscOptionsSetValue(nullptr, "-st_ksp_type", "preonly");
+      PetscOptionsSetValue(nullptr, "-st_pc_type", "lu");
+      PetscOptionsSetValue(nullptr, "-st_pc_factor_mat_solver_type", "mumps");
+
+      vectors.resize(n + 2);
+      for (auto &v : vectors)
+        model.reinit_vector(v);
+      // 1e-14 on the relative residual: frequencies that agree to ~1e-12 whatever the
+      // partition (1 and 2 ranks factorise in different orders).
+      SolverControl control(1000, 1e-14, false, false);
+      SLEPcWrappers::SolverKrylovSchur solver(control, model.communicator());
+      SLEPcWrappers::TransformationShiftInvert shift_invert(model.communicator(),
+                                                            SLEPcWrappers::TransformationShiftInvert::AdditionalData(0.));
+      solver.set_transformation(shift_invert);
+      solver.set_problem_type(EPS_GHEP);
+      solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
+      solver.set_target_eigenvalue(0.);
+      try
+        {
+          solver.solve(K, M, eigenvalues, vectors, n);
+        }
+      catch (const ExceptionBase &e)
+        {
+          std::ostringstream info;
+          e.print_info(info);
+          throw std::runtime_error("SLEPc eigensolver failed for the " + std::to_string(n) + " lowest modes of the " +
+                                   std::to_string(dim) + "D solid (" + std::to_string(model.n_dofs()) +
+                                   " DoFs): " + info.str());
+        }
+      vectors.resize(eigenvalues.size());
+      return control.last_step();
+    }
+  } // namespace
+
+  template <int dim>
+  SolidModes compute_solid_modes(const SolidModel<dim> &model, const unsigned int n_bending)
+  {
+    require_petsc();
+    PETScWrappers::MPI::SparseMatrix K, M;
+    PETScWrappers::MPI::Vector zero;
+    model.reinit_ghosted_vector(zero);
+    model.assemble_internal_force(zero, nullptr, &K);
+    model.assemble_mass_matrix(M);
+
+    SolidModes modes;
+    // Torsion (3D) and, higher up, lateral and axial modes lie between the
+    // bending modes: ask for twice as many plus a few, and more if short.
+    for (unsigned int n = 2 * n_bending + 4;; n *= 2)
+      {
+        if (n > model.n_dofs() - model.constraints().n_constraints())
+          throw std::runtime_error("the solid mesh has too few DoFs (" + std::to_string(model.n_dofs()) + ") for " +
+                                   std::to_string(n_bending) + " bending modes: refine it");
+        std::vector<double> eigenvalues;
+        std::vector<PETScWrappers::MPI::Vector> vectors;
+        modes.eigensolver_iterations += lowest_modes(model, K, M, n, eigenvalues, vectors);
+
+        std::vector<unsigned int> order(eigenvalues.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(), [&](unsigned a, unsigned b) { return eigenvalues[a] < eigenvalues[b]; });
+        modes.all.clear();
+        modes.bending.clear();
+        PETScWrappers::MPI::Vector Mphi;
+        model.reinit_vector(Mphi);
+        for (const unsigned int i : order)
+          {
+            SolidMode mode;
+            mode.omega = std::sqrt(std::max(eigenvalues[i], 0.));
+            M.vmult(Mphi, vectors[i]);
+            vectors[i] /= std::sqrt(vectors[i] * Mphi); // φᵀ M φ = 1
+            model.reinit_ghosted_vector(mode.vector);
+            mode.vector = vectors[i];
+            // The sign: ∫ ρ φ_z (L − x) dV > 0, as the beam's modes
+            // (reproducible across meshes and ranks).
+            if (classify(model, mode) < 0)
+              {
+                vectors[i] *= -1.;
+                mode.vector = vectors[i];
+              }
+            if (mode.shape == "bending" && modes.bending.size() < n_bending)
+              modes.bending.push_back(modes.all.size());
+            modes.all.push_back(std::move(mode));
+            if (modes.bending.size() == n_bending)
+              break;
+          }
+        if (modes.bending.size() == n_bending)
+          return modes;
+      }
+  }
+
+  template SolidModes compute_solid_modes(const SolidModel<2> &, unsigned int);
+  template SolidModes compute_solid_modes(const SolidModel<3> &, unsigned int);
+} // namespace beamslider

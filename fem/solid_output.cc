@@ -1,0 +1,88 @@
+#include "fem/solid_output.h"
+
+#include "contact/output_file.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/numerics/data_component_interpretation.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::string piece_name(const std::string &basename, const unsigned int rank)
+    {
+      std::ostringstream s;
+      s << basename << "_" << std::setw(4) << std::setfill('0') << rank << ".vtu";
+      return s.str();
+    }
+
+    // Writes into `path` with `write`; OutputError if it cannot.
+    template <typename Writer>
+    void write_checked(const std::string &path, const Writer &write)
+    {
+      std::ofstream out(path);
+      if (!out)
+        throw OutputError("cannot open " + path + " for writing");
+      write(out);
+      out.close();
+      if (!out)
+        throw OutputError("could not write " + path);
+    }
+  } // namespace
+
+  template <int dim>
+  std::string write_solid_fields(const SolidModel<dim> &model, const std::vector<SolidField> &fields,
+                                 const std::string &folder, const std::string &basename)
+  {
+    const MPI_Comm comm = model.communicator();
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm), n_ranks = Utilities::MPI::n_mpi_processes(comm);
+
+    // Scaled ghosted copies (a ghosted vector cannot be scaled in place).
+    std::vector<PETScWrappers::MPI::Vector> scaled(fields.size());
+    DataOut<dim> data_out;
+    data_out.attach_dof_handler(model.get_dof_handler());
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+    for (unsigned int i = 0; i < fields.size(); ++i)
+      {
+        PETScWrappers::MPI::Vector owned;
+        model.reinit_vector(owned);
+        owned = *fields[i].displacement;
+        owned *= fields[i].scale;
+        model.reinit_ghosted_vector(scaled[i]);
+        scaled[i] = owned;
+        data_out.add_data_vector(scaled[i], std::vector<std::string>(dim, fields[i].name),
+                                 DataOut<dim>::type_dof_data, vector_field);
+      }
+    // Which rank owns each cell, for a look at the partition in ParaView.
+    Vector<float> owner(model.get_dof_handler().get_triangulation().n_active_cells());
+    owner = static_cast<float>(rank);
+    data_out.add_data_vector(owner, "rank");
+    data_out.build_patches(model.get_dof_handler().get_fe().degree);
+
+
+
+    write_checked(folder + "/" + piece_name(basename, rank), [&](std::ostream &out) { data_out.write_vtu(out); });
+    const std::string record = folder + "/" + basename + ".pvtu";
+    if (rank == 0)
+      {
+        std::vector<std::string> pieces;
+        for (unsigned int r = 0; r < n_ranks; ++r)
+          pieces.push_back(piece_name(basename, r));
+        write_checked(record, [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+      }
+    return record;
+  }
+
+  template std::string write_solid_fields(const SolidModel<2> &, const std::vector<SolidField> &, const std::string &,
+                                          const std::string &);
+  template std::string write_solid_fields(const SolidModel<3> &, const std::vector<SolidField> &, const std::string &,
+                                          const std::string &);
+} // namespace beamslider

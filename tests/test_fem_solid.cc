@@ -1,0 +1,231 @@
+// The St. Venant–Kirchhoff solid strip (fem/solid_model, fem/solid_modes):
+// its tangent against finite differences of its internal force, and its
+// modes against the von Kármán beam's and against the thin strip's torsion.
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+#include "fem/solid_model.h"
+#include "fem/solid_modes.h"
+#include "meshes/scene.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+using namespace beamslider;
+using dealii::PETScWrappers::MPI::SparseMatrix;
+using dealii::PETScWrappers::MPI::Vector;
+
+namespace
+{
+  const std::string scene_dir = BEAMSLIDER_SOURCE_DIR "/meshes/";
+
+  Scene solid_scene(const std::string &continuum, const double nu, const unsigned int nx, const unsigned int ny,
+                    const unsigned int nz, const unsigned int degree)
+  {
+    return read_scene(scene_dir + "mueller2023-ideal.prm",
+                      {"Solid/Continuum=" + continuum, "Solid/Poisson's ratio=" + std::to_string(nu),
+                       "Solid/Elements along length=" + std::to_string(nx),
+                       "Solid/Elements across width=" + std::to_string(ny),
+                       "Solid/Elements through thickness=" + std::to_string(nz),
+                       "Solid/Degree=" + std::to_string(degree)});
+  }
+
+  // The clamped–clamped Timoshenko beam (shear coefficient κ, rotary
+  // inertia ρI), independently of every FE code here:
+  //   κGA (w'' − ψ') + ρA ω² w = 0,   EI ψ'' + κGA (w' − ψ) + ρI ω² ψ = 0,
+  //   w = ψ = 0 at x = 0 and x = L.
+  // With y = (w, w', ψ, ψ') the equations are y' = A(ω) y; the transfer
+  // matrix T = exp(A L) maps the free start values (w'(0), ψ'(0)) to the end
+  // values (w(L), ψ(L)), and ω is a frequency where that 2×2 block is
+  // singular: found by bisection around the Euler–Bernoulli frequency.
+  struct TimoshenkoBeam
+  {
+    double E, G, kappa, rho, b, h, L;
+
+    double determinant(const double omega) const
+    {
+      const double A = b * h, I = b * h * h * h / 12, kGA = kappa * G * A;
+      Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
+      M(0, 1)           = 1;
+      M(1, 0)           = -rho * A * omega * omega / kGA;
+      M(1, 3)           = 1;
+      M(2, 3)           = 1;
+      M(3, 1)           = -kGA / (E * I);
+      M(3, 2)           = (kGA - rho * I * omega * omega) / (E * I);
+      const Eigen::Matrix4d T = (M * L).exp();
+      return T(0, 1) * T(2, 3) - T(0, 3) * T(2, 1);
+    }
+
+    // The n-th frequency [rad/s], n = 1 …: shear and rotary inertia lower
+    // the Euler–Bernoulli frequency λ_n² / L² sqrt(EI/ρA) by less than 1 %.
+    double omega(const unsigned int n) const
+    {
+      const double roots[] = {4.730040745, 7.853204624, 10.995607838, 14.137165491, 17.278759657};
+      const double euler_bernoulli = roots[n - 1] * roots[n - 1] / (L * L) * std::sqrt(E * h * h / (12 * rho));
+      double lo = 0.99 * euler_bernoulli, hi = euler_bernoulli * (1 + 1e-9);
+      const double sign_lo = std::copysign(1., determinant(lo));
+      EXPECT_NE(sign_lo, std::copysign(1., determinant(hi))) << "no root bracketed for mode " << n;
+      for (int i = 0; i < 100; ++i)
+        {
+          const double mid = 0.5 * (lo + hi);
+          (std::copysign(1., determinant(mid)) == sign_lo ? lo : hi) = mid;
+        }
+      return 0.5 * (lo + hi);
+    }
+  };
+
+  // Bending frequencies [Hz] of the solid.
+  template <int dim>
+  std::vector<double> bending_frequencies(const Scene &scene, const unsigned int n)
+  {
+    const SolidModel<dim> model(scene, MPI_COMM_WORLD);
+    const SolidModes modes = compute_solid_modes(model, n);
+    std::vector<double> f;
+    for (const unsigned int i : modes.bending)
+      f.push_back(modes.all[i].omega / (2 * M_PI));
+    return f;
+  }
+} // namespace
+
+TEST(SolidModel, TangentIsTheDerivativeOfTheInternalForce)
+{
+  for (const std::string continuum : {"plane stress", "3d"})
+    {
+      const Scene scene = solid_scene(continuum, 0.3, 6, 2, 1, 2);
+      auto check        = [&](auto model) {
+        Vector u, v, u_ghost, Kv;
+        model->reinit_vector(u);
+        model->reinit_vector(v);
+        std::mt19937 random(7);
+        std::uniform_real_distribution<double> unit(-1, 1);
+        for (const auto i : model->locally_owned_dofs())
+          {
+            u[i] = (model->constraints().is_constrained(i) ? 0. : 0.5e-3 * unit(random));
+            v[i] = (model->constraints().is_constrained(i) ? 0. : 1e-3 * unit(random));
+          }
+        u.compress(dealii::VectorOperation::insert);
+        v.compress(dealii::VectorOperation::insert);
+        SparseMatrix K;
+        model->reinit_ghosted_vector(u_ghost);
+        u_ghost = u;
+        model->assemble_internal_force(u_ghost, nullptr, &K);
+        model->reinit_vector(Kv);
+        K.vmult(Kv, v);
+        // f is exactly cubic in u, so the central difference D(ε) = K v + ε² c
+        // and (4 D(ε) − D(2ε)) / 3 = K v without truncation error: a step
+        // large enough for round-off not to matter.
+        auto central_difference = [&](const double eps) {
+          Vector f_plus, f_minus;
+          for (const double sign : {1., -1.})
+            {
+              Vector w = u;
+              w.add(sign * eps, v);
+              u_ghost = w;
+              model->assemble_internal_force(u_ghost, sign > 0 ? &f_plus : &f_minus, nullptr);
+            }
+          f_plus -= f_minus;
+          f_plus /= 2 * eps;
+          return f_plus;
+        };
+        Vector difference = central_difference(0.1);
+        difference *= 4. / 3;
+        difference.add(-1. / 3, central_difference(0.2));
+        difference -= Kv;
+        EXPECT_LT(difference.l2_norm(), 1e-10 * Kv.l2_norm()) << continuum;
+      };
+      if (continuum == "3d")
+        check(std::make_unique<SolidModel<3>>(scene, MPI_COMM_WORLD));
+      else
+        check(std::make_unique<SolidModel<2>>(scene, MPI_COMM_WORLD));
+    }
+}
+
+// Without Poisson's ratio the plane-stress strip is what a shear-deformable
+// beam idealises: its bending frequencies converge, in h at the rate of Q2
+// (ω error O(h⁴)) and in p, to the clamped Timoshenko beam's (κ = 5/6 for the
+// rectangle at ν = 0), which lie 0.03 % (mode 1) to 0.26 % (mode 5) below
+// the Euler–Bernoulli beam's. The converged difference is below 0.2 % of that
+// shear and rotary-inertia correction: what remains of the continuum beyond
+// Timoshenko's kinematics (warping, the clamped faces) is of order (h/L)⁴.
+TEST(SolidModes, PlaneStressStripWithoutPoissonConvergesToTheTimoshenkoBeam)
+{
+  const Scene scene = solid_scene("plane stress", 0, 1, 1, 1, 2);
+  const BeamData &d = scene.beam;
+  const TimoshenkoBeam timoshenko{d.youngs_modulus, d.youngs_modulus / 2, 5. / 6, d.density, d.width, d.thickness, d.length};
+  const double roots[] = {4.730040745, 7.853204624, 10.995607838, 14.137165491, 17.278759657};
+  std::vector<double> f_T, correction;
+  for (unsigned int k = 1; k <= 5; ++k)
+    {
+      f_T.push_back(timoshenko.omega(k) / (2 * M_PI));
+      const double f_EB = roots[k - 1] * roots[k - 1] / (2 * M_PI * d.length * d.length) *
+                          std::sqrt(d.bending_stiffness() / d.mass_per_length());
+      correction.push_back(f_T.back() / f_EB - 1);
+    }
+
+  // h-refinement of Q2, halving the element size in both directions.
+  std::vector<std::vector<double>> errors;
+  for (const unsigned int r : {1u, 2u, 4u})
+    {
+      const auto f = bending_frequencies<2>(solid_scene("plane stress", 0, 70 * r, 1, r, 2), 5);
+      errors.emplace_back();
+      for (unsigned int k = 0; k < 5; ++k)
+        errors.back().push_back(std::abs(f[k] / f_T[k] - 1));
+    }
+  for (unsigned int k = 0; k < 5; ++k)
+    for (unsigned int r = 1; r < 3; ++r)
+      EXPECT_GT(std::log2(errors[r - 1][k] / errors[r][k]), 3.5) << "mode " << k + 1 << ", refinement " << r;
+
+  // p = 3: converged to the Timoshenko beam.
+  const auto f = bending_frequencies<2>(solid_scene("plane stress", 0, 140, 1, 1, 3), 5);
+  for (unsigned int k = 0; k < 5; ++k)
+    {
+      EXPECT_LT(correction[k], -1e-4) << "mode " << k + 1 << ": the Timoshenko beam is softer";
+      EXPECT_LT(std::abs(f[k] / f_T[k] - 1), 2e-3 * std::abs(correction[k])) << "mode " << k + 1;
+    }
+}
+
+// The 3D strip without Poisson's ratio bends as the plane-stress strip does
+// (the same frequencies on the same x-z mesh), and between its bending modes
+// lies the first torsion mode, classified by its twist across the width
+// near the St. Venant frequency of the clamped thin strip,
+//   f_t = 1/(2L) sqrt(G J / (ρ I_p)),  J = b h³/3 (1 − 0.630 h/b),
+//   I_p = (b h³ + h b³)/12,
+// and above it by the warping the clamped faces prevent (~1 %) and the
+// coarse mesh across the width.
+TEST(SolidModes, ThreeDimensionalStripBendsAsThePlaneStressStripAndTwistsAsAThinStrip)
+{
+  const Scene scene3 = solid_scene("3d", 0, 70, 4, 1, 2);
+  const SolidModel<3> model(scene3, MPI_COMM_WORLD);
+  const SolidModes modes = compute_solid_modes(model, 5);
+  const auto f2          = bending_frequencies<2>(solid_scene("plane stress", 0, 70, 1, 1, 2), 5);
+  ASSERT_EQ(modes.bending.size(), 5u);
+  for (unsigned int k = 0; k < 5; ++k)
+    {
+      const SolidMode &m = modes.all[modes.bending[k]];
+      EXPECT_NEAR(m.omega / (2 * M_PI) / f2[k], 1., 1e-5) << "bending mode " << k + 1;
+      EXPECT_GT(m.energy_share[2], 0.99) << "bending mode " << k + 1;
+      EXPECT_LT(m.twist_correlation, 1e-10) << "bending mode " << k + 1;
+    }
+
+  const BeamData &d = scene3.beam;
+  const double G = d.youngs_modulus / 2, J = d.width * std::pow(d.thickness, 3) / 3 * (1 - 0.630 * d.thickness / d.width);
+  const double I_p = (d.width * std::pow(d.thickness, 3) + d.thickness * std::pow(d.width, 3)) / 12;
+  const double f_t = std::sqrt(G * J / (d.density * I_p)) / (2 * d.length);
+  unsigned int n_torsion = 0;
+  for (const SolidMode &m : modes.all)
+    if (m.shape == "torsion")
+      {
+        ++n_torsion;
+        const double ratio = m.omega / (2 * M_PI) / f_t;
+        EXPECT_GT(ratio, 1.) << "torsion at " << m.omega / (2 * M_PI) << " Hz, St. Venant " << f_t;
+        EXPECT_LT(ratio, 1.1) << "torsion at " << m.omega / (2 * M_PI) << " Hz, St. Venant " << f_t;
+      }
+  EXPECT_EQ(n_torsion, 1u) << "below the fifth bending mode (3.65 kHz) the strip has one torsion mode (~1.9 kHz)";
+}

@@ -1,0 +1,93 @@
+// `beamslider modes` on a scene with a solid (Solid/Continuum = plane stress
+// or 3d): the lowest modes of the SVK strip by SLEPc, on every MPI rank of an
+// mpirun launch (rank 0 writes the CSV and prints), classified as bending,
+// torsion, lateral or axial (fem/solid_modes.h).
+//
+//   modes.csv    mode, frequency_hz, shape, bending_index (1 … N for the
+//                bending modes the reduced model would keep, empty for the
+//                others), energy_x/y/z (shares of the kinetic energy per
+//                component), twist_correlation, vtu_scale
+//   modes.pvtu   every mode as a displacement field (scaled to a peak of 2 h,
+//                the factor in vtu_scale), one .vtu piece per rank
+#include "contact/csv_writer.h"
+#include "fem/petsc_session.h"
+#include "fem/solid_model.h"
+#include "fem/solid_modes.h"
+#include "fem/solid_output.h"
+#include "meshes/scene.h"
+#include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
+#include "verification/studies/console.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace beamslider
+{
+  namespace
+  {
+    template <int dim>
+    int solid_modes(const CommonOptions &common, const Scene &scene, const unsigned int n_bending)
+    {
+      const MPI_Comm comm = MPI_COMM_WORLD;
+      const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      std::string dir;
+      if (root)
+        dir = prepare_output_dir(common, scene, "modes");
+      dir = dealii::Utilities::MPI::broadcast(comm, dir, 0);
+
+      const auto start = std::chrono::steady_clock::now();
+      const SolidModel<dim> model(scene, comm);
+      const SolidModes modes = compute_solid_modes(model, n_bending);
+      const double seconds   = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+      std::vector<SolidField> fields;
+      std::vector<double> scales;
+      for (unsigned int k = 0; k < modes.all.size(); ++k)
+        {
+          const double peak = modes.all[k].vector.linfty_norm(); // the largest displacement component
+          scales.push_back(2 * scene.beam.thickness / peak);
+          fields.push_back({"mode_" + std::to_string(k + 1), &modes.all[k].vector, scales.back()});
+        }
+      const std::string record = write_solid_fields(model, fields, dir, "modes");
+
+      if (root)
+        {
+          CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "shape", "bending_index", "energy_x",
+                                             "energy_y", "energy_z", "twist_correlation", "vtu_scale"});
+          for (unsigned int k = 0; k < modes.all.size(); ++k)
+            {
+              const SolidMode &m = modes.all[k];
+              const auto b       = std::find(modes.bending.begin(), modes.bending.end(), k);
+              csv.row({CsvWriter::cell(k + 1), CsvWriter::cell(m.omega / (2 * M_PI)), m.shape,
+                       b == modes.bending.end() ? "" : CsvWriter::cell(unsigned(b - modes.bending.begin() + 1)),
+                       CsvWriter::cell(m.energy_share[0]), CsvWriter::cell(m.energy_share[1]),
+                       CsvWriter::cell(m.energy_share[2]), CsvWriter::cell(m.twist_correlation),
+                       CsvWriter::cell(scales[k])});
+            }
+          csv.close();
+          console() << "Modes of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
+                    << model.n_cells() << " cells, FE_Q(" << scene.solid.degree << "), " << model.n_dofs()
+                    << " DoFs, nu = " << scene.solid.poissons_ratio << ", "
+                    << dealii::Utilities::MPI::n_mpi_processes(comm) << " rank(s)): " << seconds << " s\n";
+          for (unsigned int k = 0; k < modes.all.size(); ++k)
+            console() << "  mode " << k + 1 << ": " << modes.all[k].omega / (2 * M_PI) << " Hz, "
+                      << modes.all[k].shape << "\n";
+          console() << "Wrote " << dir << "/modes.csv and " << record << "\n";
+        }
+      return 0;
+    }
+  } // namespace
+
+  int run_solid_modes(const CommonOptions &common, const Scene &scene, const unsigned int n_bending)
+  {
+    // Under mpirun every rank runs this; without, MPI starts as a singleton.
+    MpiSession mpi(launched_by_mpi_launcher());
+    require_petsc();
+    return scene.solid.dimension() == 3 ? solid_modes<3>(common, scene, n_bending)
+                                        : solid_modes<2>(common, scene, n_bending);
+  }
+} // namespace beamslider
