@@ -139,8 +139,15 @@ namespace beamslider
     Vector<double> cell_force(n);
     std::vector<types::global_dof_index> dofs(n);
     std::vector<Tensor<2, dim>> grad_u(quadrature.size());
-    // Per shape function: ∇φ_i, δE_i = sym(Fᵀ∇φ_i) and C : δE_i.
-    std::vector<Tensor<2, dim>> grad_phi(n), dE(n), C_dE(n);
+    // A shape function φ_i of the vector FE_Q is e_c ⊗ N_i in one component
+    // c = c_i, so ∇φ_i = e_c ⊗ ∇N_i: per i we keep c_i and g_i = ∇N_i, and
+    // δE_i = sym(Fᵀ∇φ_i) = sym((Fᵀ e_c) ⊗ g_i), ∇φ_iᵀ∇φ_j = δ_{c_i c_j} g_i ⊗ g_j.
+    std::vector<unsigned int> component(n);
+    for (unsigned int i = 0; i < n; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+    std::vector<Tensor<1, dim>> g(n), Sg(n);
+    std::vector<Tensor<2, dim>> dE(n);
+    std::vector<double> trace_dE(n);
     const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
     const double factor    = out_of_plane_thickness();
 
@@ -159,17 +166,26 @@ namespace beamslider
               const double JxW        = fe_values.JxW(q) * factor;
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  grad_phi[i]             = fe_values[displacement].gradient(i, q);
-                  const Tensor<2, dim> FtG = transpose(F) * grad_phi[i];
-                  dE[i]                   = 0.5 * (FtG + transpose(FtG));
-                  C_dE[i]                 = lambda * trace(dE[i]) * I + 2 * mu * dE[i];
+                  g[i] = fe_values.shape_grad_component(i, q, component[i]);
+                  Tensor<1, dim> F_row; // Fᵀ e_c: row c of F
+                  for (unsigned int a = 0; a < dim; ++a)
+                    F_row[a] = F[component[i]][a];
+                  const Tensor<2, dim> FtG = outer_product(F_row, g[i]);
+                  dE[i]                    = 0.5 * (FtG + transpose(FtG));
+                  trace_dE[i]              = trace(dE[i]);
+                  Sg[i]                    = S * g[i];
                   cell_force(i) += scalar_product(S, dE[i]) * JxW;
                 }
               if (K_t)
                 for (unsigned int i = 0; i < n; ++i)
                   for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) += (scalar_product(dE[i], C_dE[j]) +
-                                          scalar_product(S, transpose(grad_phi[i]) * grad_phi[j])) * JxW;
+                    {
+                      // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j)
+                      double k_ij = lambda * trace_dE[i] * trace_dE[j] + 2 * mu * scalar_product(dE[i], dE[j]);
+                      if (component[i] == component[j])
+                        k_ij += g[i] * Sg[j];
+                      cell_matrix(i, j) += k_ij * JxW;
+                    }
             }
           cell->get_dof_indices(dofs);
           if (f && K_t)

@@ -69,6 +69,47 @@ TEST(SolidModesCommand, TwoRanksGiveTheModesOfOne)
   fs::remove_all(two);
 }
 
+// coefficients on a solid scene: plain STEP equals the exact reduced SVK
+// polynomial (two routes through the same modes), and two MPI ranks give the
+// coefficients of one to 1e-9 (every term above 1e-6 of the largest; the
+// ones that vanish by symmetry are round-off of either).
+TEST(SolidCoefficientsCommand, StepEqualsExactAndTwoRanksGiveTheCoefficientsOfOne)
+{
+  auto command = [](const std::string &method, const fs::path &dir) {
+    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "coefficients", "mueller2023-ideal-solid", "--method",
+                                    method, "--modes", "2", "--set", "Solid/Continuum=plane stress",
+                                    "--output", dir.string(), "-q"};
+  };
+  const fs::path exact = fresh_folder("solid_exact"), step = fresh_folder("solid_step"),
+                 exact2 = fresh_folder("solid_exact2");
+  ASSERT_EQ(run_clean_mpi_program(command("exact", exact)), 0);
+  ASSERT_EQ(run_clean_mpi_program(command("step", step)), 0);
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe"};
+  const auto two = command("exact", exact2);
+  args.insert(args.end(), two.begin(), two.end());
+  ASSERT_EQ(run_clean_mpi_program(args), 0);
+
+  const auto e = csv_rows(exact / "coefficients.csv"), s = csv_rows(step / "coefficients.csv"),
+             e2 = csv_rows(exact2 / "coefficients.csv");
+  ASSERT_EQ(e.size(), 9u) << "header and the 8 sorted terms of N = 2";
+  ASSERT_EQ(s.size(), e.size());
+  ASSERT_EQ(e2.size(), e.size());
+  EXPECT_EQ(e[0], (std::vector<std::string>{"n", "j", "k", "l", "value"}));
+  double largest = 0;
+  for (std::size_t r = 1; r < e.size(); ++r)
+    largest = std::max(largest, std::abs(std::stod(e[r][4])));
+  for (std::size_t r = 1; r < e.size(); ++r)
+    {
+      const double a = std::stod(e[r][4]);
+      EXPECT_NEAR(std::stod(s[r][4]), a, 1e-6 * largest) << "term " << r;
+      if (std::abs(a) > 1e-6 * largest)
+        EXPECT_NEAR(std::stod(e2[r][4]) / a, 1., 1e-9) << "term " << r;
+    }
+  EXPECT_GT(std::stod(e[1][4]), 0.) << "b_111 > 0: the clamped strip hardens";
+  for (const auto &d : {exact, step, exact2})
+    fs::remove_all(d);
+}
+
 TEST(SolidModesCommand, BadSolidSettingsAreRefusedNamingTheParameter)
 {
   const fs::path dir = fresh_folder("solid_bad");
@@ -79,6 +120,12 @@ TEST(SolidModesCommand, BadSolidSettingsAreRefusedNamingTheParameter)
     {{"--set", "Solid/Degree=0"}, "Degree"},
     {{"--slider-at", "0.3"}, "--slider-at"},
   };
+  {
+    const CliRun run = run_beamslider({"coefficients", "mueller2023-ideal-solid", "--method", "step-condensed",
+                                       "--output", dir.string()});
+    EXPECT_EQ(run.exit_code, 2);
+    EXPECT_NE(run.err.find("exact, step or ice"), std::string::npos) << run.err;
+  }
   for (const auto &[extra, name] : cases)
     {
       std::vector<std::string> args = {"modes", "mueller2023-ideal-solid", "--output", dir.string()};

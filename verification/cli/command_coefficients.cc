@@ -21,6 +21,8 @@ namespace beamslider
   {
     const Scene scene     = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     const unsigned int N  = options.n_modes ? options.n_modes : scene.discretisation.n_modes;
+    if (scene.solid.enabled())
+      return run_solid_coefficients(common, scene, options.method == "analytic" ? "exact" : options.method, N);
     require_mesh_for_modes(scene.discretisation.n_elements, N, "--modes");
     const std::string dir = prepare_output_dir(common, scene, "coefficients");
 

@@ -76,8 +76,10 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   CoefficientsOptions coefficients;
   auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
   add_common(coefficients_cmd);
-  coefficients_cmd->add_option("--method", coefficients.method, "analytic | step | step-condensed | ice")
-    ->check(CLI::IsMember({"analytic", "step", "step-condensed", "ice"}));
+  coefficients_cmd->add_option("--method", coefficients.method,
+                               "analytic | step | step-condensed | ice (a solid scene: exact | step | ice; "
+                               "analytic means exact there)")
+    ->check(CLI::IsMember({"analytic", "exact", "step", "step-condensed", "ice"}));
   coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
 
   StaticsOptions statics;

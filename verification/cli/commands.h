@@ -39,10 +39,13 @@ namespace beamslider
 
   struct CoefficientsOptions
   {
-    std::string method = "analytic"; // analytic | step | step-condensed | ice
+    std::string method = "analytic"; // analytic | step | step-condensed | ice; a solid: exact | step | ice
     unsigned int n_modes = 0;        // 0 = the scene's N
   };
   int run_coefficients(const CommonOptions &common, const CoefficientsOptions &options);
+  // A solid scene's coefficients (command_coefficients_solid.cc): exact | step | ice.
+  int run_solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
+                             unsigned int n_modes);
 
   // `beamslider statics`: load-stepped nonlinear statics of the FE beam under
   // a uniform dead line load (command_statics.cc).

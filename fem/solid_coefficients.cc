@@ -1,0 +1,236 @@
+#include "fem/solid_coefficients.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/petsc_solver.h>
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  template <int dim>
+  SolidModalCoefficients<dim>::SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes,
+                                                      const unsigned int n_modes)
+    : model(model)
+  {
+    if (n_modes > modes.bending.size())
+      throw std::invalid_argument("SolidModalCoefficients: " + std::to_string(n_modes) + " modes asked, " +
+                                  std::to_string(modes.bending.size()) + " bending modes computed");
+    for (unsigned int k = 0; k < n_modes; ++k)
+      {
+        const SolidMode &mode = modes.all[modes.bending[k]];
+        Phi.emplace_back();
+        model.reinit_vector(Phi.back());
+        Phi.back() = mode.vector;
+        Phi_ghosted.push_back(&mode.vector);
+        omegas.push_back(mode.omega);
+      }
+    model.assemble_mass_matrix(M);
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::omega() const
+  {
+    return Eigen::Map<const Eigen::VectorXd>(omegas.data(), omegas.size());
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::amplitudes(const double length) const
+  {
+    Eigen::VectorXd a(Phi.size());
+    for (unsigned int j = 0; j < Phi.size(); ++j)
+      a[j] = length / Phi[j].linfty_norm();
+    return a;
+  }
+
+  template <int dim>
+  CubicFit SolidModalCoefficients<dim>::exact_polynomial() const
+  {
+    const unsigned int N = Phi.size();
+    const auto &fe       = model.get_dof_handler().get_fe();
+    const QGauss<dim> quadrature(fe.degree + 1);
+    FEValues<dim> fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector displacement(0);
+    const double lambda = model.lame_lambda(), mu = model.lame_mu(), factor = model.out_of_plane_thickness();
+    const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
+    auto C                 = [&](const Tensor<2, dim> &X) { return lambda * trace(X) * I + 2 * mu * X; };
+
+    // Integrals per (n, j), (n, j, k), (n, j, k, l), unsymmetrised, in one flat array.
+    std::vector<double> K(N * N, 0.), Q(N * N * N, 0.), B(N * N * N * N, 0.);
+    std::vector<std::vector<Tensor<2, dim>>> G(N, std::vector<Tensor<2, dim>>(quadrature.size()));
+    std::vector<Tensor<2, dim>> e(N), Ce(N);
+    std::vector<Tensor<2, dim>> H(N * N), CH(N * N);
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (unsigned int j = 0; j < N; ++j)
+            fe_values[displacement].get_function_gradients(*Phi_ghosted[j], G[j]);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const double JxW = fe_values.JxW(q) * factor;
+              for (unsigned int j = 0; j < N; ++j)
+                {
+                  e[j]  = symmetrize(G[j][q]);
+                  Ce[j] = C(e[j]);
+                  for (unsigned int k = 0; k < N; ++k)
+                    {
+                      H[j * N + k]  = 0.5 * (transpose(G[j][q]) * G[k][q] + transpose(G[k][q]) * G[j][q]);
+                      CH[j * N + k] = C(H[j * N + k]);
+                    }
+                }
+              for (unsigned int n = 0; n < N; ++n)
+                for (unsigned int j = 0; j < N; ++j)
+                  {
+                    K[n * N + j] += scalar_product(e[n], Ce[j]) * JxW;
+                    for (unsigned int k = 0; k < N; ++k)
+                      {
+                        Q[(n * N + j) * N + k] +=
+                          (0.5 * scalar_product(CH[j * N + k], e[n]) + scalar_product(Ce[j], H[k * N + n])) * JxW;
+                        for (unsigned int l = 0; l < N; ++l)
+                          B[((n * N + j) * N + k) * N + l] += 0.5 * scalar_product(CH[j * N + k], H[l * N + n]) * JxW;
+                      }
+                  }
+            }
+        }
+    const MPI_Comm comm = model.communicator();
+    Utilities::MPI::sum(K, comm, K);
+    Utilities::MPI::sum(Q, comm, Q);
+    Utilities::MPI::sum(B, comm, B);
+
+    CubicFit fit;
+    fit.linear = Eigen::Map<const Eigen::MatrixXd>(K.data(), N, N).transpose();
+    fit.amplitudes = Eigen::VectorXd::Zero(N);
+    fit.max_relative_response = 1;
+    for (unsigned int n = 0; n < N; ++n)
+      for (unsigned int j = 0; j < N; ++j)
+        for (unsigned int k = j; k < N; ++k)
+          fit.quadratic.push_back(
+            {n, j, k, Q[(n * N + j) * N + k] + (j == k ? 0. : Q[(n * N + k) * N + j])});
+    for (unsigned int n = 0; n < N; ++n)
+      for (unsigned int j = 0; j < N; ++j)
+        for (unsigned int k = j; k < N; ++k)
+          for (unsigned int l = k; l < N; ++l)
+            {
+              std::array<unsigned int, 3> idx{{j, k, l}};
+              double value = 0;
+              do
+                value += B[((n * N + idx[0]) * N + idx[1]) * N + idx[2]];
+              while (std::next_permutation(idx.begin(), idx.end()));
+              fit.cubic.push_back({n, j, k, l, value});
+            }
+    return fit;
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::modal_force(const Eigen::VectorXd &q) const
+  {
+    PETScWrappers::MPI::Vector u, u_ghosted, f;
+    model.reinit_vector(u);
+    for (unsigned int j = 0; j < Phi.size(); ++j)
+      u.add(q[j], Phi[j]);
+    model.reinit_ghosted_vector(u_ghosted);
+    u_ghosted = u;
+    model.assemble_internal_force(u_ghosted, &f, nullptr);
+    Eigen::VectorXd p(Phi.size());
+    for (unsigned int n = 0; n < Phi.size(); ++n)
+      p[n] = Phi[n] * f;
+    return p;
+  }
+
+  template <int dim>
+  unsigned int SolidModalCoefficients<dim>::solve(const PETScWrappers::MPI::Vector &F, PETScWrappers::MPI::Vector &u)
+  {
+    ++static_solves;
+    const double relative_tolerance = 1e-10, correction_tolerance = 1e-10, min_step = 1e-4;
+    const unsigned int max_iterations = 25;
+    const double load_norm = std::max(F.l2_norm(), 1e-300);
+    double lambda = 0, step = 1;
+    unsigned int total = 0;
+    PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start;
+    PETScWrappers::MPI::SparseMatrix K;
+    model.reinit_ghosted_vector(u_ghosted);
+    model.reinit_vector(du);
+    while (lambda < 1.)
+      {
+        const double target = std::min(1., lambda + step);
+        u_start             = u;
+        bool converged      = false;
+        double relative     = 0;
+        for (unsigned int it = 0; it < max_iterations; ++it)
+          {
+            u_ghosted = u;
+            model.assemble_internal_force(u_ghosted, &f, &K);
+            residual = F;
+            residual *= target;
+            residual -= f;
+            relative = residual.l2_norm() / (target * load_norm);
+            // The residual of a thin strip cannot fall far below ε times the
+            // stiffness ratio of its membrane and bending (~1e-4 of the load
+            // at L/h = 140): converged when either it or Newton's correction
+            // relative to the displacement is small.
+            if (relative < relative_tolerance || (it > 0 && du.l2_norm() < correction_tolerance * u.l2_norm()))
+              {
+                converged = true;
+                break;
+              }
+            SolverControl control(1, 0);
+            PETScWrappers::SparseDirectMUMPS solver(control, model.communicator());
+            solver.solve(K, du, residual);
+            model.constraints().set_zero(du);
+            u += du;
+            ++linear_solves;
+            ++total;
+            if (!std::isfinite(du.l2_norm()))
+              break;
+          }
+        if (converged)
+          {
+            lambda = target;
+            step   = std::min(2 * step, 1. - lambda + 1e-15);
+          }
+        else
+          {
+            u = u_start;
+            step *= 0.5;
+            if (step < min_step)
+              {
+                std::ostringstream msg;
+                msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
+                    << " (next increment below " << min_step << "), relative residual " << relative << " after "
+                    << max_iterations << " iterations; |F| = " << load_norm << " N";
+                throw SolidStaticSolveError(msg.str());
+              }
+          }
+      }
+    return total;
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::modal_static_response(const Eigen::VectorXd &f_hat)
+  {
+    PETScWrappers::MPI::Vector load, F, u, Mu;
+    model.reinit_vector(load);
+    model.reinit_vector(F);
+    model.reinit_vector(u);
+    model.reinit_vector(Mu);
+    for (unsigned int j = 0; j < Phi.size(); ++j)
+      load.add(f_hat[j], Phi[j]);
+    M.vmult(F, load);
+    model.constraints().set_zero(F); // Φ is zero there; M's diagonal filler is not a load
+    solve(F, u);
+    M.vmult(Mu, u);
+    Eigen::VectorXd q(Phi.size());
+    for (unsigned int n = 0; n < Phi.size(); ++n)
+      q[n] = Phi[n] * Mu;
+    return q;
+  }
+
+  template class SolidModalCoefficients<2>;
+  template class SolidModalCoefficients<3>;
+} // namespace beamslider

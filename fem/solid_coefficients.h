@@ -1,0 +1,74 @@
+// Modal coefficients of the solid strip (doc/physics.md §11): the reduced
+// internal force of the SVK solid on N of its modes Φ = [φ_1 … φ_N],
+//
+//   Φᵀ f(Φ q) = K q + Σ_{j≤k} a^(n)_jk q_j q_k + Σ_{j≤k≤l} c^(n)_jkl q_j q_k q_l ,
+//
+// two ways:
+//
+//  - exactly, from the element integrals of the cubic law (the reduced SVK
+//    polynomial): with G_j = ∇φ_j, e_j = sym G_j, H_jk = sym(G_jᵀ G_k) and
+//    C:X = λ tr(X) I + 2μ X, the Green–Lagrange strain of u = Φq is
+//    E = Σ q_j e_j + ½ Σ q_j q_k H_jk and its variation along φ_n is
+//    e_n + Σ q_l H_ln, so
+//      K_nj        = ∫ e_n : C : e_j dV,
+//      q_j q_k:      ∫ ½ H_jk : C : e_n + (C : e_j) : H_kn dV,
+//      q_j q_k q_l:  ∫ ½ (C : H_jk) : H_ln dV,
+//    summed over the permutations of each sorted index set;
+//  - by the black-box procedures of reduced/cubic_fit.h on the solid: plain
+//    STEP (u = Φ q prescribed, every other DoF held: Φᵀ f(Φ q)) and ICE (the
+//    modal load M Φ f̂, the full nonlinear statics solved by Newton with load
+//    stepping and a direct parallel solve (MUMPS), q = Φᵀ M u).
+//
+// STEP on an exactly cubic model is exact, so STEP against the polynomial is
+// a check of both. The coefficients are in the units of cubic_fit.h
+// (mass-normalised modes).
+#pragma once
+
+#include "fem/solid_model.h"
+#include "fem/solid_modes.h"
+#include "reduced/cubic_fit.h"
+
+#include <Eigen/Dense>
+
+#include <stdexcept>
+
+namespace beamslider
+{
+  class SolidStaticSolveError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  template <int dim>
+  class SolidModalCoefficients
+  {
+  public:
+    // Φ: the bending modes of `modes` (modes.bending), the first n_modes.
+    SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes, unsigned int n_modes);
+
+    // The reduced SVK polynomial (fit.linear = K, fit.quadratic, fit.cubic).
+    CubicFit exact_polynomial() const;
+    // q ↦ Φᵀ f(Φ q) [N kg^-1/2] (plain STEP's callback; includes K q).
+    Eigen::VectorXd modal_force(const Eigen::VectorXd &q) const;
+    // f̂ ↦ q = Φᵀ M u with f(u) = M Φ f̂ (ICE's callback).
+    Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
+    // Solves f(u) = F (u overwritten, starting from it), load-stepped;
+    // returns Newton iterations. Throws SolidStaticSolveError.
+    unsigned int solve(const dealii::PETScWrappers::MPI::Vector &F, dealii::PETScWrappers::MPI::Vector &u);
+
+    // a_j = length / max |φ_j|: the amplitude of a peak displacement `length`.
+    Eigen::VectorXd amplitudes(double length) const;
+    Eigen::VectorXd omega() const;
+    unsigned int n_static_solves() const { return static_solves; }
+    unsigned int n_linear_solves() const { return linear_solves; }
+
+  private:
+    const SolidModel<dim> &model;
+    std::vector<dealii::PETScWrappers::MPI::Vector> Phi; // owned entries
+    std::vector<const dealii::PETScWrappers::MPI::Vector *> Phi_ghosted;
+    std::vector<double> omegas;
+    dealii::PETScWrappers::MPI::SparseMatrix M;
+    unsigned int static_solves = 0, linear_solves = 0;
+  };
+} // namespace beamslider

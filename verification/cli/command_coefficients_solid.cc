@@ -1,0 +1,110 @@
+// `beamslider coefficients` on a scene with a solid: the quadratic and cubic
+// modal coefficients of its first N bending modes (fem/solid_coefficients.h),
+// on every rank of an mpirun launch (rank 0 writes and prints).
+//
+//   --method exact  the reduced SVK polynomial, integrated from the cubic law
+//   --method step   plain STEP: u = Φ q prescribed, every other DoF held
+//   --method ice    ICE: modal loads M Φ f̂, full nonlinear statics, q = Φᵀ M u
+//
+//   coefficients.csv            n,j,k,l,value (the beam's columns and units)
+//   quadratic_coefficients.csv  n,j,k,value
+//   summary.md                  mesh, modes, method, b_111, solves, wall time
+#include "contact/output_file.h"
+#include "fem/petsc_session.h"
+#include "fem/solid_coefficients.h"
+#include "fem/solid_model.h"
+#include "fem/solid_modes.h"
+#include "meshes/scene.h"
+#include "reduced/cubic_fit.h"
+#include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
+#include "verification/studies/console.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    template <int dim>
+    int solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
+                           const unsigned int N)
+    {
+      const MPI_Comm comm = MPI_COMM_WORLD;
+      const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+      std::string dir;
+      if (root)
+        dir = prepare_output_dir(common, scene, "coefficients");
+      dir = dealii::Utilities::MPI::broadcast(comm, dir, 0);
+
+      const auto start = std::chrono::steady_clock::now();
+      const SolidModel<dim> model(scene, comm);
+      const SolidModes modes = compute_solid_modes(model, N);
+      const double modes_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      SolidModalCoefficients<dim> coefficients(model, modes, N);
+      const Eigen::VectorXd omega  = coefficients.omega();
+      const Eigen::MatrixXd omega2 = omega.array().square().matrix().asDiagonal();
+      CubicFit fit;
+      if (method == "exact")
+        fit = coefficients.exact_polynomial();
+      else if (method == "step")
+        // Amplitudes of one thickness: exact for the cubic law at any size.
+        fit = identify_cubic_step([&](const Eigen::VectorXd &q) { return coefficients.modal_force(q); },
+                                  {coefficients.amplitudes(scene.beam.thickness), omega2});
+      else
+        {
+          // Load level 1: a linear response of 0.03 h, as for the beam.
+          IceSettings ice;
+          ice.omega      = omega;
+          ice.amplitudes = coefficients.amplitudes(0.03 * scene.beam.thickness);
+          fit            = identify_cubic_ice(
+            [&](const Eigen::VectorXd &f_hat) { return coefficients.modal_static_response(f_hat); }, ice);
+        }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+      if (root)
+        {
+          write_coefficients_csv(dir + "/coefficients.csv", fit.cubic);
+          write_quadratic_coefficients_csv(dir + "/quadratic_coefficients.csv", fit.quadratic);
+          std::ostringstream summary;
+          summary << "# Modal coefficients of a solid: scene `" << scene.name << "`, method `" << method
+                  << "`, N = " << N << "\n\n"
+                  << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", FE_Q("
+                  << scene.solid.degree << "), " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
+                  << dealii::Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
+                  << "- bending modes kept (Hz):";
+          for (unsigned int k = 0; k < N; ++k)
+            summary << " " << omega[k] / (2 * M_PI);
+          summary << "\n- b_111 (= c^(1)_111) = " << fit.cubic.front().value << " 1/(s^2 m^2 kg)\n"
+                  << "- largest quadratic coefficient (0 for a flat strip): " << fit.max_abs_quadratic() << "\n"
+                  << "- nonlinear static solves: " << coefficients.n_static_solves()
+                  << ", sparse direct solves: " << coefficients.n_linear_solves() << "\n";
+          if (method == "ice")
+            summary << "- relative fit residual: " << fit.relative_fit_residual << "\n";
+          summary << "- wall time: " << seconds << " s (modes " << modes_seconds << " s)\n";
+          write_text_file(dir + "/summary.md", summary.str());
+          console() << "Coefficients of the " << scene.solid.continuum << " solid of scene '" << scene.name
+                    << "' by " << method << " (N = " << N << ", " << model.n_dofs() << " DoFs): b_111 = "
+                    << fit.cubic.front().value << ", " << seconds << " s\n"
+                    << "Wrote " << dir << "/coefficients.csv, quadratic_coefficients.csv and summary.md\n";
+        }
+      return 0;
+    }
+  } // namespace
+
+  int run_solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
+                             const unsigned int n_modes)
+  {
+    if (method != "exact" && method != "step" && method != "ice")
+      throw InputError("--method " + method + " is not for a solid scene (Solid/Continuum = '" +
+                       scene.solid.continuum + "'): use exact, step or ice");
+    MpiSession mpi(launched_by_mpi_launcher());
+    require_petsc();
+    return scene.solid.dimension() == 3 ? solid_coefficients<3>(common, scene, method, n_modes)
+                                        : solid_coefficients<2>(common, scene, method, n_modes);
+  }
+} // namespace beamslider
