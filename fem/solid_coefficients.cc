@@ -3,7 +3,6 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/petsc_solver.h>
 
 #include <algorithm>
 #include <array>
@@ -17,6 +16,7 @@ namespace beamslider
   SolidModalCoefficients<dim>::SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes,
                                                       const unsigned int n_modes)
     : model(model)
+    , statics(model)
   {
     if (n_modes > modes.bending.size())
       throw std::invalid_argument("SolidModalCoefficients: " + std::to_string(n_modes) + " modes asked, " +
@@ -144,74 +144,6 @@ namespace beamslider
   }
 
   template <int dim>
-  unsigned int SolidModalCoefficients<dim>::solve(const PETScWrappers::MPI::Vector &F, PETScWrappers::MPI::Vector &u)
-  {
-    ++static_solves;
-    const double relative_tolerance = 1e-10, correction_tolerance = 1e-10, min_step = 1e-4;
-    const unsigned int max_iterations = 25;
-    const double load_norm = std::max(F.l2_norm(), 1e-300);
-    double lambda = 0, step = 1;
-    unsigned int total = 0;
-    PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start;
-    PETScWrappers::MPI::SparseMatrix K;
-    model.reinit_ghosted_vector(u_ghosted);
-    model.reinit_vector(du);
-    while (lambda < 1.)
-      {
-        const double target = std::min(1., lambda + step);
-        u_start             = u;
-        bool converged      = false;
-        double relative     = 0;
-        for (unsigned int it = 0; it < max_iterations; ++it)
-          {
-            u_ghosted = u;
-            model.assemble_internal_force(u_ghosted, &f, &K);
-            residual = F;
-            residual *= target;
-            residual -= f;
-            relative = residual.l2_norm() / (target * load_norm);
-            // The residual of a thin strip cannot fall far below ε times the
-            // stiffness ratio of its membrane and bending (~1e-4 of the load
-            // at L/h = 140): converged when either it or Newton's correction
-            // relative to the displacement is small.
-            if (relative < relative_tolerance || (it > 0 && du.l2_norm() < correction_tolerance * u.l2_norm()))
-              {
-                converged = true;
-                break;
-              }
-            SolverControl control(1, 0);
-            PETScWrappers::SparseDirectMUMPS solver(control, model.communicator());
-            solver.solve(K, du, residual);
-            model.constraints().set_zero(du);
-            u += du;
-            ++linear_solves;
-            ++total;
-            if (!std::isfinite(du.l2_norm()))
-              break;
-          }
-        if (converged)
-          {
-            lambda = target;
-            step   = std::min(2 * step, 1. - lambda + 1e-15);
-          }
-        else
-          {
-            u = u_start;
-            step *= 0.5;
-            if (step < min_step)
-              {
-                std::ostringstream msg;
-                msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
-                    << " (next increment below " << min_step << "), relative residual " << relative << " after "
-                    << max_iterations << " iterations; |F| = " << load_norm << " N";
-                throw SolidStaticSolveError(msg.str());
-              }
-          }
-      }
-    return total;
-  }
-
-  template <int dim>
   Eigen::VectorXd SolidModalCoefficients<dim>::modal_static_response(const Eigen::VectorXd &f_hat)
   {
     PETScWrappers::MPI::Vector load, F, u, Mu;
@@ -223,7 +155,7 @@ namespace beamslider
       load.add(f_hat[j], Phi[j]);
     M.vmult(F, load);
     model.constraints().set_zero(F); // Φ is zero there; M's diagonal filler is not a load
-    solve(F, u);
+    statics.solve(F, u);
     M.vmult(Mu, u);
     Eigen::VectorXd q(Phi.size());
     for (unsigned int n = 0; n < Phi.size(); ++n)

@@ -26,20 +26,14 @@
 
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
+#include "fem/solid_statics.h"
 #include "reduced/cubic_fit.h"
 
 #include <Eigen/Dense>
 
-#include <stdexcept>
 
 namespace beamslider
 {
-  class SolidStaticSolveError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
   template <int dim>
   class SolidModalCoefficients
   {
@@ -53,15 +47,12 @@ namespace beamslider
     Eigen::VectorXd modal_force(const Eigen::VectorXd &q) const;
     // f̂ ↦ q = Φᵀ M u with f(u) = M Φ f̂ (ICE's callback).
     Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
-    // Solves f(u) = F (u overwritten, starting from it), load-stepped;
-    // returns Newton iterations. Throws SolidStaticSolveError.
-    unsigned int solve(const dealii::PETScWrappers::MPI::Vector &F, dealii::PETScWrappers::MPI::Vector &u);
 
     // a_j = length / max |φ_j|: the amplitude of a peak displacement `length`.
     Eigen::VectorXd amplitudes(double length) const;
     Eigen::VectorXd omega() const;
-    unsigned int n_static_solves() const { return static_solves; }
-    unsigned int n_linear_solves() const { return linear_solves; }
+    unsigned int n_static_solves() const { return statics.n_static_solves(); }
+    unsigned int n_linear_solves() const { return statics.n_linear_solves(); }
 
   private:
     const SolidModel<dim> &model;
@@ -69,6 +60,6 @@ namespace beamslider
     std::vector<const dealii::PETScWrappers::MPI::Vector *> Phi_ghosted;
     std::vector<double> omegas;
     dealii::PETScWrappers::MPI::SparseMatrix M;
-    unsigned int static_solves = 0, linear_solves = 0;
+    SolidStatics<dim> statics;
   };
 } // namespace beamslider

@@ -3,6 +3,9 @@
 // each step's equilibrium to the next). It is the independent check of every
 // reduced model's static response: a ROM that is right reproduces statics.csv.
 //
+// On a scene with a solid the same load path is the solid's
+// (command_statics_solid.cc).
+//
 // Sign: --line-load Q is positive downward (against +w, the direction of
 // gravity in every scene); w_mid_m is the mid-span deflection in +w, so a
 // downward load gives w_mid_m < 0.
@@ -25,6 +28,8 @@ namespace beamslider
     if (!std::isfinite(options.line_load_n_per_m) || options.line_load_n_per_m == 0)
       throw InputError("--line-load = " + std::to_string(options.line_load_n_per_m) +
                        " is not allowed: the line load must be a finite, non-zero force per length [N/m]");
+    if (scene.solid.enabled())
+      return run_solid_statics(common, scene, options);
     const std::string dir = prepare_output_dir(common, scene, "statics");
 
     const auto start = std::chrono::steady_clock::now();

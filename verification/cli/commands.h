@@ -55,6 +55,8 @@ namespace beamslider
     unsigned int n_steps     = 10; // equal load steps to Q
   };
   int run_statics(const CommonOptions &common, const StaticsOptions &options);
+  // A solid scene's statics (command_statics_solid.cc).
+  int run_solid_statics(const CommonOptions &common, const Scene &scene, const StaticsOptions &options);
 
   struct BackboneOptions
   {

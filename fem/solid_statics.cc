@@ -1,0 +1,180 @@
+#include "fem/solid_statics.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/petsc_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  template <int dim>
+  SolidStatics<dim>::SolidStatics(const SolidModel<dim> &model)
+    : model(model)
+  {}
+
+  template <int dim>
+  unsigned int SolidStatics<dim>::solve(const PETScWrappers::MPI::Vector &F, PETScWrappers::MPI::Vector &u,
+                                       const PETScWrappers::MPI::Vector *F_start)
+  {
+    ++static_solves;
+    const double relative_tolerance = 1e-10, correction_tolerance = 1e-10, min_step = 1e-4;
+    const unsigned int max_iterations = 25;
+    const double load_norm = std::max(F.l2_norm(), 1e-300);
+    double lambda = 0, step = 1;
+    unsigned int total = 0;
+    PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start, load;
+    PETScWrappers::MPI::SparseMatrix K;
+    model.reinit_ghosted_vector(u_ghosted);
+    model.reinit_vector(du);
+    while (lambda < 1.)
+      {
+        const double target = std::min(1., lambda + step);
+        // The load at this increment: F_start + target (F − F_start).
+        load = F;
+        if (F_start)
+          load.sadd(target, 1. - target, *F_start);
+        else
+          load *= target;
+        const double load_scale = std::max(load.l2_norm(), 1e-300 * load_norm);
+        u_start             = u;
+        bool converged      = false;
+        double relative     = 0;
+        for (unsigned int it = 0; it < max_iterations; ++it)
+          {
+            u_ghosted = u;
+            model.assemble_internal_force(u_ghosted, &f, &K);
+            residual = load;
+            residual -= f;
+            relative = residual.l2_norm() / load_scale;
+            // The residual of a thin strip cannot fall far below ε times the
+            // stiffness ratio of its membrane and bending (~1e-4 of the load
+            // at L/h = 140): converged when either it or Newton's correction
+            // relative to the displacement is small.
+            if (relative < relative_tolerance || (it > 0 && du.l2_norm() < correction_tolerance * u.l2_norm()))
+              {
+                converged = true;
+                break;
+              }
+            SolverControl control(1, 0);
+            PETScWrappers::SparseDirectMUMPS solver(control, model.communicator());
+            solver.solve(K, du, residual);
+            model.constraints().set_zero(du);
+            u += du;
+            ++linear_solves;
+            ++total;
+            if (!std::isfinite(du.l2_norm()))
+              break;
+          }
+        if (converged)
+          {
+            lambda = target;
+            step   = std::min(2 * step, 1. - lambda + 1e-15);
+          }
+        else
+          {
+            u = u_start;
+            step *= 0.5;
+            if (step < min_step)
+              {
+                std::ostringstream msg;
+                msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
+                    << " (next increment below " << min_step << "), relative residual " << relative << " after "
+                    << max_iterations << " iterations; |F| = " << load_norm << " N";
+                throw SolidStaticSolveError(msg.str());
+              }
+          }
+      }
+    return total;
+  }
+
+
+  template <int dim>
+  PETScWrappers::MPI::Vector SolidStatics<dim>::line_load(const double q_n_per_m) const
+  {
+    PETScWrappers::MPI::Vector F;
+    model.reinit_vector(F);
+    const auto &fe = model.get_dof_handler().get_fe();
+    const QGauss<dim - 1> quadrature(fe.degree + 1);
+    FEFaceValues<dim> fe_face(fe, quadrature, update_values | update_JxW_values);
+    const unsigned int n = fe.n_dofs_per_cell();
+    Vector<double> cell_load(n);
+    std::vector<types::global_dof_index> dofs(n);
+    // The pressure q/b on the top face (boundary id 2 dim − 1 of the
+    // generated strip); each integral carries the out-of-plane factor.
+    const double traction = q_n_per_m / model.width() * model.out_of_plane_thickness();
+    const types::boundary_id top = 2 * dim - 1;
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int face : cell->face_indices())
+          if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == top)
+            {
+              fe_face.reinit(cell, face);
+              cell_load = 0;
+              for (const unsigned int q : fe_face.quadrature_point_indices())
+                for (unsigned int i = 0; i < n; ++i)
+                  if (fe.system_to_component_index(i).first == dim - 1)
+                    cell_load(i) += traction * fe_face.shape_value(i, q) * fe_face.JxW(q);
+              cell->get_dof_indices(dofs);
+              model.constraints().distribute_local_to_global(cell_load, dofs, F);
+            }
+    F.compress(VectorOperation::add);
+    return F;
+  }
+
+  template <int dim>
+  double SolidStatics<dim>::mid_span_deflection(const PETScWrappers::MPI::Vector &u) const
+  {
+    // The cross-section x = L/2 cuts the axis-aligned cells of the strip at
+    // reference coordinate ξ_0 = (L/2 − x_0)/Δx: a quadrature on that plane
+    // of the reference cell (Gauss in the other directions) integrates u_z
+    // over the section, whether or not it is a mesh plane. A cell whose
+    // right face is the section is skipped: its neighbour has it on its left.
+    const auto &fe = model.get_dof_handler().get_fe();
+    const QGauss<dim - 1> section(fe.degree + 1);
+    double integral = 0, area = 0;
+    const double x_mid = 0.5 * model.length();
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const double x0 = cell->vertex(0)[0], dx = cell->vertex(1)[0] - x0;
+          const double xi = (x_mid - x0) / dx;
+          if (xi < 0 || xi >= 1)
+            continue;
+          std::vector<Point<dim>> points;
+          std::vector<double> weights;
+          for (unsigned int q = 0; q < section.size(); ++q)
+            {
+              Point<dim> p;
+              p[0] = xi;
+              for (unsigned int d = 1; d < dim; ++d)
+                p[d] = section.point(q)[d - 1];
+              points.push_back(p);
+              weights.push_back(section.weight(q));
+            }
+          FEValues<dim> fe_values(fe, Quadrature<dim>(points, weights), update_values);
+          fe_values.reinit(cell);
+          std::vector<Vector<double>> values(points.size(), Vector<double>(dim));
+          fe_values.get_function_values(u, values);
+          // The section's area element: the cell's extent across x.
+          double cross = 1;
+          for (unsigned int d = 1; d < dim; ++d)
+            cross *= cell->extent_in_direction(d);
+          for (unsigned int q = 0; q < points.size(); ++q)
+            {
+              integral += values[q][dim - 1] * weights[q] * cross;
+              area += weights[q] * cross;
+            }
+        }
+    const MPI_Comm comm = model.communicator();
+    return Utilities::MPI::sum(integral, comm) / Utilities::MPI::sum(area, comm);
+  }
+
+  template class SolidStatics<2>;
+  template class SolidStatics<3>;
+} // namespace beamslider
