@@ -62,6 +62,22 @@ namespace beamslider::testing
     return s.str();
   }
 
+  // A CSV file as rows of text cells, the header row first.
+  inline std::vector<std::vector<std::string>> read_csv_cells(const std::filesystem::path &path)
+  {
+    std::ifstream in(path);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);)
+      {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string c; std::getline(s, c, ',');)
+          cells.push_back(c);
+        rows.push_back(cells);
+      }
+    return rows;
+  }
+
   // A fresh, empty folder for one test.
   inline std::filesystem::path fresh_folder(const std::string &name)
   {

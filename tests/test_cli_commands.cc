@@ -49,18 +49,9 @@ namespace
   // Rows after the header, as text cells (for CSVs with names and empty cells).
   std::vector<std::vector<std::string>> text_rows(const fs::path &file)
   {
-    std::ifstream in(file);
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::vector<std::string>> rows;
-    while (std::getline(in, line))
-      {
-        std::vector<std::string> cells;
-        std::stringstream s(line);
-        for (std::string c; std::getline(s, c, ',');)
-          cells.push_back(c);
-        rows.push_back(cells);
-      }
+    auto rows = read_csv_cells(file);
+    if (!rows.empty())
+      rows.erase(rows.begin());
     return rows;
   }
 } // namespace

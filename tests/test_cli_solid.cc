@@ -16,22 +16,6 @@ using namespace beamslider::testing;
 
 namespace
 {
-  // modes.csv as rows of cells.
-  std::vector<std::vector<std::string>> csv_rows(const fs::path &file)
-  {
-    std::ifstream in(file);
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);)
-      {
-        std::vector<std::string> cells;
-        std::stringstream s(line);
-        for (std::string c; std::getline(s, c, ',');)
-          cells.push_back(c);
-        rows.push_back(cells);
-      }
-    return rows;
-  }
-
   std::vector<std::string> modes_command(const fs::path &dir)
   {
     return {BEAMSLIDER_EXECUTABLE, "modes", "mueller2023-ideal-solid", "--modes", "4", "--output", dir.string(), "-q"};
@@ -51,7 +35,7 @@ TEST(SolidModesCommand, TwoRanksGiveTheModesOfOne)
   args.insert(args.end(), command.begin(), command.end());
   ASSERT_EQ(run_clean_mpi_program(args), 0);
 
-  const auto a = csv_rows(one / "modes.csv"), b = csv_rows(two / "modes.csv");
+  const auto a = read_csv_cells(one / "modes.csv"), b = read_csv_cells(two / "modes.csv");
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GE(a.size(), 6u) << "header, four bending modes and the torsion mode between modes 3 and 4";
   EXPECT_EQ(a[0][1], "frequency_hz");
@@ -89,8 +73,8 @@ TEST(SolidCoefficientsCommand, StepEqualsExactAndTwoRanksGiveTheCoefficientsOfOn
   args.insert(args.end(), two.begin(), two.end());
   ASSERT_EQ(run_clean_mpi_program(args), 0);
 
-  const auto e = csv_rows(exact / "coefficients.csv"), s = csv_rows(step / "coefficients.csv"),
-             e2 = csv_rows(exact2 / "coefficients.csv");
+  const auto e = read_csv_cells(exact / "coefficients.csv"), s = read_csv_cells(step / "coefficients.csv"),
+             e2 = read_csv_cells(exact2 / "coefficients.csv");
   ASSERT_EQ(e.size(), 9u) << "header and the 8 sorted terms of N = 2";
   ASSERT_EQ(s.size(), e.size());
   ASSERT_EQ(e2.size(), e.size());

@@ -10,14 +10,13 @@
 //   quadratic_coefficients.csv  n,j,k,value
 //   summary.md                  mesh, modes, method, b_111, solves, wall time
 #include "contact/output_file.h"
-#include "fem/petsc_session.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
 #include "meshes/scene.h"
 #include "reduced/cubic_fit.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/mpi.h>
@@ -36,10 +35,7 @@ namespace beamslider
     {
       const MPI_Comm comm = MPI_COMM_WORLD;
       const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      std::string dir;
-      if (root)
-        dir = prepare_output_dir(common, scene, "coefficients");
-      dir = dealii::Utilities::MPI::broadcast(comm, dir, 0);
+      const std::string dir = solid_output_dir(common, scene, "coefficients");
 
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
@@ -102,9 +98,6 @@ namespace beamslider
     if (method != "exact" && method != "step" && method != "ice")
       throw InputError("--method " + method + " is not for a solid scene (Solid/Continuum = '" +
                        scene.solid.continuum + "'): use exact, step or ice");
-    MpiSession mpi(launched_by_mpi_launcher());
-    require_petsc();
-    return scene.solid.dimension() == 3 ? solid_coefficients<3>(common, scene, method, n_modes)
-                                        : solid_coefficients<2>(common, scene, method, n_modes);
+    return run_on_solid(scene, [&](auto dim) { return solid_coefficients<decltype(dim)::value>(common, scene, method, n_modes); });
   }
 } // namespace beamslider

@@ -10,13 +10,12 @@
 //   modes.pvtu   every mode as a displacement field (scaled to a peak of 2 h,
 //                the factor in vtu_scale), one .vtu piece per rank
 #include "contact/csv_writer.h"
-#include "fem/petsc_session.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
 #include "fem/solid_output.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/mpi.h>
@@ -34,10 +33,7 @@ namespace beamslider
     {
       const MPI_Comm comm = MPI_COMM_WORLD;
       const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      std::string dir;
-      if (root)
-        dir = prepare_output_dir(common, scene, "modes");
-      dir = dealii::Utilities::MPI::broadcast(comm, dir, 0);
+      const std::string dir = solid_output_dir(common, scene, "modes");
 
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
@@ -85,9 +81,6 @@ namespace beamslider
   int run_solid_modes(const CommonOptions &common, const Scene &scene, const unsigned int n_bending)
   {
     // Under mpirun every rank runs this; without, MPI starts as a singleton.
-    MpiSession mpi(launched_by_mpi_launcher());
-    require_petsc();
-    return scene.solid.dimension() == 3 ? solid_modes<3>(common, scene, n_bending)
-                                        : solid_modes<2>(common, scene, n_bending);
+    return run_on_solid(scene, [&](auto dim) { return solid_modes<decltype(dim)::value>(common, scene, n_bending); });
   }
 } // namespace beamslider

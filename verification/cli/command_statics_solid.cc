@@ -4,13 +4,12 @@
 // statics.csv has the beam's columns; w_mid_m is u_z averaged over the
 // cross-section x = L/2. statics.pvtu holds the deformed strip at every step.
 #include "contact/csv_writer.h"
-#include "fem/petsc_session.h"
 #include "fem/solid_model.h"
 #include "fem/solid_output.h"
 #include "fem/solid_statics.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/mpi.h>
@@ -27,10 +26,7 @@ namespace beamslider
     {
       const MPI_Comm comm = MPI_COMM_WORLD;
       const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
-      std::string dir;
-      if (root)
-        dir = prepare_output_dir(common, scene, "statics");
-      dir = dealii::Utilities::MPI::broadcast(comm, dir, 0);
+      const std::string dir = solid_output_dir(common, scene, "statics");
 
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
@@ -87,9 +83,6 @@ namespace beamslider
 
   int run_solid_statics(const CommonOptions &common, const Scene &scene, const StaticsOptions &options)
   {
-    MpiSession mpi(launched_by_mpi_launcher());
-    require_petsc();
-    return scene.solid.dimension() == 3 ? solid_statics<3>(common, scene, options)
-                                        : solid_statics<2>(common, scene, options);
+    return run_on_solid(scene, [&](auto dim) { return solid_statics<decltype(dim)::value>(common, scene, options); });
   }
 } // namespace beamslider
