@@ -53,12 +53,13 @@ namespace beamslider
   {
     const unsigned int N = Phi.size();
     const auto &fe       = model.get_dof_handler().get_fe();
-    const QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim> fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const Quadrature<dim> &quadrature = model.quadrature();
+    FEValues<dim> fe_values(model.mapping(), fe, quadrature, update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
-    const double lambda = model.lame_lambda(), mu = model.lame_mu(), factor = model.out_of_plane_thickness();
+    const double factor    = model.out_of_plane_thickness();
     const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
-    auto C                 = [&](const Tensor<2, dim> &X) { return lambda * trace(X) * I + 2 * mu * X; };
+    double lambda = 0, mu = 0; // of the current cell's region
+    auto C        = [&](const Tensor<2, dim> &X) { return lambda * trace(X) * I + 2 * mu * X; };
 
     // Integrals per (n, j), (n, j, k), (n, j, k, l), unsymmetrised, in one flat array.
     std::vector<double> K(N * N, 0.), Q(N * N * N, 0.), B(N * N * N * N, 0.);
@@ -68,6 +69,8 @@ namespace beamslider
     for (const auto &cell : model.get_dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          lambda = model.material(cell->material_id()).lambda;
+          mu     = model.material(cell->material_id()).mu;
           fe_values.reinit(cell);
           for (unsigned int j = 0; j < N; ++j)
             fe_values[displacement].get_function_gradients(*Phi_ghosted[j], G[j]);
@@ -102,6 +105,12 @@ namespace beamslider
     Utilities::MPI::sum(K, comm, K);
     Utilities::MPI::sum(Q, comm, Q);
     Utilities::MPI::sum(B, comm, B);
+
+    // The elastic supports' springs (linear: they add to K only).
+    if (model.elastic_supports())
+      for (unsigned int n = 0; n < N; ++n)
+        for (unsigned int j = 0; j < N; ++j)
+          K[n * N + j] += model.support_spring_product(*Phi_ghosted[n], *Phi_ghosted[j]);
 
     CubicFit fit;
     fit.linear = Eigen::Map<const Eigen::MatrixXd>(K.data(), N, N).transpose();
@@ -156,6 +165,7 @@ namespace beamslider
     M.vmult(F, load);
     model.constraints().set_zero(F); // Φ is zero there; M's diagonal filler is not a load
     statics.solve(F, u);
+    model.constraints().set_zero(u); // M's filler diagonal is no mass
     M.vmult(Mu, u);
     Eigen::VectorXd q(Phi.size());
     for (unsigned int n = 0; n < Phi.size(); ++n)

@@ -4,72 +4,216 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/grid/grid_generator.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
+#include <array>
+#include <limits>
 #include <stdexcept>
 
 namespace beamslider
 {
   using namespace dealii;
 
-  namespace
-  {
-    // The generated strip; colorize gives the faces x = 0 and x = L the
-    // boundary ids 0 and 1.
-    template <int dim>
-    void make_strip(Triangulation<dim> &tria, const BeamData &beam, const SolidData &solid)
-    {
-      std::vector<unsigned int> cells{solid.elements_along_length};
-      Point<dim> lower, upper;
-      lower[0] = 0;
-      upper[0] = beam.length;
-      if (dim == 3)
-        {
-          cells.push_back(solid.elements_across_width);
-          lower[1] = -0.5 * beam.width;
-          upper[1] = 0.5 * beam.width;
-        }
-      cells.push_back(solid.elements_through_thickness);
-      lower[dim - 1] = -0.5 * beam.thickness;
-      upper[dim - 1] = 0.5 * beam.thickness;
-      GridGenerator::subdivided_hyper_rectangle(tria, cells, lower, upper, true);
-    }
-  } // namespace
-
   template <int dim>
   SolidModel<dim>::SolidModel(const Scene &scene, MPI_Comm communicator)
     : mpi_communicator(communicator)
     , beam(scene.beam)
-    , triangulation(communicator)
-    , fe(FE_Q<dim>(scene.solid.degree), dim)
-    , dof_handler(triangulation)
+    , from_mesh(scene.solid.from_mesh())
+    , is_simplex(false)
   {
     if (!scene.solid.enabled() || scene.solid.dimension() != dim)
       throw std::invalid_argument("SolidModel<" + std::to_string(dim) + ">: the scene's Solid/Continuum is '" +
                                   scene.solid.continuum + "'");
-    const double E = beam.youngs_modulus, nu = scene.solid.poissons_ratio;
-    mu     = E / (2 * (1 + nu));
-    lambda = dim == 2 ? E * nu / (1 - nu * nu) : E * nu / ((1 + nu) * (1 - 2 * nu));
+    if (from_mesh)
+      {
+        // Every rank reads the whole mesh file (its errors then reach every
+        // rank alike), METIS partitions it, each rank keeps its part.
+        Triangulation<dim> serial;
+        groups     = make_solid_mesh(scene, serial);
+        is_simplex = serial.all_reference_cells_are_simplex();
+        GridTools::partition_triangulation(Utilities::MPI::n_mpi_processes(communicator), serial);
+        auto distributed = std::make_unique<parallel::fullydistributed::Triangulation<dim>>(communicator);
+        distributed->create_triangulation(
+          TriangulationDescription::Utilities::create_description_from_triangulation(serial, communicator));
+        triangulation = std::move(distributed);
+      }
+    else
+      {
+        auto distributed = std::make_unique<parallel::distributed::Triangulation<dim>>(communicator);
+        groups           = make_solid_mesh(scene, *distributed);
+        triangulation    = std::move(distributed);
+      }
 
-    make_strip(triangulation, beam, scene.solid);
-    dof_handler.distribute_dofs(fe);
+    const unsigned int p = scene.solid.degree;
+    if (is_simplex)
+      {
+        fe              = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
+        cell_mapping    = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+        cell_quadrature = QGaussSimplex<dim>(p + 1);
+        face_rule       = QGaussSimplex<dim - 1>(p + 1);
+      }
+    else
+      {
+        fe              = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
+        cell_mapping    = std::make_unique<MappingQ<dim>>(1);
+        cell_quadrature = QGauss<dim>(p + 1);
+        face_rule       = QGauss<dim - 1>(p + 1);
+      }
+
+    dof_handler.reinit(*triangulation);
+    dof_handler.distribute_dofs(*fe);
     owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, relevant_dofs);
 
-    clamp_constraints.reinit(relevant_dofs);
-    DoFTools::make_hanging_node_constraints(dof_handler, clamp_constraints);
-    for (const types::boundary_id face : {types::boundary_id(0), types::boundary_id(1)})
-      VectorTools::interpolate_boundary_values(dof_handler, face, Functions::ZeroFunction<dim>(dim), clamp_constraints);
+    if (scene.supports.elastic())
+      {
+        plate_axial_stiffness      = scene.supports.axial_spring_per_end();
+        plate_rotational_stiffness = scene.supports.rotational_stiffness;
+        make_end_plates(scene.solid);
+      }
+    else
+      {
+        clamp_constraints.reinit(relevant_dofs);
+        DoFTools::make_hanging_node_constraints(dof_handler, clamp_constraints);
+        for (const types::boundary_id face : groups.clamped)
+          DoFTools::make_zero_boundary_constraints(dof_handler, face, clamp_constraints);
+      }
     clamp_constraints.close();
 
     sparsity.reinit(relevant_dofs.size(), relevant_dofs.size(), relevant_dofs);
     DoFTools::make_sparsity_pattern(dof_handler, sparsity, clamp_constraints, false);
     SparsityTools::distribute_sparsity_pattern(sparsity, owned_dofs, mpi_communicator, relevant_dofs);
+  }
+
+  template <int dim>
+  void SolidModel<dim>::make_end_plates(const SolidData &)
+  {
+    // Every face DoF this rank sees (owned and ghost cells), with its
+    // support point and component.
+    const FESystem<dim> &fe = *this->fe;
+    const double h          = beam.thickness, tol = 1e-9 * h;
+    struct FaceDof
+    {
+      types::global_dof_index index;
+      unsigned int component;
+      Point<dim> point;
+    };
+    std::array<std::vector<FaceDof>, 2> face_dofs;
+    std::vector<types::global_dof_index> indices(fe.n_dofs_per_face());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() <= 1)
+            {
+              const Quadrature<dim - 1> support(fe.get_unit_face_support_points(f));
+              FEFaceValues<dim> points(*cell_mapping, fe, support, update_quadrature_points);
+              points.reinit(cell, f);
+              cell->face(f)->get_dof_indices(indices);
+              for (unsigned int i = 0; i < indices.size(); ++i)
+                face_dofs[cell->face(f)->boundary_id()].push_back(
+                  {indices[i], fe.face_system_to_component_index(i, f).first, points.quadrature_point(i)});
+            }
+
+    // The plate's nodes: u_x at z = ∓h/2 nearest y = 0, the same on every
+    // rank (the best candidate of each rank, gathered, the smallest |y|
+    // then the smallest index).
+    auto master = [&](const std::vector<FaceDof> &dofs, const double z) {
+      std::pair<double, types::global_dof_index> best{std::numeric_limits<double>::max(), 0};
+      for (const FaceDof &d : dofs)
+        if (d.component == 0 && std::abs(d.point[dim - 1] - z) < tol)
+          best = std::min(best, std::make_pair(dim == 3 ? std::abs(d.point[1]) : 0., d.index));
+      const auto all = Utilities::MPI::all_gather(mpi_communicator, best);
+      return std::min_element(all.begin(), all.end())->second;
+    };
+    for (unsigned int end = 0; end < 2; ++end)
+      plates.push_back({master(face_dofs[end], -0.5 * h), master(face_dofs[end], 0.5 * h)});
+
+    // Ghost entries for the plate's DoFs on every rank: each rank's
+    // constrained u_x read them, and the springs act on them.
+    for (const EndPlate &p : plates)
+      {
+        relevant_dofs.add_index(p.bottom);
+        relevant_dofs.add_index(p.top);
+      }
+    clamp_constraints.reinit(relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, clamp_constraints);
+    for (unsigned int end = 0; end < 2; ++end)
+      for (const FaceDof &d : face_dofs[end])
+        {
+          if (clamp_constraints.is_constrained(d.index) || d.index == plates[end].bottom || d.index == plates[end].top)
+            continue;
+          clamp_constraints.add_line(d.index);
+          if (d.component != 0)
+            continue; // u_y = u_z = 0
+          // u_x = U − θ z = (½ − z/h) u_b + (½ + z/h) u_t: u_b at z = −h/2, u_t at h/2
+          const double z = d.point[dim - 1];
+          if (std::abs(0.5 - z / h) > 1e-12)
+            clamp_constraints.add_entry(d.index, plates[end].bottom, 0.5 - z / h);
+          if (std::abs(0.5 + z / h) > 1e-12)
+            clamp_constraints.add_entry(d.index, plates[end].top, 0.5 + z / h);
+        }
+  }
+
+  template <int dim>
+  double SolidModel<dim>::support_spring_product(const PETScWrappers::MPI::Vector &a,
+                                                 const PETScWrappers::MPI::Vector &b) const
+  {
+    // ½ (2k_t) U² + ½ k_r θ² with U = (u_b + u_t)/2, θ = (u_b − u_t)/h.
+    double product = 0;
+    const double h = beam.thickness;
+    for (const EndPlate &p : plates)
+      {
+        const double Ua = 0.5 * (a(p.bottom) + a(p.top)), Ub = 0.5 * (b(p.bottom) + b(p.top));
+        const double ta = (a(p.bottom) - a(p.top)) / h, tb = (b(p.bottom) - b(p.top)) / h;
+        product += plate_axial_stiffness * Ua * Ub + plate_rotational_stiffness * ta * tb;
+      }
+    return product;
+  }
+
+  template <int dim>
+  void SolidModel<dim>::add_support_springs(const PETScWrappers::MPI::Vector &u, PETScWrappers::MPI::Vector *f,
+                                            PETScWrappers::MPI::SparseMatrix *K_t) const
+  {
+    // The springs' stiffness on (u_b, u_t): (k_a/4) [1 1; 1 1] + (k_r/h²) [1 −1; −1 1].
+    const double h = beam.thickness;
+    const double a = 0.25 * plate_axial_stiffness, r = plate_rotational_stiffness / (h * h);
+    for (const EndPlate &p : plates)
+      {
+        const types::global_dof_index dofs[2] = {p.bottom, p.top};
+        const double k[2][2] = {{a + r, a - r}, {a - r, a + r}};
+        for (unsigned int i = 0; i < 2; ++i)
+          if (owned_dofs.is_element(dofs[i]))
+            for (unsigned int j = 0; j < 2; ++j)
+              {
+                if (K_t)
+                  K_t->add(dofs[i], dofs[j], k[i][j]);
+                if (f)
+                  (*f)(dofs[i]) += k[i][j] * u(dofs[j]);
+              }
+      }
+    if (f)
+      f->compress(VectorOperation::add);
+    if (K_t)
+      K_t->compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  std::string SolidModel<dim>::element_name() const
+  {
+    return std::string(is_simplex ? "FE_SimplexP(" : "FE_Q(") + std::to_string(fe->degree) + ")";
   }
 
   template <int dim>
@@ -94,15 +238,15 @@ namespace beamslider
   void SolidModel<dim>::assemble_mass_matrix(PETScWrappers::MPI::SparseMatrix &M) const
   {
     reinit_matrix(M);
-    const QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim> fe_values(fe, quadrature, update_values | update_JxW_values);
+    const FESystem<dim> &fe = *this->fe;
+    FEValues<dim> fe_values(*cell_mapping, fe, cell_quadrature, update_values | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n);
     std::vector<types::global_dof_index> dofs(n);
-    const double rho = beam.density * out_of_plane_thickness();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          const double rho = material(cell->material_id()).density * out_of_plane_thickness();
           fe_values.reinit(cell);
           cell_matrix = 0;
           for (const unsigned int q : fe_values.quadrature_point_indices())
@@ -131,8 +275,9 @@ namespace beamslider
     if (K_t)
       reinit_matrix(*K_t);
 
-    const QGauss<dim> quadrature(fe.degree + 1);
-    FEValues<dim> fe_values(fe, quadrature, update_gradients | update_JxW_values);
+    const FESystem<dim> &fe = *this->fe;
+    const Quadrature<dim> &quadrature = cell_quadrature;
+    FEValues<dim> fe_values(*cell_mapping, fe, quadrature, update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector displacement(0);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double> cell_matrix(n, n);
@@ -154,6 +299,8 @@ namespace beamslider
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          const SolidMaterial &law = material(cell->material_id());
+          const double lambda = law.lambda, mu = law.mu;
           fe_values.reinit(cell);
           fe_values[displacement].get_function_gradients(u, grad_u);
           cell_matrix = 0;
@@ -199,8 +346,11 @@ namespace beamslider
       f->compress(VectorOperation::add);
     if (K_t)
       K_t->compress(VectorOperation::add);
+    if (!plates.empty())
+      add_support_springs(u, f, K_t);
   }
 
   template class SolidModel<2>;
   template class SolidModel<3>;
 } // namespace beamslider
+

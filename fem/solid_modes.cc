@@ -20,25 +20,30 @@ namespace beamslider
 
   namespace
   {
-    // ∫ ρ φ_c² dV per component, ∫ ρ φ_z y dV and ∫ ρ y² dV (3D), and
-    // ∫ ρ φ_z (L − x) dV (for the sign), summed over the ranks.
+    // ∫ ρ φ_c² dV per component, ∫ ρ φ_z y dV and ∫ ρ y² dV (3D),
+    // ∫ ρ φ_z (L − x) dV (for the sign) and ∫ ρ φ_z y ∂φ_z/∂y dV (3D),
+    // summed over the ranks.
     template <int dim>
-    std::array<double, 6> energy_integrals(const SolidModel<dim> &model, const PETScWrappers::MPI::Vector &phi)
+    std::array<double, 7> energy_integrals(const SolidModel<dim> &model, const PETScWrappers::MPI::Vector &phi)
     {
       const auto &fe = model.get_dof_handler().get_fe();
-      const QGauss<dim> quadrature(fe.degree + 1);
-      FEValues<dim> fe_values(fe, quadrature, update_values | update_quadrature_points | update_JxW_values);
+      const Quadrature<dim> &quadrature = model.quadrature();
+      FEValues<dim> fe_values(model.mapping(), fe, quadrature,
+                              update_values | update_gradients | update_quadrature_points | update_JxW_values);
       const FEValuesExtractors::Vector displacement(0);
       std::vector<Tensor<1, dim>> values(quadrature.size());
-      std::array<double, 6> sums{};
+      std::vector<Tensor<2, dim>> gradients(quadrature.size());
+      std::array<double, 7> sums{};
       for (const auto &cell : model.get_dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           {
+            const double rho = model.material(cell->material_id()).density;
             fe_values.reinit(cell);
             fe_values[displacement].get_function_values(phi, values);
+            fe_values[displacement].get_function_gradients(phi, gradients);
             for (const unsigned int q : fe_values.quadrature_point_indices())
               {
-                const double dm = model.density() * fe_values.JxW(q);
+                const double dm = rho * fe_values.JxW(q);
                 for (unsigned int c = 0; c < dim; ++c)
                   sums[c] += dm * values[q][c] * values[q][c];
                 sums[5] += dm * values[q][dim - 1] * (model.length() - fe_values.quadrature_point(q)[0]);
@@ -47,12 +52,13 @@ namespace beamslider
                     const double y = fe_values.quadrature_point(q)[1];
                     sums[3] += dm * values[q][dim - 1] * y;
                     sums[4] += dm * y * y;
+                    sums[6] += dm * values[q][dim - 1] * y * gradients[q][dim - 1][1];
                   }
               }
           }
-      std::array<double, 6> total;
-      Utilities::MPI::sum(ArrayView<const double>(sums.data(), 6), model.communicator(),
-                          ArrayView<double>(total.data(), 6));
+      std::array<double, 7> total;
+      Utilities::MPI::sum(ArrayView<const double>(sums.data(), 7), model.communicator(),
+                          ArrayView<double>(total.data(), 7));
       return total;
     }
 
@@ -60,7 +66,7 @@ namespace beamslider
     template <int dim>
     double classify(const SolidModel<dim> &model, SolidMode &mode)
     {
-      const std::array<double, 6> s = energy_integrals(model, mode.vector);
+      const std::array<double, 7> s = energy_integrals(model, mode.vector);
       double all = 0;
       for (unsigned int c = 0; c < dim; ++c)
         all += s[c];
@@ -68,13 +74,16 @@ namespace beamslider
       for (unsigned int c = 0; c < dim; ++c)
         mode.energy_share[dim == 3 ? c : 2 * c] = s[c] / all; // 2D: x, z
       mode.twist_correlation = dim == 3 ? s[3] * s[3] / (s[dim - 1] * s[4]) : 0.;
+      mode.width_order       = dim == 3 ? s[6] / s[dim - 1] : 0.;
       const auto &e          = mode.energy_share;
       if (e[0] >= e[1] && e[0] >= e[2])
         mode.shape = "axial";
       else if (e[1] >= e[2])
         mode.shape = "lateral";
+      else if (mode.width_order > 1.5)
+        mode.shape = "plate";
       else
-        mode.shape = mode.twist_correlation > 0.5 ? "torsion" : "bending";
+        mode.shape = mode.twist_correlation > 0.5 || mode.width_order > 0.5 ? "torsion" : "bending";
       return s[5];
     }
 
@@ -154,8 +163,12 @@ namespace beamslider
           {
             SolidMode mode;
             mode.omega = std::sqrt(std::max(eigenvalues[i], 0.));
+            // φᵀ M φ = 1 on the free DoFs (M's constrained rows hold a
+            // filler diagonal), then the constrained ones follow them.
+            model.constraints().set_zero(vectors[i]);
             M.vmult(Mphi, vectors[i]);
-            vectors[i] /= std::sqrt(vectors[i] * Mphi); // φᵀ M φ = 1
+            vectors[i] /= std::sqrt(vectors[i] * Mphi);
+            model.distribute(vectors[i]);
             model.reinit_ghosted_vector(mode.vector);
             mode.vector = vectors[i];
             // The sign: ∫ ρ φ_z (L − x) dV > 0, as the beam's modes

@@ -8,10 +8,18 @@
 // component in 3D, its correlation with y across the width,
 //   c = (∫ ρ φ_z y)² / (∫ ρ φ_z² · ∫ ρ y²),
 // which is 1 for a twist φ_z = θ(x) y and 0 for bending, whose φ_z is even
-// in y on the symmetric strip. The shape is
+// in y on the symmetric strip, but misses a twist whose angle changes sign
+// along x (the second torsion mode); and the order of φ_z across the width,
+//   k = ∫ ρ φ_z y ∂φ_z/∂y dV / ∫ ρ φ_z² dV,
+// which is 0 for a φ_z uniform across the width (bending, but for the slight
+// anticlastic curvature), 1 for φ_z ∝ y (a twist, whatever its shape along
+// x) and 2 for φ_z ∝ y² − b²/12 (the strip bent across its width). The
+// shape is
 //   axial    most energy in x,
 //   lateral  most in y (3D: in-plane bending across the width),
-//   torsion  most in z with c > ½,
+//   plate    most in z with k > 1.5: bent across the width, a plate mode no
+//            beam has,
+//   torsion  most in z with c > ½ or k > ½,
 //   bending  most in z otherwise (the beam's w modes).
 #pragma once
 
@@ -29,6 +37,7 @@ namespace beamslider
     std::string shape;                 // bending | torsion | lateral | axial
     std::array<double, 3> energy_share; // of x, y, z (2D: x, z, 0) [-]
     double twist_correlation = 0;      // c above (3D), 0 in 2D
+    double width_order       = 0;      // k above (3D), 0 in 2D
     dealii::PETScWrappers::MPI::Vector vector; // mass-normalised, ghosted
   };
 

@@ -65,7 +65,9 @@ namespace beamslider
     Vector<float> owner(model.get_dof_handler().get_triangulation().n_active_cells());
     owner = static_cast<float>(rank);
     data_out.add_data_vector(owner, "rank");
-    data_out.build_patches(model.get_dof_handler().get_fe().degree);
+    // Simplex cells are written as they are (deal.II subdivides only
+    // hypercubes); a hex cell of degree p as p^dim sub-cells.
+    data_out.build_patches(model.mapping(), model.simplex() ? 1 : model.get_dof_handler().get_fe().degree);
 
 
 

@@ -66,6 +66,7 @@ namespace beamslider
             solver.solve(K, du, residual);
             model.constraints().set_zero(du);
             u += du;
+            model.distribute(u); // an elastic end's face follows its plate
             ++linear_solves;
             ++total;
             if (!std::isfinite(du.l2_norm()))
@@ -97,29 +98,37 @@ namespace beamslider
   template <int dim>
   PETScWrappers::MPI::Vector SolidStatics<dim>::line_load(const double q_n_per_m) const
   {
+    const auto top = model.loaded_boundary();
+    if (!top)
+      throw InputError("Parameter 'Solid/Loaded boundary': the solid mesh has no boundary face in that group, so the "
+                       "line load has nowhere to press; name the top face's physical group");
     PETScWrappers::MPI::Vector F;
     model.reinit_vector(F);
     const auto &fe = model.get_dof_handler().get_fe();
-    const QGauss<dim - 1> quadrature(fe.degree + 1);
-    FEFaceValues<dim> fe_face(fe, quadrature, update_values | update_JxW_values);
+    FEFaceValues<dim> fe_face(model.mapping(), fe, model.face_quadrature(),
+                              update_values | update_normal_vectors | update_JxW_values);
     const unsigned int n = fe.n_dofs_per_cell();
     Vector<double> cell_load(n);
     std::vector<types::global_dof_index> dofs(n);
-    // The pressure q/b on the top face (boundary id 2 dim − 1 of the
-    // generated strip); each integral carries the out-of-plane factor.
+    // The pressure q/b on the top face, per unit of its area projected on
+    // the x–y plane (the factor |N_z|): Q N per metre of the beam's line
+    // on a flat strip and on an arch alike. Each integral carries the
+    // out-of-plane factor.
     const double traction = q_n_per_m / model.width() * model.out_of_plane_thickness();
-    const types::boundary_id top = 2 * dim - 1;
     for (const auto &cell : model.get_dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int face : cell->face_indices())
-          if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == top)
+          if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == *top)
             {
               fe_face.reinit(cell, face);
               cell_load = 0;
               for (const unsigned int q : fe_face.quadrature_point_indices())
-                for (unsigned int i = 0; i < n; ++i)
-                  if (fe.system_to_component_index(i).first == dim - 1)
-                    cell_load(i) += traction * fe_face.shape_value(i, q) * fe_face.JxW(q);
+                {
+                  const double projected = std::abs(fe_face.normal_vector(q)[dim - 1]) * fe_face.JxW(q);
+                  for (unsigned int i = 0; i < n; ++i)
+                    if (fe.system_to_component_index(i).first == dim - 1)
+                      cell_load(i) += traction * fe_face.shape_value(i, q) * projected;
+                }
               cell->get_dof_indices(dofs);
               model.constraints().distribute_local_to_global(cell_load, dofs, F);
             }
@@ -130,11 +139,19 @@ namespace beamslider
   template <int dim>
   double SolidStatics<dim>::mid_span_deflection(const PETScWrappers::MPI::Vector &u) const
   {
+    return model.generated() ? section_average_on_strip(u) : section_average_by_points(u);
+  }
+
+  template <int dim>
+  double SolidStatics<dim>::section_average_on_strip(const PETScWrappers::MPI::Vector &u) const
+  {
     // The cross-section x = L/2 cuts the axis-aligned cells of the strip at
     // reference coordinate ξ_0 = (L/2 − x_0)/Δx: a quadrature on that plane
     // of the reference cell (Gauss in the other directions) integrates u_z
     // over the section, whether or not it is a mesh plane. A cell whose
     // right face is the section is skipped: its neighbour has it on its left.
+    // (On the arch the cells are sheared vertically, which keeps x linear
+    // in ξ_0 and the section's extent in z.)
     const auto &fe = model.get_dof_handler().get_fe();
     const QGauss<dim - 1> section(fe.degree + 1);
     double integral = 0, area = 0;
@@ -157,7 +174,7 @@ namespace beamslider
               points.push_back(p);
               weights.push_back(section.weight(q));
             }
-          FEValues<dim> fe_values(fe, Quadrature<dim>(points, weights), update_values);
+          FEValues<dim> fe_values(model.mapping(), fe, Quadrature<dim>(points, weights), update_values);
           fe_values.reinit(cell);
           std::vector<Vector<double>> values(points.size(), Vector<double>(dim));
           fe_values.get_function_values(u, values);
@@ -173,6 +190,72 @@ namespace beamslider
         }
     const MPI_Comm comm = model.communicator();
     return Utilities::MPI::sum(integral, comm) / Utilities::MPI::sum(area, comm);
+  }
+
+  template <int dim>
+  double SolidStatics<dim>::section_average_by_points(const PETScWrappers::MPI::Vector &u) const
+  {
+    // A mesh file's cells need not follow the section: u_z is sampled at
+    // 8 Gauss points per direction of the nominal section
+    // y ∈ [−b/2, b/2], z ∈ [−h/2, h/2] at x = L/2, each point in the first
+    // owned cell that contains it (a point on a face between ranks is
+    // counted once per rank that finds it, the average taken per point).
+    const QGauss<dim - 1> rule(8);
+    std::vector<Point<dim>> points;
+    for (unsigned int q = 0; q < rule.size(); ++q)
+      {
+        Point<dim> p;
+        p[0] = 0.5 * model.length();
+        if (dim == 3)
+          p[1] = (rule.point(q)[0] - 0.5) * model.width();
+        p[dim - 1] = (rule.point(q)[dim - 2] - 0.5) * model.thickness();
+        points.push_back(p);
+      }
+    std::vector<double> sum(points.size(), 0.), count(points.size(), 0.);
+    const auto &fe = model.get_dof_handler().get_fe();
+    Vector<double> cell_values(fe.n_dofs_per_cell());
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto box = cell->bounding_box();
+          for (unsigned int k = 0; k < points.size(); ++k)
+            {
+              if (count[k] > 0 || !box.point_inside(points[k], 1e-12))
+                continue;
+              Point<dim> unit;
+              try
+                {
+                  unit = model.mapping().transform_real_to_unit_cell(cell, points[k]);
+                }
+              catch (const typename Mapping<dim>::ExcTransformationFailed &)
+                {
+                  continue;
+                }
+              if (!cell->reference_cell().contains_point(unit, 1e-10))
+                continue;
+              FEValues<dim> fe_values(model.mapping(), fe, Quadrature<dim>(std::vector<Point<dim>>{unit}),
+                                      update_values);
+              fe_values.reinit(cell);
+              std::vector<Vector<double>> value(1, Vector<double>(dim));
+              fe_values.get_function_values(u, value);
+              sum[k] += value[0][dim - 1];
+              count[k] += 1;
+            }
+        }
+    const MPI_Comm comm = model.communicator();
+    Utilities::MPI::sum(sum, comm, sum);
+    Utilities::MPI::sum(count, comm, count);
+    double integral = 0, weight = 0;
+    for (unsigned int k = 0; k < points.size(); ++k)
+      {
+        if (count[k] == 0)
+          throw InputError("The solid mesh does not contain the point " + std::to_string(points[k][0]) +
+                           " m on its mid-span section x = L/2: the statics' mid-span deflection samples the "
+                           "section of the Beam subsection's width and thickness, which the mesh must fill");
+        integral += rule.weight(k) * sum[k] / count[k];
+        weight += rule.weight(k);
+      }
+    return integral / weight;
   }
 
   template class SolidStatics<2>;

@@ -37,16 +37,23 @@ namespace beamslider
                        const dealii::PETScWrappers::MPI::Vector *F_start = nullptr);
 
     // A uniform dead line load of q_n_per_m [N/m] along the strip in +z,
-    // applied as the pressure q/b on the top face z = h/2 (in 2D, q per
-    // length of the top edge).
+    // applied as the pressure q/b on the top face (z = h/2 of the generated
+    // strip, Solid/Loaded boundary of a mesh; in 2D, q per length of the
+    // top edge), per unit of the face projected on the x–y plane. Throws
+    // InputError if the mesh has no loaded face.
     dealii::PETScWrappers::MPI::Vector line_load(double q_n_per_m) const;
-    // The mid-span deflection [m]: u_z averaged over the cross-section x = L/2.
+    // The mid-span deflection [m]: u_z averaged over the cross-section x = L/2
+    // (exactly on the generated strip, by 8 Gauss points per direction of
+    // the Beam's b × h section on a mesh file).
     double mid_span_deflection(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
 
     unsigned int n_static_solves() const { return static_solves; }
     unsigned int n_linear_solves() const { return linear_solves; }
 
   private:
+    double section_average_on_strip(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
+    double section_average_by_points(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
+
     const SolidModel<dim> &model;
     unsigned int static_solves = 0, linear_solves = 0;
   };

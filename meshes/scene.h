@@ -270,8 +270,24 @@ namespace beamslider
     unsigned int elements_along_length      = 70; // generated strip's elements in x
     unsigned int elements_across_width      = 4;  // ... in y (3d only)
     unsigned int elements_through_thickness = 1;  // ... in z
+    // A shallow arch: the generated strip's mid-surface lifted to
+    // z₀(x) = rise · sin(π x / L) (0: the flat strip) [m].
+    double arch_rise = 0;
+
+    // A solid mesh instead of the generated strip (fem/solid_mesh.h):
+    // Gmsh .msh (format 2 or 4) or Abaqus .inp, absolute path; empty: generated.
+    std::string mesh_file;
+    // Physical groups of the mesh's boundary faces, by Gmsh name or tag:
+    // the clamped ones (u = 0) and the one the line load presses on.
+    std::vector<std::string> clamped_boundaries{"clamp_left", "clamp_right"};
+    std::string loaded_boundary = "top";
+    // Material per cell region: "group: E nu rho" entries (name or tag);
+    // empty: every cell has the Beam's E and ρ and the ν above.
+    std::string materials;
 
     bool enabled() const { return continuum != "none"; }
+    bool from_mesh() const { return !mesh_file.empty(); }
+
     unsigned int dimension() const { return continuum == "3d" ? 3 : 2; }
   };
 

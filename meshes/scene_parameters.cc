@@ -64,6 +64,29 @@ namespace beamslider
       return value;
     }
 
+    // "a, b ,c" -> {"a", "b", "c"}; empty entries dropped.
+    std::vector<std::string> split_list(const std::string &text)
+    {
+      std::vector<std::string> items;
+      std::istringstream in(text);
+      std::string item;
+      while (std::getline(in, item, ','))
+        {
+          const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+          if (b != std::string::npos)
+            items.push_back(item.substr(b, e - b + 1));
+        }
+      return items;
+    }
+
+    std::string join(const std::vector<std::string> &items)
+    {
+      std::string text;
+      for (const std::string &item : items)
+        text += (text.empty() ? "" : ", ") + item;
+      return text;
+    }
+
     // The tables of a scene, as read: the sections by tag and the point
     // bodies by position, assembled into the beam by build_beam().
     struct SceneTables
@@ -310,6 +333,25 @@ namespace beamslider
              "elements of the generated strip in y (3d only)");
       e.bind("Elements through thickness", s.solid.elements_through_thickness, Integer(1, 1000),
              "elements of the generated strip in z");
+      e.bind("Arch rise", s.solid.arch_rise, Double(0, 1),
+             "a shallow arch: the generated strip's mid-surface at z0(x) = rise sin(pi x / L) [m], in [0, 1]; "
+             "0 is the flat strip");
+      e.bind("Mesh file", s.solid.mesh_file, Anything(),
+             "a solid mesh instead of the generated strip, a path relative to the scene file: Gmsh .msh "
+             "(format 2 or 4; hexahedra or tetrahedra in 3d, quadrilaterals or triangles in plane stress) or "
+             "Abaqus .inp. Its physical groups name the clamped faces, the loaded face and the material regions "
+             "(the entries below); the strip's axis runs along x from 0 to L, z is the beam's w direction");
+      e.declare("Clamped boundaries", join(s.solid.clamped_boundaries), dealii::Patterns::List(Anything()),
+                "with a Mesh file: the physical groups of the clamped faces (u = 0), by Gmsh name or tag, "
+                "comma-separated",
+                [&s](const std::string &text) { s.solid.clamped_boundaries = split_list(text); });
+      e.bind("Loaded boundary", s.solid.loaded_boundary, Anything(),
+             "with a Mesh file: the physical group (name or tag) of the top face that the statics line load "
+             "presses on");
+      e.bind("Materials", s.solid.materials, Anything(),
+             "with a Mesh file: one 'group: E nu rho' entry per cell region (Gmsh name or tag; E [Pa], nu [-], "
+             "rho [kg/m^3]), comma-separated; empty: every cell has Beam/Young's modulus, Beam/Density and "
+             "the Poisson's ratio above");
       e.leave();
     }
 
@@ -537,6 +579,26 @@ namespace beamslider
         s.discretisation.n_elements = b.mesh_cells.size();
     }
 
+    // Solid/Mesh file, relative to the scene file, made absolute; a missing
+    // or unreadable file is refused here, its content by fem/solid_mesh.
+    void resolve_solid_mesh(Scene &s, const std::string &scene_file)
+    {
+      if (s.solid.mesh_file.empty())
+        return;
+      namespace fs = std::filesystem;
+      fs::path mesh(s.solid.mesh_file);
+      if (mesh.is_relative())
+        mesh = fs::absolute(fs::path(scene_file).parent_path() / mesh);
+      s.solid.mesh_file = mesh.lexically_normal().string();
+      std::error_code ec;
+      if (!fs::is_regular_file(mesh, ec))
+        throw InputError("Parameter 'Solid/Mesh file': '" + s.solid.mesh_file + "'" +
+                         (fs::exists(mesh, ec) ? " is not a regular file" : " does not exist") +
+                         " (a path relative to the scene file)");
+      if (!std::ifstream(mesh))
+        throw InputError("Parameter 'Solid/Mesh file': '" + s.solid.mesh_file + "' cannot be opened (unreadable)");
+    }
+
     void require(const bool condition, const std::string &parameter, const double value, const std::string &allowed)
     {
       if (!condition)
@@ -607,11 +669,32 @@ namespace beamslider
         if (s.beam.from_mesh())
           throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum +
                            "' is not allowed with 'Beam/Mesh file': the solid is generated from a uniform strip");
-        if (s.supports.type() != "clamped")
+        if (s.supports.type() != "clamped" && (s.supports.type() != "elastic" || s.solid.from_mesh()))
           throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum + "' is not allowed with "
-                           "'Supports/Type' = " + s.supports.type() + ": the solid strip is clamped at both end "
-                           "faces; set 'Supports/Type' = clamped");
+                           "'Supports/Type' = " + s.supports.type() + ": a solid is clamped (its clamped faces, or "
+                           "both end faces of the generated strip) or, the generated strip only, on the elastic "
+                           "supports; set 'Supports/Type' = clamped" +
+                           (s.solid.from_mesh() ? "" : " or elastic"));
+        require(std::isfinite(s.solid.arch_rise) && s.solid.arch_rise >= 0 && s.solid.arch_rise <= s.beam.length / 10,
+                "Solid/Arch rise", s.solid.arch_rise,
+                "must be in [0, L/10 = " + num(s.beam.length / 10) + "] m (a shallow arch)");
+        if (s.solid.from_mesh())
+          {
+            if (s.solid.arch_rise != 0)
+              throw InputError("Parameter 'Solid/Arch rise' = " + num(s.solid.arch_rise) + " is not allowed with "
+                               "'Solid/Mesh file': the rise shapes the generated strip; a mesh carries its own shape");
+            if (s.solid.clamped_boundaries.empty())
+              throw InputError("Parameter 'Solid/Clamped boundaries' is empty: a solid mesh needs at least one "
+                               "clamped physical group (or it floats)");
+            const std::string ext = std::filesystem::path(s.solid.mesh_file).extension().string();
+            if (ext != ".msh" && ext != ".inp")
+              throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is not allowed: the "
+                               "extension must be .msh (Gmsh) or .inp (Abaqus)");
+          }
       }
+    else if (s.solid.from_mesh())
+      throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is set, but 'Solid/Continuum' is "
+                       "none: set Continuum to 3d or plane stress to use the mesh");
     require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
     require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
     require(s.beam.thickness < s.beam.length / 20., "Beam/Thickness", s.beam.thickness,
@@ -747,6 +830,7 @@ namespace beamslider
       apply_override(prm, o);
 
     build_beam(s, tables, filename, set_keys);
+    resolve_solid_mesh(s, filename);
     const auto slash = filename.find_last_of('/');
     s.name           = filename.substr(slash == std::string::npos ? 0 : slash + 1);
     if (const auto dot = s.name.rfind(".prm"); dot != std::string::npos)

@@ -100,9 +100,13 @@ TEST(SolidModesCommand, BadSolidSettingsAreRefusedNamingTheParameter)
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
     {{"--set", "Solid/Poisson's ratio=0.5"}, "Poisson's ratio"},
     {{"--set", "Solid/Continuum=2d"}, "Continuum"},
-    {{"--set", "Supports/Type=elastic"}, "Supports/Type"},
+    {{"--set", "Supports/Type=pinned"}, "Supports/Type"},
     {{"--set", "Solid/Degree=0"}, "Degree"},
     {{"--slider-at", "0.3"}, "--slider-at"},
+    {{"--set", "Solid/Arch rise=0.1"}, "Arch rise"},
+    {{"--set", "Solid/Mesh file=no-such-mesh.msh"}, "does not exist"},
+    {{"--set", "Solid/Mesh file=strip-hex.msh", "--set", "Solid/Clamped boundaries=clamp_middle"}, "clamp_middle"},
+    {{"--set", "Solid/Mesh file=strip-hex.msh", "--set", "Solid/Continuum=plane stress"}, "2D"},
   };
   {
     const CliRun run = run_beamslider({"coefficients", "mueller2023-ideal-solid", "--method", "step-condensed",

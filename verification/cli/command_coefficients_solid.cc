@@ -69,8 +69,8 @@ namespace beamslider
           std::ostringstream summary;
           summary << "# Modal coefficients of a solid: scene `" << scene.name << "`, method `" << method
                   << "`, N = " << N << "\n\n"
-                  << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", FE_Q("
-                  << scene.solid.degree << "), " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
+                  << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", "
+                  << model.element_name() << ", " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
                   << dealii::Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
                   << "- bending modes kept (Hz):";
           for (unsigned int k = 0; k < N; ++k)

@@ -6,7 +6,8 @@
 //   modes.csv    mode, frequency_hz, shape, bending_index (1 … N for the
 //                bending modes the reduced model would keep, empty for the
 //                others), energy_x/y/z (shares of the kinetic energy per
-//                component), twist_correlation, vtu_scale
+//                component), twist_correlation, width_order (fem/solid_modes.h),
+//                vtu_scale
 //   modes.pvtu   every mode as a displacement field (scaled to a peak of 2 h,
 //                the factor in vtu_scale), one .vtu piece per rank
 #include "contact/csv_writer.h"
@@ -53,7 +54,8 @@ namespace beamslider
       if (root)
         {
           CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "shape", "bending_index", "energy_x",
-                                             "energy_y", "energy_z", "twist_correlation", "vtu_scale"});
+                                             "energy_y", "energy_z", "twist_correlation", "width_order",
+                                             "vtu_scale"});
           for (unsigned int k = 0; k < modes.all.size(); ++k)
             {
               const SolidMode &m = modes.all[k];
@@ -62,11 +64,12 @@ namespace beamslider
                        b == modes.bending.end() ? "" : CsvWriter::cell(unsigned(b - modes.bending.begin() + 1)),
                        CsvWriter::cell(m.energy_share[0]), CsvWriter::cell(m.energy_share[1]),
                        CsvWriter::cell(m.energy_share[2]), CsvWriter::cell(m.twist_correlation),
+                       CsvWriter::cell(m.width_order),
                        CsvWriter::cell(scales[k])});
             }
           csv.close();
           console() << "Modes of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
-                    << model.n_cells() << " cells, FE_Q(" << scene.solid.degree << "), " << model.n_dofs()
+                    << model.n_cells() << " cells, " << model.element_name() << ", " << model.n_dofs()
                     << " DoFs, nu = " << scene.solid.poissons_ratio << ", "
                     << dealii::Utilities::MPI::n_mpi_processes(comm) << " rank(s)): " << seconds << " s\n";
           for (unsigned int k = 0; k < modes.all.size(); ++k)

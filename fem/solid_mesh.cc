@@ -1,0 +1,317 @@
+#include "fem/solid_mesh.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace beamslider
+{
+  using namespace dealii;
+
+  SolidMaterial SolidMaterial::from(const double E, const double nu, const double rho, const int dim)
+  {
+    SolidMaterial m;
+    m.mu      = E / (2 * (1 + nu));
+    m.lambda  = dim == 2 ? E * nu / (1 - nu * nu) : E * nu / ((1 + nu) * (1 - 2 * nu));
+    m.density = rho;
+    return m;
+  }
+
+  std::map<std::string, std::pair<int, unsigned int>> gmsh_physical_names(const std::string &path)
+  {
+    std::map<std::string, std::pair<int, unsigned int>> names;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind("$PhysicalNames", 0) == 0)
+        {
+          std::size_t n = 0;
+          in >> n;
+          for (std::size_t i = 0; i < n && in; ++i)
+            {
+              int d         = 0;
+              unsigned int tag = 0;
+              in >> d >> tag;
+              std::getline(in, line);
+              const auto a = line.find('"'), b = line.rfind('"');
+              if (a != std::string::npos && b > a)
+                names[line.substr(a + 1, b - a - 1)] = {d, tag};
+            }
+          break;
+        }
+    return names;
+  }
+
+  namespace
+  {
+    std::string number(const double x)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << x;
+      return s.str();
+    }
+
+    template <int dim>
+    std::string at(const Point<dim> &p)
+    {
+      std::string text = "(";
+      for (unsigned int d = 0; d < dim; ++d)
+        text += (d ? ", " : "") + number(p[d]);
+      return text + ") m";
+    }
+
+    // deal.II's message without its banner, on one line.
+    std::string reason(const ExceptionBase &e)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      std::string line;
+      for (const char c : s.str())
+        if (!std::isspace(static_cast<unsigned char>(c)))
+          line += c;
+        else if (!line.empty() && line.back() != ' ')
+          line += ' ';
+      while (!line.empty() && line.back() == ' ')
+        line.pop_back();
+      return line;
+    }
+
+    // The generated strip, clamped faces x = 0 and x = L (ids 0, 1), top
+    // face id 2 dim − 1 (colorize); an arch lifts every point by z₀(x).
+    template <int dim>
+    void make_strip(Triangulation<dim> &tria, const BeamData &beam, const SolidData &solid)
+    {
+      std::vector<unsigned int> cells{solid.elements_along_length};
+      Point<dim> lower, upper;
+      lower[0] = 0;
+      upper[0] = beam.length;
+      if (dim == 3)
+        {
+          cells.push_back(solid.elements_across_width);
+          lower[1] = -0.5 * beam.width;
+          upper[1] = 0.5 * beam.width;
+        }
+      cells.push_back(solid.elements_through_thickness);
+      lower[dim - 1] = -0.5 * beam.thickness;
+      upper[dim - 1] = 0.5 * beam.thickness;
+      GridGenerator::subdivided_hyper_rectangle(tria, cells, lower, upper, true);
+      for (const auto &cell : tria.active_cell_iterators()) // colorize numbers the cells too
+        cell->set_material_id(0);
+      if (solid.arch_rise > 0)
+        {
+          // Vertical shift: every cross-section x = const stays a section
+          // of thickness h, so the mid-span section and the top-face load
+          // keep their meaning on the arch.
+          const double rise = solid.arch_rise, L = beam.length;
+          GridTools::transform(
+            [rise, L](const Point<dim> &p) {
+              Point<dim> q = p;
+              q[dim - 1] += rise * std::sin(M_PI * p[0] / L);
+              return q;
+            },
+            tria);
+        }
+    }
+
+    // A group given by name or by tag → its tag; InputError if unknown.
+    unsigned int resolve_group(const std::string &spec, const int group_dim,
+                               const std::map<std::string, std::pair<int, unsigned int>> &names,
+                               const std::string &parameter, const std::string &mesh)
+    {
+      if (!spec.empty() && spec.find_first_not_of("0123456789") == std::string::npos)
+        return static_cast<unsigned int>(std::stoul(spec));
+      const auto it = names.find(spec);
+      if (it != names.end() && it->second.first == group_dim)
+        return it->second.second;
+      std::string known;
+      for (const auto &[name, entry] : names)
+        if (entry.first == group_dim)
+          known += (known.empty() ? "" : ", ") + ("'" + name + "' (tag " + std::to_string(entry.second) + ")");
+      throw InputError("Parameter '" + parameter + "' names the physical group '" + spec + "', which the mesh '" +
+                       mesh + "' does not have among its " + std::to_string(group_dim) + "D groups (" +
+                       (known.empty() ? std::string("it has no named ones; give tags") : "it has " + known) + ")");
+    }
+
+    // Every cell's Jacobian determinant must be positive at its vertices
+    // and its Gauss points (GridIn has already turned cells whose vertices
+    // were listed in the mirrored order; what is left is a cell folded over
+    // itself or flat). J(ξ) = Σ_v x_v ⊗ ∇N_v(ξ) with the linear element's
+    // shape functions, whose v-th belongs to vertex v.
+    template <int dim>
+    void check_cells(const Triangulation<dim> &tria, const std::string &where)
+    {
+      const bool simplex = tria.all_reference_cells_are_simplex();
+      std::unique_ptr<FiniteElement<dim>> fe;
+      std::vector<Point<dim>> points;
+      if (simplex)
+        {
+          fe     = std::make_unique<FE_SimplexP<dim>>(1);
+          points = QGaussSimplex<dim>(1).get_points(); // affine: one point tells
+        }
+      else
+        {
+          fe     = std::make_unique<FE_Q<dim>>(1);
+          points = fe->get_unit_support_points(); // the vertices
+          const QGauss<dim> gauss(2);
+          points.insert(points.end(), gauss.get_points().begin(), gauss.get_points().end());
+        }
+      unsigned int index = 0;
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          const double scale = std::pow(cell->diameter(), dim);
+          for (const Point<dim> &xi : points)
+            {
+              Tensor<2, dim> J;
+              for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+                J += outer_product(Tensor<1, dim>(cell->vertex(v)), fe->shape_grad(v, xi));
+              const double det = determinant(J);
+              if (!(det > 1e-8 * scale))
+                throw InputError(where + ": cell " + std::to_string(index) + " (centre " + at(cell->center()) +
+                                 ") is " + (det < -1e-8 * scale ? "inverted (folded over itself)" : "degenerate (flat)") +
+                                 ": its Jacobian determinant is " + number(det) + " at a point where a valid cell has > 0");
+            }
+          ++index;
+        }
+    }
+
+    template <int dim>
+    SolidMeshGroups read_mesh_file(const Scene &scene, Triangulation<dim> &tria)
+    {
+      const SolidData &solid = scene.solid;
+      const std::string &path = solid.mesh_file;
+      const std::string where = "Solid mesh '" + path + "'";
+      const bool abaqus = path.size() > 4 && path.compare(path.size() - 4, 4, ".inp") == 0;
+      const std::string kind = dim == 3 ? "3D (hexahedra or tetrahedra, for Continuum = 3d)"
+                                        : "2D (quadrilaterals or triangles, for Continuum = plane stress)";
+      // GridIn reads into a serial triangulation; the caller distributes it.
+      std::ifstream in(path);
+      if (!in)
+        throw InputError(where + " cannot be opened (unreadable)");
+      try
+        {
+          GridIn<dim> reader;
+          reader.attach_triangulation(tria);
+          if (abaqus)
+            reader.read_abaqus(in);
+          else
+            reader.read_msh(in);
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw InputError(where + " is not a " + kind + " solid mesh that deal.II's " +
+                           (abaqus ? "Abaqus" : "Gmsh") + " reader accepts: " + reason(e));
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(where + " cannot be read: " + e.what());
+        }
+      if (tria.n_active_cells() == 0)
+        throw InputError(where + " has no " + kind + " cells: a mesh of another dimension?");
+      if (!tria.all_reference_cells_are_hyper_cube() && !tria.all_reference_cells_are_simplex())
+        throw InputError(where + " mixes cell types (hexahedra with tetrahedra, or prisms/pyramids): give one "
+                                 "kind, all " + std::string(dim == 3 ? "hexahedra or all tetrahedra" :
+                                                                        "quadrilaterals or all triangles"));
+      check_cells(tria, where);
+
+      const auto names = abaqus ? std::map<std::string, std::pair<int, unsigned int>>() : gmsh_physical_names(path);
+      std::set<types::boundary_id> face_ids;
+      std::set<types::material_id> cell_ids;
+      for (const auto &cell : tria.active_cell_iterators())
+        {
+          cell_ids.insert(cell->material_id());
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              face_ids.insert(face->boundary_id());
+        }
+
+      SolidMeshGroups groups;
+      for (const std::string &spec : solid.clamped_boundaries)
+        {
+          const unsigned int tag = resolve_group(spec, dim - 1, names, "Solid/Clamped boundaries", path);
+          if (tag == 0 || !face_ids.count(tag))
+            throw InputError("Parameter 'Solid/Clamped boundaries': no boundary face of the mesh '" + path +
+                             "' carries the group '" + spec + "' (tag " + std::to_string(tag) +
+                             "); a solid mesh needs its clamped faces in a physical group");
+          groups.clamped.push_back(tag);
+        }
+      // The loaded face only matters to statics, which says so if it is missing.
+      if (!solid.loaded_boundary.empty())
+        try
+          {
+            const unsigned int tag = resolve_group(solid.loaded_boundary, dim - 1, names, "Solid/Loaded boundary", path);
+            if (tag != 0 && face_ids.count(tag))
+              groups.loaded = tag;
+          }
+        catch (const InputError &)
+          {}
+
+      if (solid.materials.empty())
+        {
+          for (const types::material_id id : cell_ids)
+            groups.materials[id] = SolidMaterial::from(scene.beam.youngs_modulus, solid.poissons_ratio,
+                                                       scene.beam.density, dim);
+          return groups;
+        }
+      std::istringstream entries(solid.materials);
+      std::string entry;
+      while (std::getline(entries, entry, ','))
+        {
+          if (entry.find_first_not_of(" \t") == std::string::npos)
+            continue;
+          const auto colon = entry.find(':');
+          std::string spec = entry.substr(0, colon);
+          spec.erase(0, spec.find_first_not_of(" \t"));
+          spec.erase(spec.find_last_not_of(" \t") + 1);
+          double E = 0, nu = 0, rho = 0;
+          std::istringstream values(colon == std::string::npos ? "" : entry.substr(colon + 1));
+          std::string rest;
+          if (colon == std::string::npos || !(values >> E >> nu >> rho) || (values >> rest))
+            throw InputError("Parameter 'Solid/Materials' = '" + solid.materials + "': the entry '" + entry +
+                             "' is not 'group: E nu rho' (three numbers)");
+          if (!(E > 0 && std::isfinite(E)) || !(nu >= 0 && nu < 0.5) || !(rho > 0 && std::isfinite(rho)))
+            throw InputError("Parameter 'Solid/Materials' entry '" + entry + "': E must be > 0 Pa, nu in [0, 0.5), "
+                             "rho > 0 kg/m^3");
+          const unsigned int tag = resolve_group(spec, dim, names, "Solid/Materials", path);
+          if (!cell_ids.count(tag))
+            throw InputError("Parameter 'Solid/Materials' gives the region '" + spec + "' (tag " +
+                             std::to_string(tag) + "), which no cell of the mesh '" + path + "' carries");
+          groups.materials[tag] = SolidMaterial::from(E, nu, rho, dim);
+        }
+      for (const types::material_id id : cell_ids)
+        if (!groups.materials.count(id))
+          throw InputError("Solid mesh '" + path + "': cells of region " + std::to_string(id) +
+                           " have no material: 'Solid/Materials' = '" + solid.materials +
+                           "' lists no 'group: E nu rho' entry for that region's name or tag");
+      return groups;
+    }
+  } // namespace
+
+  template <int dim>
+  SolidMeshGroups make_solid_mesh(const Scene &scene, Triangulation<dim> &tria)
+  {
+    if (scene.solid.from_mesh())
+      return read_mesh_file(scene, tria);
+    make_strip(tria, scene.beam, scene.solid);
+    SolidMeshGroups groups;
+    groups.clamped = {0, 1};
+    groups.loaded  = 2 * dim - 1;
+    groups.materials[0] =
+      SolidMaterial::from(scene.beam.youngs_modulus, scene.solid.poissons_ratio, scene.beam.density, dim);
+    return groups;
+  }
+
+  template SolidMeshGroups make_solid_mesh(const Scene &, Triangulation<2> &);
+  template SolidMeshGroups make_solid_mesh(const Scene &, Triangulation<3> &);
+} // namespace beamslider

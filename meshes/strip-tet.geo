@@ -1,0 +1,40 @@
+// Structured tetrahedral mesh of the clamped-clamped steel strip (SI units):
+// x in [0, L] (L = 0.14 m), y in [-b/2, b/2] (b = 0.01404 m), z in [-h/2, h/2]
+// (h = 0.001 m). Transfinite nx x ny x nz divisions without recombination, so every
+// hexahedral cell is cut into 6 linear 4-node tetrahedra (reproducible mesh).
+// Physical groups: Volume "steel" (1) = the strip; Surface "clamp_left" (1) = x = 0,
+// "clamp_right" (2) = x = L, "top" (3) = z = +h/2. No other surface is tagged.
+// Produced with gmsh 4.8.4, from meshes/:
+//   gmsh -3 strip-tet.geo -format msh41 -o strip-tet.msh   (70 x 4 x 1: 1680 tetrahedra)
+//   gmsh -3 strip-tet.geo -setnumber nx 140 -setnumber ny 8 -setnumber nz 2 -format msh41 -o strip-tet-fine.msh
+//                                                           (140 x 8 x 2: 13440 tetrahedra)
+//   gmsh -3 strip-tet.geo -format msh22 -o strip-tet-v2.msh    (70 x 4 x 1 in Gmsh format 2)
+SetFactory("OpenCASCADE");
+DefineConstant[ nx = 70, ny = 4, nz = 1 ];  // elements along x, y, z
+L = 0.14; b = 0.01404; h = 0.001;
+
+Box(1) = {0, -b/2, -h/2, L, b, h};
+
+// Each edge gets the number of nodes of its direction.
+e = 1e-6;  // selection tolerance (OpenCASCADE boxes are padded by ~1e-7)
+curves[] = Curve{:};
+For i In {0 : #curves[] - 1}
+  bb[] = BoundingBox Curve{curves[i]};
+  If (bb[3] - bb[0] > e)
+    Transfinite Curve{curves[i]} = nx + 1;
+  ElseIf (bb[4] - bb[1] > e)
+    Transfinite Curve{curves[i]} = ny + 1;
+  Else
+    Transfinite Curve{curves[i]} = nz + 1;
+  EndIf
+EndFor
+Transfinite Surface{:};
+Transfinite Volume{:};
+
+Mesh.ElementOrder = 1;
+Mesh.SaveAll = 0;
+
+Physical Volume("steel", 1) = {1};
+Physical Surface("clamp_left", 1) = Surface In BoundingBox{-e, -b/2-e, -h/2-e, e, b/2+e, h/2+e};
+Physical Surface("clamp_right", 2) = Surface In BoundingBox{L-e, -b/2-e, -h/2-e, L+e, b/2+e, h/2+e};
+Physical Surface("top", 3) = Surface In BoundingBox{-e, -b/2-e, h/2-e, L+e, b/2+e, h/2+e};
