@@ -1,16 +1,21 @@
 // `beamslider modes` on a scene with a solid (Solid/Continuum = plane stress
 // or 3d): the lowest modes of the SVK strip by SLEPc, on every MPI rank of an
 // mpirun launch (rank 0 writes the CSV and prints), classified as bending,
-// torsion, lateral or axial (fem/solid_modes.h).
+// torsion, lateral, axial or plate (fem/solid_modes.h).
 //
 //   modes.csv    mode, frequency_hz, shape, bending_index (1 … N for the
 //                bending modes the reduced model would keep, empty for the
 //                others), energy_x/y/z (shares of the kinetic energy per
 //                component), twist_correlation, width_order (fem/solid_modes.h),
 //                vtu_scale
+//   line_modes.csv  the bending modes along the beam line as a reduced model
+//                takes them (fem/solid_modal_basis.h): x_m, phi_1 … phi_N
+//                [kg^-1/2], dphi_1 … dphi_N [kg^-1/2 m^-1] at 201 points
+//                (not on an arch)
 //   modes.pvtu   every mode as a displacement field (scaled to a peak of 2 h,
 //                the factor in vtu_scale), one .vtu piece per rank
 #include "contact/csv_writer.h"
+#include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
 #include "fem/solid_output.h"
@@ -50,6 +55,11 @@ namespace beamslider
           fields.push_back({"mode_" + std::to_string(k + 1), &modes.all[k].vector, scales.back()});
         }
       const std::string record = write_solid_fields(model, fields, dir, "modes");
+      // The bending modes along the beam line, as a reduced model takes them
+      // (not on an arch, whose line is curved).
+      std::optional<ModalBasis> line;
+      if (scene.solid.arch_rise == 0)
+        line = make_solid_modal_basis(model, modes, modes.bending.size(), scene);
 
       if (root)
         {
@@ -68,6 +78,27 @@ namespace beamslider
                        CsvWriter::cell(scales[k])});
             }
           csv.close();
+          if (line)
+            {
+              std::vector<std::string> columns{"x_m"};
+              const unsigned int N = line->n_modes();
+              for (unsigned int n = 1; n <= N; ++n)
+                columns.push_back("phi_" + std::to_string(n));
+              for (unsigned int n = 1; n <= N; ++n)
+                columns.push_back("dphi_" + std::to_string(n));
+              CsvWriter line_csv(dir + "/line_modes.csv", columns);
+              Eigen::VectorXd phi, dphi;
+              for (unsigned int i = 0; i <= 200; ++i)
+                {
+                  const double x = line->length * i / 200;
+                  line->evaluate(x, phi, dphi);
+                  std::vector<double> row{x};
+                  row.insert(row.end(), phi.data(), phi.data() + N);
+                  row.insert(row.end(), dphi.data(), dphi.data() + N);
+                  line_csv.numbers(row, 10);
+                }
+              line_csv.close();
+            }
           console() << "Modes of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
                     << model.n_cells() << " cells, " << model.element_name() << ", " << model.n_dofs()
                     << " DoFs, nu = " << scene.solid.poissons_ratio << ", "
@@ -75,7 +106,7 @@ namespace beamslider
           for (unsigned int k = 0; k < modes.all.size(); ++k)
             console() << "  mode " << k + 1 << ": " << modes.all[k].omega / (2 * M_PI) << " Hz, "
                       << modes.all[k].shape << "\n";
-          console() << "Wrote " << dir << "/modes.csv and " << record << "\n";
+          console() << "Wrote " << dir << "/modes.csv, " << (line ? "line_modes.csv and " : "") << record << "\n";
         }
       return 0;
     }

@@ -1,0 +1,59 @@
+#include "fem/hermite_mode_table.h"
+
+#include "fem/fe_beam.h"
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <string>
+
+namespace beamslider
+{
+  void HermiteModeTable::evaluate(const double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) const
+  {
+    if (!(x >= 0 && x <= length))
+      throw std::out_of_range("modal basis evaluated at x = " + std::to_string(x) + " m, outside [0, " +
+                              std::to_string(length) + "] m");
+    // The interval whose left end is the last one at or before x.
+    const auto it        = std::upper_bound(vertices.begin(), vertices.end(), x);
+    const unsigned int e = std::min<unsigned int>(std::max<long>(it - vertices.begin() - 1, 0), n_intervals - 1);
+    const double h       = vertices[e + 1] - vertices[e];
+    std::array<double, 4> N, dN, ddN;
+    hermite_shape((x - vertices[e]) / h, h, N, dN, ddN);
+    phi.resize(n_modes);
+    dphi.resize(n_modes);
+    const double *c = &coefficients[4 * n_modes * e];
+    for (unsigned int n = 0; n < n_modes; ++n, c += 4)
+      {
+        phi[n]  = N[0] * c[0] + N[1] * c[1] + N[2] * c[2] + N[3] * c[3];
+        dphi[n] = dN[0] * c[0] + dN[1] * c[1] + dN[2] * c[2] + dN[3] * c[3];
+      }
+  }
+
+  ModalBasis modal_basis_from_table(std::shared_ptr<const HermiteModeTable> table, const Eigen::VectorXd &omega,
+                                    const Eigen::VectorXd &gamma, const double membrane_stiffness)
+  {
+    ModalBasis basis;
+    basis.length             = table->length;
+    basis.omega              = omega;
+    basis.gamma              = gamma;
+    basis.membrane_stiffness = membrane_stiffness;
+    const unsigned int n_modes = table->n_modes;
+    basis.stretch              = Eigen::MatrixXd::Zero(n_modes, n_modes);
+    const dealii::QGauss<1> gauss(3);
+    Eigen::VectorXd phi, dphi;
+    for (unsigned int e = 0; e < table->n_intervals; ++e)
+      {
+        const double x_0 = table->vertices[e], h = table->vertices[e + 1] - x_0;
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            table->evaluate(x_0 + gauss.point(q)[0] * h, phi, dphi);
+            basis.stretch += gauss.weight(q) * h * dphi * dphi.transpose();
+          }
+      }
+    basis.evaluate = [table](double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) { table->evaluate(x, phi, dphi); };
+    return basis;
+  }
+} // namespace beamslider
