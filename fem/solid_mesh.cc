@@ -1,5 +1,7 @@
 #include "fem/solid_mesh.h"
 
+#include "meshes/deal_ii_message.h"
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -70,22 +72,6 @@ namespace beamslider
       for (unsigned int d = 0; d < dim; ++d)
         text += (d ? ", " : "") + number(p[d]);
       return text + ") m";
-    }
-
-    // deal.II's message without its banner, on one line.
-    std::string reason(const ExceptionBase &e)
-    {
-      std::ostringstream s;
-      e.print_info(s);
-      std::string line;
-      for (const char c : s.str())
-        if (!std::isspace(static_cast<unsigned char>(c)))
-          line += c;
-        else if (!line.empty() && line.back() != ' ')
-          line += ' ';
-      while (!line.empty() && line.back() == ' ')
-        line.pop_back();
-      return line;
     }
 
     // The generated strip, clamped faces x = 0 and x = L (ids 0, 1), top
@@ -211,7 +197,7 @@ namespace beamslider
       catch (const ExceptionBase &e)
         {
           throw InputError(where + " is not a " + kind + " solid mesh that deal.II's " +
-                           (abaqus ? "Abaqus" : "Gmsh") + " reader accepts: " + reason(e));
+                           (abaqus ? "Abaqus" : "Gmsh") + " reader accepts: " + deal_ii_message(e));
         }
       catch (const std::exception &e)
         {

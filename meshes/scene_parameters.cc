@@ -7,6 +7,7 @@
 #include "scene.h"
 
 #include "meshes/beam_mesh.h"
+#include "meshes/deal_ii_message.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
@@ -355,23 +356,7 @@ namespace beamslider
       e.leave();
     }
 
-    // The additional-information part of a deal.II exception, without the
-    // banner about source files and line numbers that means nothing to a user.
-    std::string info(const dealii::ExceptionBase &e)
-    {
-      std::ostringstream s;
-      e.print_info(s);
-      // One line: deal.II indents and breaks its message.
-      std::string line;
-      for (const char c : s.str())
-        if (!std::isspace(static_cast<unsigned char>(c)))
-          line += c;
-        else if (!line.empty() && line.back() != ' ')
-          line += ' ';
-      while (!line.empty() && line.back() == ' ')
-        line.pop_back();
-      return " " + line;
-    }
+    std::string info(const dealii::ExceptionBase &e) { return " " + deal_ii_message(e); }
 
     // Applies one "Section/Sub/Name=value" override.
     void apply_override(ParameterHandler &prm, const std::string &assignment)
@@ -803,6 +788,22 @@ namespace beamslider
           throw InputError("--set \"" + o + "\": '" + it->first + "' is already set by --set \"" + it->second +
                            "\"; give each parameter once");
       }
+  }
+
+  std::string deal_ii_message(const dealii::ExceptionBase &e)
+  {
+    std::ostringstream s;
+    e.print_info(s);
+    // One line: deal.II indents and breaks its message.
+    std::string line;
+    for (const char c : s.str())
+      if (!std::isspace(static_cast<unsigned char>(c)))
+        line += c;
+      else if (!line.empty() && line.back() != ' ')
+        line += ' ';
+    while (!line.empty() && line.back() == ' ')
+      line.pop_back();
+    return line;
   }
 
   Scene read_scene(const std::string &filename, const std::vector<std::string> &overrides)

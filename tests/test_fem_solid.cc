@@ -11,6 +11,7 @@
 #include "fem/fe_modal_basis.h"
 #include "meshes/scene.h"
 #include "reduced/rom_operator.h"
+#include "tests/solid_tangent_check.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -120,52 +121,16 @@ TEST(SolidModel, TangentIsTheDerivativeOfTheInternalForce)
   for (const std::string continuum : {"plane stress", "3d"})
     {
       const Scene scene = solid_scene(continuum, 0.3, 6, 2, 1, 2);
-      auto check        = [&](auto model) {
-        Vector u, v, u_ghost, Kv;
-        model->reinit_vector(u);
-        model->reinit_vector(v);
-        std::mt19937 random(7);
-        std::uniform_real_distribution<double> unit(-1, 1);
-        for (const auto i : model->locally_owned_dofs())
-          {
-            u[i] = (model->constraints().is_constrained(i) ? 0. : 0.5e-3 * unit(random));
-            v[i] = (model->constraints().is_constrained(i) ? 0. : 1e-3 * unit(random));
-          }
-        u.compress(dealii::VectorOperation::insert);
-        v.compress(dealii::VectorOperation::insert);
-        SparseMatrix K;
-        model->reinit_ghosted_vector(u_ghost);
-        u_ghost = u;
-        model->assemble_internal_force(u_ghost, nullptr, &K);
-        model->reinit_vector(Kv);
-        K.vmult(Kv, v);
-        // f is exactly cubic in u, so the central difference D(ε) = K v + ε² c
-        // and (4 D(ε) − D(2ε)) / 3 = K v without truncation error: a step
-        // large enough for round-off not to matter.
-        auto central_difference = [&](const double eps) {
-          Vector f_plus, f_minus;
-          for (const double sign : {1., -1.})
-            {
-              Vector w = u;
-              w.add(sign * eps, v);
-              u_ghost = w;
-              model->assemble_internal_force(u_ghost, sign > 0 ? &f_plus : &f_minus, nullptr);
-            }
-          f_plus -= f_minus;
-          f_plus /= 2 * eps;
-          return f_plus;
-        };
-        Vector difference = central_difference(0.1);
-        difference *= 4. / 3;
-        difference.add(-1. / 3, central_difference(0.2));
-        difference -= Kv;
-        EXPECT_LT(difference.l2_norm(), 1e-10 * Kv.l2_norm()) << continuum;
-      };
       if (continuum == "3d")
-        check(std::make_unique<SolidModel<3>>(scene, MPI_COMM_WORLD));
+        EXPECT_LT(beamslider::testing::tangent_defect(SolidModel<3>(scene, MPI_COMM_WORLD), 7), 1e-10) << continuum;
       else
-        check(std::make_unique<SolidModel<2>>(scene, MPI_COMM_WORLD));
+        EXPECT_LT(beamslider::testing::tangent_defect(SolidModel<2>(scene, MPI_COMM_WORLD), 7), 1e-10) << continuum;
     }
+  // On the elastic supports the springs and the plates' constraints are part of it.
+  Scene elastic = solid_scene("plane stress", 0.3, 6, 1, 1, 3);
+  elastic.supports = read_scene(scene_dir + "mueller2023.prm").supports;
+  ASSERT_TRUE(elastic.supports.elastic());
+  EXPECT_LT(beamslider::testing::tangent_defect(SolidModel<2>(elastic, MPI_COMM_WORLD), 7), 1e-10) << "elastic supports";
 }
 
 // Without Poisson's ratio the plane-stress strip is what a shear-deformable
@@ -348,6 +313,38 @@ TEST(SolidCoefficients, IceOnTheStripWithoutPoissonGivesTheBeamsHardening)
 
 namespace
 {
+  // The ICE reduced model on bending modes 1 … N of a plane-stress solid and
+  // what it needs to answer a line load: the modal load p = Φᵀ F and the
+  // modes' mid-span deflections (w = w_phiᵀ q).
+  struct IceRomOnLineLoad
+  {
+    CubicFit fit;
+    Eigen::VectorXd p, w_phi;
+  };
+
+  IceRomOnLineLoad ice_rom_on_line_load(const SolidModel<2> &model, SolidStatics<2> &statics, const unsigned int N,
+                                        const Vector &F)
+  {
+    const SolidModes modes = compute_solid_modes(model, N);
+    SolidModalCoefficients coefficients(model, modes, N);
+    IceSettings ice;
+    ice.omega      = coefficients.omega();
+    ice.amplitudes = coefficients.amplitudes(0.03 * model.thickness());
+    IceRomOnLineLoad rom;
+    rom.fit = identify_cubic_ice([&](const Eigen::VectorXd &f) { return coefficients.modal_static_response(f); }, ice);
+    rom.p.resize(N);
+    rom.w_phi.resize(N);
+    for (unsigned int j = 0; j < N; ++j)
+      {
+        Vector phi;
+        model.reinit_vector(phi);
+        phi          = modes.all[modes.bending[j]].vector;
+        rom.p[j]     = phi * F;
+        rom.w_phi[j] = statics.mid_span_deflection(modes.all[modes.bending[j]].vector);
+      }
+    return rom;
+  }
+
   // The reduced model's static response: K q + Σ a q_j q_k + Σ c q_j q_k q_l = p,
   // by Newton's method with a finite-difference Jacobian (N is small),
   // continued from q_start.
@@ -440,24 +437,12 @@ TEST(SolidStatics, LoadPathFollowsTheBeamAndTheIceModelFollowsTheLoadPath)
         }
 
       // ICE on modes 1–5 and its static response to the projected load.
-      const unsigned int N   = 5;
-      const SolidModes modes = compute_solid_modes(model, N);
-      SolidModalCoefficients coefficients(model, modes, N);
-      IceSettings ice;
-      ice.omega      = coefficients.omega();
-      ice.amplitudes = coefficients.amplitudes(0.03 * h);
-      const CubicFit fit =
-        identify_cubic_ice([&](const Eigen::VectorXd &f) { return coefficients.modal_static_response(f); }, ice);
-      const Eigen::MatrixXd K = fit.linear;
-      Eigen::VectorXd p(N), w_phi(N), q = Eigen::VectorXd::Zero(N);
-      for (unsigned int j = 0; j < N; ++j)
-        {
-          Vector phi;
-          model.reinit_vector(phi);
-          phi = modes.all[modes.bending[j]].vector;
-          p[j]     = phi * F;
-          w_phi[j] = statics.mid_span_deflection(modes.all[modes.bending[j]].vector);
-        }
+      const unsigned int N         = 5;
+      const IceRomOnLineLoad rom   = ice_rom_on_line_load(model, statics, N, F);
+      const CubicFit &fit          = rom.fit;
+      const Eigen::MatrixXd K      = fit.linear;
+      const Eigen::VectorXd &p     = rom.p, &w_phi = rom.w_phi;
+      Eigen::VectorXd q            = Eigen::VectorXd::Zero(N);
       for (std::size_t k = 0; k < loads.size(); ++k)
         {
           q                  = rom_static_response(fit, K, p * (loads[k] / q_4h), q);
@@ -488,30 +473,17 @@ TEST(SolidStatics, ArchQuadraticCoefficientsGiveTheAsymmetricLoadPath)
   SolidStatics<2> statics(model);
   const double h = scene.beam.thickness;
 
-  const unsigned int N   = 5;
-  const SolidModes modes = compute_solid_modes(model, N);
-  SolidModalCoefficients coefficients(model, modes, N);
-  IceSettings ice;
-  ice.omega      = coefficients.omega();
-  ice.amplitudes = coefficients.amplitudes(0.03 * h);
-  const CubicFit fit =
-    identify_cubic_ice([&](const Eigen::VectorXd &f) { return coefficients.modal_static_response(f); }, ice);
+  const unsigned int N       = 5;
+  const double q_unit        = 1000; // N/m
+  const auto F_unit          = statics.line_load(q_unit);
+  const IceRomOnLineLoad rom = ice_rom_on_line_load(model, statics, N, F_unit);
+  const CubicFit &fit        = rom.fit;
+  const Eigen::VectorXd &p = rom.p, &w_phi = rom.w_phi;
   double largest_quadratic = 0;
   for (const auto &t : fit.quadratic)
     largest_quadratic = std::max(largest_quadratic, std::abs(t.value));
   EXPECT_GT(largest_quadratic, 0.);
 
-  const double q_unit = 1000; // N/m
-  const auto F_unit   = statics.line_load(q_unit);
-  Eigen::VectorXd p(N), w_phi(N);
-  for (unsigned int j = 0; j < N; ++j)
-    {
-      Vector phi;
-      model.reinit_vector(phi);
-      phi      = modes.all[modes.bending[j]].vector;
-      p[j]     = phi * F_unit;
-      w_phi[j] = statics.mid_span_deflection(modes.all[modes.bending[j]].vector);
-    }
   // The load of a linear mid-span deflection h/4.
   const double q_small = q_unit * 0.25 * h / std::abs(w_phi.dot(fit.linear.ldlt().solve(p)));
 
