@@ -82,7 +82,7 @@ namespace beamslider
       {
         plate_axial_stiffness      = scene.supports.axial_spring_per_end();
         plate_rotational_stiffness = scene.supports.rotational_stiffness;
-        make_end_plates(scene.solid);
+        make_end_plates();
       }
     else
       {
@@ -99,10 +99,11 @@ namespace beamslider
   }
 
   template <int dim>
-  void SolidModel<dim>::make_end_plates(const SolidData &)
+  void SolidModel<dim>::make_end_plates()
   {
-    // Every face DoF this rank sees (owned and ghost cells), with its
-    // support point and component.
+    // Every DoF this rank sees (owned and ghost cells) on the two end faces
+    // (the mesh's clamped groups, which elastic supports turn into plates),
+    // with its support point and component.
     const FESystem<dim> &fe = *this->fe;
     const double h          = beam.thickness, tol = 1e-9 * h;
     struct FaceDof
@@ -116,14 +117,15 @@ namespace beamslider
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() <= 1)
+          if (const auto end = std::find(groups.clamped.begin(), groups.clamped.end(), cell->face(f)->boundary_id());
+              cell->face(f)->at_boundary() && end != groups.clamped.end())
             {
               const Quadrature<dim - 1> support(fe.get_unit_face_support_points(f));
               FEFaceValues<dim> points(*cell_mapping, fe, support, update_quadrature_points);
               points.reinit(cell, f);
               cell->face(f)->get_dof_indices(indices);
               for (unsigned int i = 0; i < indices.size(); ++i)
-                face_dofs[cell->face(f)->boundary_id()].push_back(
+                face_dofs[end - groups.clamped.begin()].push_back(
                   {indices[i], fe.face_system_to_component_index(i, f).first, points.quadrature_point(i)});
             }
 

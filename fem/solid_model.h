@@ -145,7 +145,7 @@ namespace beamslider
     };
     std::vector<EndPlate> plates; // none: clamped
     double plate_axial_stiffness = 0, plate_rotational_stiffness = 0; // 2 k_t [N/m], k_r [N m/rad]
-    void make_end_plates(const SolidData &solid);
+    void make_end_plates();
     void add_support_springs(const dealii::PETScWrappers::MPI::Vector &u_ghosted,
                              dealii::PETScWrappers::MPI::Vector *f,
                              dealii::PETScWrappers::MPI::SparseMatrix *K_t) const;
