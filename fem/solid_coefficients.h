@@ -53,6 +53,7 @@ namespace beamslider
     Eigen::VectorXd omega() const;
     unsigned int n_static_solves() const { return statics.n_static_solves(); }
     unsigned int n_linear_solves() const { return statics.n_linear_solves(); }
+    unsigned int n_factorisations() const { return statics.n_factorisations(); }
 
   private:
     const SolidModel<dim> &model;

@@ -18,6 +18,7 @@ namespace beamslider
   template <int dim>
   SolidStatics<dim>::SolidStatics(const SolidModel<dim> &model)
     : model(model)
+    , tangent(model.communicator())
   {}
 
   template <int dim>
@@ -26,7 +27,10 @@ namespace beamslider
   {
     ++static_solves;
     const double relative_tolerance = 1e-10, correction_tolerance = 1e-10, min_step = 1e-4;
-    const unsigned int max_iterations = 25;
+    // Modified Newton: the tangent's factorisation is refreshed when the
+    // corrections stop shrinking fast, or after this many iterations on it.
+    const double slow_contraction = 0.25;
+    const unsigned int max_iterations = 40, max_iterations_per_factorisation = 10;
     const double load_norm = std::max(F.l2_norm(), 1e-300);
     double lambda = 0, step = 1;
     unsigned int total = 0;
@@ -47,10 +51,13 @@ namespace beamslider
         u_start             = u;
         bool converged      = false;
         double relative     = 0;
+        double last_correction = 0, contraction = 0;
         for (unsigned int it = 0; it < max_iterations; ++it)
           {
+            const bool refresh = !tangent.factorised() || contraction > slow_contraction ||
+                                 iterations_on_tangent >= max_iterations_per_factorisation;
             u_ghosted = u;
-            model.assemble_internal_force(u_ghosted, &f, &K);
+            model.assemble_internal_force(u_ghosted, &f, refresh ? &K : nullptr);
             residual = load;
             residual -= f;
             relative = residual.l2_norm() / load_scale;
@@ -58,21 +65,30 @@ namespace beamslider
             // stiffness ratio of its membrane and bending (~1e-4 of the load
             // at L/h = 140): converged when either it or Newton's correction
             // relative to the displacement is small.
-            if (relative < relative_tolerance || (it > 0 && du.l2_norm() < correction_tolerance * u.l2_norm()))
+            if (relative < relative_tolerance || (it > 0 && last_correction < correction_tolerance * u.l2_norm()))
               {
                 converged = true;
                 break;
               }
-            SolverControl control(1, 0);
-            PETScWrappers::SparseDirectMUMPS solver(control, model.communicator());
-            solver.solve(K, du, residual);
+            if (refresh)
+              {
+                tangent.factorise(K);
+                iterations_on_tangent = 0;
+              }
+            tangent.solve(du, residual);
             model.constraints().set_zero(du);
             u += du;
             model.distribute(u); // an elastic end's face follows its plate
             ++linear_solves;
+            ++iterations_on_tangent;
             ++total;
-            if (!std::isfinite(du.l2_norm()))
+            const double correction = du.l2_norm();
+            if (!std::isfinite(correction))
               break;
+            // The contraction of successive corrections on one factorisation
+            // (0: not known yet, after a refresh or at an increment's start).
+            contraction     = refresh || it == 0 ? 0 : correction / last_correction;
+            last_correction = correction;
           }
         if (converged)
           {
@@ -83,6 +99,8 @@ namespace beamslider
           {
             u = u_start;
             step *= 0.5;
+            // Start the smaller increment on the tangent at its start.
+            iterations_on_tangent = max_iterations_per_factorisation;
             if (step < min_step)
               {
                 std::ostringstream msg;

@@ -78,7 +78,8 @@ namespace beamslider
           summary << "\n- b_111 (= c^(1)_111) = " << fit.cubic.front().value << " 1/(s^2 m^2 kg)\n"
                   << "- largest quadratic coefficient (0 for a flat strip): " << fit.max_abs_quadratic() << "\n"
                   << "- nonlinear static solves: " << coefficients.n_static_solves()
-                  << ", sparse direct solves: " << coefficients.n_linear_solves() << "\n";
+                  << " (modified Newton: " << coefficients.n_linear_solves() << " back-substitutions on "
+                  << coefficients.n_factorisations() << " MUMPS factorisations)\n";
           if (method == "ice")
             summary << "- relative fit residual: " << fit.relative_fit_residual << "\n";
           summary << "- wall time: " << seconds << " s (modes " << modes_seconds << " s)\n";
