@@ -28,6 +28,7 @@
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -103,13 +104,24 @@ namespace beamslider
                        " moves the last member's start beyond the beam");
 
     EnsembleSettings settings;
-    settings.model.family    = options.model;
+    settings.model = scene_model(scene, options.model);
     if (options.integrator != "explicit" && options.model != "rom")
       throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
     settings.model.integrator = options.integrator;
-    settings.model.n_modes   = scene.discretisation.n_modes;
-    settings.model.n_elements = scene.discretisation.n_elements;
-    settings.model.time_step = scene_model(scene, options.model).time_step;
+    if (!options.coefficients.empty())
+      {
+        if (options.model != "rom")
+          throw InputError("--coefficients " + options.coefficients + " applies to --model rom only");
+        const bool solid = scene.solid.enabled();
+        const std::vector<std::string> allowed =
+          solid ? std::vector<std::string>{"ice", "step", "exact", "analytic"}
+                : std::vector<std::string>{"analytic", "step-condensed", "ice"};
+        if (std::find(allowed.begin(), allowed.end(), options.coefficients) == allowed.end())
+          throw InputError("--coefficients " + options.coefficients + " is not one of " +
+                           (solid ? "ice, step, exact, analytic (a solid scene's ROM)"
+                                  : "analytic, step-condensed, ice (a beam scene's ROM)"));
+        settings.model.coefficients = options.coefficients;
+      }
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
     const std::vector<MemberGroup> groups = {{"", scene, settings.model, settings.n_members, settings.perturbation}};

@@ -152,6 +152,9 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   ensemble_cmd->add_option("--integrator", ensemble.integrator,
                            "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
     ->check(CLI::IsMember({"explicit", "implicit"}));
+  ensemble_cmd->add_option("--coefficients", ensemble.coefficients,
+                           "ROM cubic coefficients: analytic | step-condensed | ice on a beam scene (default "
+                           "analytic); ice | step | exact | analytic from the solid on a solid scene (default ice)");
   ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see doc/scenes.md)");
   ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
   ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
@@ -189,8 +192,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
   verify_cmd->add_flag("--full", verify.full, "run the long studies too");
-  verify_cmd->add_option("--section", verify.sections, "write only this section (1-7; repeatable)")
-    ->check(integer_in(1, 7));
+  verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
+    ->check(integer_in(1, 8));
 
   LadderOptions ladder;
   auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "

@@ -1,6 +1,7 @@
 // `beamslider simulate SCENE --model rom|fe|auto [--case NAME]`: the free
-// slider on the ROM (N modes of the FE basis, analytic coefficients) or on the
-// FE beam, through the shared contact code (contact/adaptation_run.h).
+// slider on the ROM (N modes of the FE basis, analytic coefficients; on a
+// scene with a Solid, N modes of the solid with its ICE coefficients) or on
+// the FE beam, through the shared contact code (contact/adaptation_run.h).
 //
 // Writes into the output folder:
 //   trace.csv    t_s,slider_x_over_L,slider_z_m,slider_beta_rad,w_center_m,
@@ -212,6 +213,10 @@ namespace beamslider
       }
     else if (options.model == "auto")
       {
+        if (scene.solid.enabled())
+          throw InputError("--model auto chooses on the beam's error ladder, which a solid scene (Solid/Continuum = '" +
+                           scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
+                           "--model fe (the 1D beam)");
         // The ladder is cached beside the scene's reports, keyed by its content.
         const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
         setting = choose_model(scene, *options.tolerance, cache, why);

@@ -118,6 +118,9 @@ namespace beamslider
     std::optional<double> end_time; // [s]
     std::string against;            // another ensemble's folder to compare with
     std::string integrator = "explicit"; // rom: explicit | implicit (the FE's scheme)
+    // rom: the cubic coefficients (ModelSetting::coefficients); empty: the
+    // scene's default (analytic on a beam, ICE from the solid on a solid)
+    std::string coefficients;
   };
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
 

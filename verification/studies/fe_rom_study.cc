@@ -5,14 +5,19 @@
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "fem/solid_reduced_model.h"
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"
 #include "verification/studies/coefficient_methods.h"
+#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace beamslider
@@ -32,6 +37,47 @@ namespace beamslider
     return s.str();
   }
 
+  namespace
+  {
+    // Everything a solid's modes and coefficients depend on, in full
+    // precision; not the slider, excitation or start position, where an
+    // ensemble's members differ and still share the model.
+    std::string solid_key(const Scene &s, const unsigned int N, const std::string &method)
+    {
+      std::ostringstream k;
+      k << std::setprecision(17) << s.beam.length << ' ' << s.beam.width << ' ' << s.beam.thickness << ' '
+        << s.beam.youngs_modulus << ' ' << s.beam.density << ' ' << s.supports.type() << ' '
+        << s.supports.rotational_stiffness << ' ' << s.supports.axial_stiffness << ' ' << s.solid.continuum << ' '
+        << s.solid.poissons_ratio << ' ' << s.solid.degree << ' ' << s.solid.elements_along_length << ' '
+        << s.solid.elements_across_width << ' ' << s.solid.elements_through_thickness << ' ' << s.solid.arch_rise
+        << ' ' << s.solid.mesh_file << ' ' << s.solid.loaded_boundary << ' ' << s.solid.materials << ' ' << N
+        << ' ' << method;
+      for (const std::string &group : s.solid.clamped_boundaries)
+        k << ' ' << group;
+      return k.str();
+    }
+
+    // The solid's reduced model, built once per process and key: the
+    // members of an ensemble (threads, or ranks each with its own copy)
+    // share it. The lock also keeps two builds (PETSc) from running at once.
+    std::shared_ptr<const SolidReducedModel> shared_solid_rom(const Scene &scene, const unsigned int N,
+                                                              const std::string &method)
+    {
+      static std::mutex mutex;
+      static std::map<std::string, std::shared_ptr<const SolidReducedModel>> built;
+      const std::lock_guard<std::mutex> lock(mutex);
+      const std::string key = solid_key(scene, N, method);
+      if (const auto found = built.find(key); found != built.end())
+        return found->second;
+      auto rom = std::make_shared<const SolidReducedModel>(build_solid_reduced_model(
+        scene, N, method, [](const std::string &line) { console() << "Building the " << line << std::endl; }));
+      console() << "Built the solid's reduced model in " << std::fixed << std::setprecision(1) << rom->build_seconds
+                << std::defaultfloat << std::setprecision(6) << " s" << std::endl;
+      built.emplace(key, rom);
+      return rom;
+    }
+  } // namespace
+
   ModelSetting scene_model(const Scene &scene, const std::string &family)
   {
     if (family != "rom" && family != "fe")
@@ -40,6 +86,10 @@ namespace beamslider
     s.family     = family;
     s.n_modes    = scene.discretisation.n_modes;
     s.n_elements = scene.discretisation.n_elements;
+    // A solid scene's ROM takes its coefficients from the solid by ICE
+    // (fem/solid_reduced_model.h): what a user who brings a solid wants.
+    if (scene.solid.enabled())
+      s.coefficients = "ice";
     // Each model family at its own step: the ROM at the scene's Time step,
     // the FE at its FE time step (scene.h says why they differ).
     s.time_step = family == "fe" ? scene.time_stepping.fe_time_step : scene.time_stepping.time_step;
@@ -61,18 +111,32 @@ namespace beamslider
     if (setting.family != "rom")
       throw InputError("model family '" + setting.family + "' is not one of fe, rom");
 
-    const FEBeam beam(scene);
-    const FEModes modes = compute_bending_modes(beam, setting.n_modes);
-    ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
-    ReducedOrderModel rom(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+    std::optional<ReducedOrderModel> rom_storage;
+    if (scene.solid.enabled())
+      {
+        // The solid's beam line and its coefficients: the FE beam is not used.
+        const auto solid = shared_solid_rom(scene, setting.n_modes, setting.coefficients);
+        rom_storage.emplace(solid->basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+        if (!solid->cubic.empty())
+          rom_storage->set_cubic_terms(solid->cubic);
+      }
+    else
+      {
+        const FEBeam beam(scene);
+        const FEModes modes = compute_bending_modes(beam, setting.n_modes);
+        ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
+        rom_storage.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+        if (setting.coefficients != "analytic")
+          {
+            // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).
+            const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
+            rom_storage->set_cubic_terms(
+              compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
+          }
+      }
+    ReducedOrderModel &rom = *rom_storage;
     if (setting.damped_modes)
       rom.set_damped_modes(setting.damped_modes);
-    if (setting.coefficients != "analytic")
-      {
-        // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).
-        const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
-        rom.set_cubic_terms(compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
-      }
     if (setting.integrator == "implicit")
       return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
                                                      BaseExcitation::from_scene(scene.excitation));

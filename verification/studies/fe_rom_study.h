@@ -7,7 +7,11 @@
 //   fe   the deal.II beam (fem/fe_beam_system) with n_elements and Δt,
 //   rom  the reduced model on the FE modal basis with N modes, cubic
 //        coefficients from `analytic | step-condensed | ice`, an integrator
-//        (explicit | implicit) and Δt.
+//        (explicit | implicit) and Δt. On a scene with a Solid, the ROM's
+//        basis and coefficients (`ice | step | exact | analytic`) come from
+//        the solid instead (fem/solid_reduced_model.h); the FE family stays
+//        the 1D beam, the transient reference (the solid is not integrated
+//        in time).
 // Single runs of this system are chaotic (two runs that differ in the last
 // digit part after a few dozen periods): compare models as ensembles
 // (ensemble.h), not run against run.
@@ -31,7 +35,9 @@ namespace beamslider
     std::string family = "rom"; // fe | rom
     unsigned int n_elements = 0; // fe: 0 = the scene's
     unsigned int n_modes = 5;    // rom
-    std::string coefficients = "analytic"; // rom: analytic | step-condensed | ice
+    // rom: analytic | step-condensed | ice on a beam scene;
+    //      ice | step | exact | analytic on a solid scene (from the solid)
+    std::string coefficients = "analytic";
     // rom: explicit (the published midpoint step) | implicit (the FE's
     // implicit midpoint rule, reduced/rom_implicit_beam_system.h): the
     // ladder rung that changes only the integrator.
@@ -52,8 +58,9 @@ namespace beamslider
   };
 
   // The scene's own model of a family ("rom" | "fe", else InputError): its N
-  // modes or elements, analytic coefficients, the explicit ROM step; Δt is
-  // the scene's Time step for the ROM and its FE time step for the FE.
+  // modes or elements, analytic coefficients (ICE from the solid on a solid
+  // scene), the explicit ROM step; Δt is the scene's Time step for the ROM
+  // and its FE time step for the FE.
   ModelSetting scene_model(const Scene &scene, const std::string &family);
 
   // The beam model of a setting for `scene` (the scene's mesh, damping and

@@ -1,0 +1,78 @@
+#include "fem/solid_reduced_model.h"
+
+#include "fem/petsc_session.h"
+#include "fem/solid_coefficients.h"
+#include "fem/solid_modal_basis.h"
+#include "fem/solid_model.h"
+#include "fem/solid_modes.h"
+#include "reduced/cubic_fit.h"
+
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    template <int dim>
+    SolidReducedModel build(const Scene &scene, const unsigned int N, const std::string &method,
+                            const std::function<void(const std::string &)> &progress)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      const SolidModel<dim> model(scene, MPI_COMM_SELF);
+      if (progress)
+        progress("reduced model from the " + scene.solid.continuum + " solid (" + std::to_string(model.n_dofs()) +
+                 " DoFs): " + std::to_string(N) + " bending modes, " + method + " coefficients ...");
+      const SolidModes modes = compute_solid_modes(model, N);
+
+      SolidReducedModel rom;
+      rom.coefficients = method;
+      rom.n_dofs       = model.n_dofs();
+      rom.basis        = make_solid_modal_basis(model, modes, N, scene);
+      if (method != "analytic")
+        {
+          SolidModalCoefficients<dim> coefficients(model, modes, N);
+          const Eigen::VectorXd omega = coefficients.omega();
+          CubicFit fit;
+          if (method == "exact")
+            fit = coefficients.exact_polynomial();
+          else if (method == "step")
+            fit = identify_cubic_step([&](const Eigen::VectorXd &q) { return coefficients.modal_force(q); },
+                                      {coefficients.amplitudes(scene.beam.thickness),
+                                       omega.array().square().matrix().asDiagonal()});
+          else
+            {
+              // The beam's ICE load level: a linear response of 0.03 h.
+              IceSettings ice;
+              ice.omega      = omega;
+              ice.amplitudes = coefficients.amplitudes(0.03 * scene.beam.thickness);
+              fit = identify_cubic_ice(
+                [&](const Eigen::VectorXd &f_hat) { return coefficients.modal_static_response(f_hat); }, ice);
+            }
+          rom.cubic             = fit.cubic;
+          rom.max_abs_quadratic = fit.max_abs_quadratic();
+        }
+      rom.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return rom;
+    }
+
+  } // namespace
+
+  SolidReducedModel build_solid_reduced_model(const Scene &scene, const unsigned int n_modes,
+                                              const std::string &coefficients,
+                                              const std::function<void(const std::string &)> &progress)
+  {
+    if (!scene.solid.enabled())
+      throw InputError("a reduced model from the solid needs a scene with a Solid (Solid/Continuum = 3d or "
+                       "plane stress)");
+    if (coefficients != "ice" && coefficients != "step" && coefficients != "exact" && coefficients != "analytic")
+      throw InputError("coefficients '" + coefficients + "' are not available on a solid scene (Solid/Continuum = '" +
+                       scene.solid.continuum + "'): use one of " + solid_rom_coefficient_methods());
+    if (n_modes == 0)
+      throw InputError("a reduced model from the solid needs N >= 1 modes");
+    require_petsc();
+    return scene.solid.dimension() == 3 ? build<3>(scene, n_modes, coefficients, progress)
+                                        : build<2>(scene, n_modes, coefficients, progress);
+  }
+} // namespace beamslider
