@@ -85,7 +85,7 @@ namespace beamslider
     const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
                                              "Backbone curves",       "Slider contact dynamics",
                                              "FE against ROM",        "Operating range",
-                                             "The seed's System 1 facts"};
+                                             "The seed's System 1 facts", "The beam against the continuum"};
     std::vector<std::pair<std::size_t, double>> section_seconds; // section index, wall time [s]
     const std::vector<std::function<void()>> sections = {
       [&] { add_frequency_section(report, scene); },
@@ -94,7 +94,8 @@ namespace beamslider
       [&] { add_contact_section(report, scene, options.full); },
       [&] { add_fe_rom_section(report, scene, options.full); },
       [&] { add_map_section(report, scene, options.full); },
-      [&] { add_system1_section(report, scene, options.full); }};
+      [&] { add_system1_section(report, scene, options.full); },
+      [&] { add_solid_section(report, scene, options.full); }};
     for (std::size_t k = 0; k < sections.size(); ++k)
       {
         if (!options.sections.empty() &&

@@ -77,4 +77,10 @@ namespace beamslider
   // Section 7: the seed's System 1 facts, each run once on the scene with
   // its verdict (system1 only; report_system1.cc).
   void add_system1_section(Report &report, const Scene &scene, bool full);
+  // Section 8: where von Kármán stops being enough: the 1D FE beam against
+  // the SVK solid strip with ν = 0 (plane stress) and ν = 0.3 (3D):
+  // frequencies, static hardening at w = h, 2h, 4h, b_111 and the ICE
+  // backbone; with --full the adaptation end state of both ROMs
+  // (report_solid.cc).
+  void add_solid_section(Report &report, const Scene &scene, bool full);
 } // namespace beamslider
