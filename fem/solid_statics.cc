@@ -30,7 +30,11 @@ namespace beamslider
     // Modified Newton: the tangent's factorisation is refreshed when the
     // corrections stop shrinking fast, or after this many iterations on it.
     const double slow_contraction = 0.25;
-    const unsigned int max_iterations = 40, max_iterations_per_factorisation = 10;
+    const unsigned int max_iterations = 30, max_iterations_per_factorisation = 10, max_factorisations = 6;
+    // A residual this far above the load means the increment diverges (ICE's
+    // small solves peak at ~1e3 of the load, from the bent strip's membrane
+    // forces before the first refresh): cut it back at once.
+    const double diverged = 1e8;
     const double load_norm = std::max(F.l2_norm(), 1e-300);
     double lambda = 0, step = 1;
     unsigned int total = 0;
@@ -52,6 +56,7 @@ namespace beamslider
         bool converged      = false;
         double relative     = 0;
         double last_correction = 0, contraction = 0;
+        unsigned int factorisations = 0, attempt_iterations = 0;
         for (unsigned int it = 0; it < max_iterations; ++it)
           {
             const bool refresh = !tangent.factorised() || contraction > slow_contraction ||
@@ -70,10 +75,13 @@ namespace beamslider
                 converged = true;
                 break;
               }
+            if (!(relative < diverged) || (refresh && factorisations == max_factorisations))
+              break;
             if (refresh)
               {
                 tangent.factorise(K);
                 iterations_on_tangent = 0;
+                ++factorisations;
               }
             tangent.solve(du, residual);
             model.constraints().set_zero(du);
@@ -81,6 +89,7 @@ namespace beamslider
             model.distribute(u); // an elastic end's face follows its plate
             ++linear_solves;
             ++iterations_on_tangent;
+            ++attempt_iterations;
             ++total;
             const double correction = du.l2_norm();
             if (!std::isfinite(correction))
@@ -105,8 +114,10 @@ namespace beamslider
               {
                 std::ostringstream msg;
                 msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
-                    << " (next increment below " << min_step << "), relative residual " << relative << " after "
-                    << max_iterations << " iterations; |F| = " << load_norm << " N";
+                    << " (next increment below " << min_step << "): the last attempt ended at relative residual "
+                    << relative << " after " << attempt_iterations << " iterations and " << factorisations
+                    << " factorisations (limits: " << max_iterations << " iterations, " << max_factorisations
+                    << " factorisations, residual " << diverged << "); |F| = " << load_norm << " N";
                 throw SolidStaticSolveError(msg.str());
               }
           }

@@ -11,8 +11,9 @@
 // bending and stretching), one factorisation at the bent state and ~2 more
 // back-substitutions, instead of ~4 factorisations: on the 3D strip's ICE
 // with N = 5, 1.2 factorisations per solve instead of 4, 577 s -> 166 s
-// (doc/performance.md). Large loads (`statics` to 4 h) refresh often and
-// behave as full Newton.
+// (doc/performance.md). Large loads (`statics` to 4 h) refresh often. An
+// increment is cut back when its residual exceeds 1e8 times the load
+// (diverging), after 6 factorisations or 30 iterations.
 //
 // Convergence: the relative residual ‖F − f(u)‖/‖F‖ below 1e-10, or Newton's
 // correction below 1e-10 of the displacement. The second is needed on a thin
