@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <sstream>
+#include <stdexcept>
 
 namespace beamslider
 {
@@ -173,6 +174,29 @@ namespace beamslider
     return q;
   }
 
+  template <int dim>
+  CubicFit solid_cubic_fit(SolidModalCoefficients<dim> &coefficients, const std::string &method,
+                           const double thickness)
+  {
+    const Eigen::VectorXd omega = coefficients.omega();
+    if (method == "exact")
+      return coefficients.exact_polynomial();
+    if (method == "step")
+      return identify_cubic_step([&](const Eigen::VectorXd &q) { return coefficients.modal_force(q); },
+                                 {coefficients.amplitudes(thickness), omega.array().square().matrix().asDiagonal()});
+    if (method == "ice")
+      {
+        IceSettings ice;
+        ice.omega      = omega;
+        ice.amplitudes = coefficients.amplitudes(0.03 * thickness);
+        return identify_cubic_ice(
+          [&](const Eigen::VectorXd &f_hat) { return coefficients.modal_static_response(f_hat); }, ice);
+      }
+    throw std::invalid_argument("solid_cubic_fit: method '" + method + "' is not one of exact, step, ice");
+  }
+
   template class SolidModalCoefficients<2>;
   template class SolidModalCoefficients<3>;
+  template CubicFit solid_cubic_fit(SolidModalCoefficients<2> &, const std::string &, double);
+  template CubicFit solid_cubic_fit(SolidModalCoefficients<3> &, const std::string &, double);
 } // namespace beamslider

@@ -63,4 +63,14 @@ namespace beamslider
     dealii::PETScWrappers::MPI::SparseMatrix M;
     SolidStatics<dim> statics;
   };
+
+  // The coefficients of `coefficients`' modes by a method, at the load or
+  // amplitude the beam uses too (doc/physics.md §11):
+  //   exact  the reduced SVK polynomial;
+  //   step   plain STEP with amplitudes of one thickness (exact for the cubic
+  //          law at any size);
+  //   ice    ICE at load level 1 = a linear response of 0.03 h.
+  // Throws std::invalid_argument for another method.
+  template <int dim>
+  CubicFit solid_cubic_fit(SolidModalCoefficients<dim> &coefficients, const std::string &method, double thickness);
 } // namespace beamslider

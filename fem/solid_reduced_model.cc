@@ -33,23 +33,7 @@ namespace beamslider
       if (method != "analytic")
         {
           SolidModalCoefficients<dim> coefficients(model, modes, N);
-          const Eigen::VectorXd omega = coefficients.omega();
-          CubicFit fit;
-          if (method == "exact")
-            fit = coefficients.exact_polynomial();
-          else if (method == "step")
-            fit = identify_cubic_step([&](const Eigen::VectorXd &q) { return coefficients.modal_force(q); },
-                                      {coefficients.amplitudes(scene.beam.thickness),
-                                       omega.array().square().matrix().asDiagonal()});
-          else
-            {
-              // The beam's ICE load level: a linear response of 0.03 h.
-              IceSettings ice;
-              ice.omega      = omega;
-              ice.amplitudes = coefficients.amplitudes(0.03 * scene.beam.thickness);
-              fit = identify_cubic_ice(
-                [&](const Eigen::VectorXd &f_hat) { return coefficients.modal_static_response(f_hat); }, ice);
-            }
+          const CubicFit fit = solid_cubic_fit(coefficients, method, scene.beam.thickness);
           rom.cubic             = fit.cubic;
           rom.max_abs_quadratic = fit.max_abs_quadratic();
         }

@@ -5,14 +5,16 @@ Import it first (`from plot_common import plt, read_rows`): it selects the
 Agg backend before pyplot is loaded. The scripts live beside it and are run
 as `python3 scripts/NAME.py`, so it is found on the script's own path."""
 import csv
+import math
 import os
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
 
-__all__ = ["plt", "read_rows"]
+__all__ = ["plt", "read_rows", "positive_number", "read_checked_rows"]
 
 
 def read_rows(path, missing_ok=False):
@@ -23,3 +25,38 @@ def read_rows(path, missing_ok=False):
         return []
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
+
+
+def positive_number(text, what, script):
+    """float(text) if it is finite and > 0; else the script exits naming
+    `what` (e.g. "file line 3, wall_s") and the text."""
+    try:
+        v = float(text)
+    except ValueError:
+        v = math.nan
+    if not (math.isfinite(v) and v > 0):
+        sys.exit(f"{script}: {what}: '{text}' is not a positive number")
+    return v
+
+
+def read_checked_rows(path, columns, script):
+    """(line number, row) for each row of a CSV file that has every one of
+    `columns` and a value in each; the script exits naming the file, the line
+    and what is wrong otherwise, and for a file without rows."""
+    try:
+        f = open(path, newline="")
+    except OSError as e:
+        sys.exit(f"{script}: cannot read '{path}': {e.strerror}")
+    with f:
+        reader = csv.DictReader(f)
+        missing = [c for c in columns if c not in (reader.fieldnames or [])]
+        if missing:
+            sys.exit(f"{script}: {path} lacks the column(s) {', '.join(missing)}")
+        rows = []
+        for line, row in enumerate(reader, start=2):
+            if any(row.get(c) is None for c in columns):
+                sys.exit(f"{script}: {path} line {line}: expected {len(reader.fieldnames)} fields")
+            rows.append((line, row))
+    if not rows:
+        sys.exit(f"{script}: {path} holds no rows")
+    return rows

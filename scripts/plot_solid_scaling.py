@@ -4,50 +4,25 @@ mesh size, with ideal scaling dashed; right, wall time and the busiest
 rank's memory against DoFs, one line per rank count, on logarithmic axes.
 Arguments: solid_scaling.csv (columns dofs,ranks,wall_s,modes_s,max_rss_mb,
 machine), output PNG."""
-import csv
-import math
 import sys
 
-from plot_common import plt  # noqa: E402
+from plot_common import plt, positive_number, read_checked_rows  # noqa: E402
 from matplotlib.ticker import FuncFormatter
 
 COLUMNS = ["dofs", "ranks", "wall_s", "modes_s", "max_rss_mb", "machine"]
-
-
-def fail(message):
-    sys.exit(f"plot_solid_scaling.py: {message}")
-
-
-def positive(text, what):
-    try:
-        v = float(text)
-    except ValueError:
-        v = math.nan
-    if not (math.isfinite(v) and v > 0):
-        fail(f"{what}: '{text}' is not a positive number")
-    return v
+SCRIPT = "plot_solid_scaling.py"
 
 
 def read(path):
-    try:
-        f = open(path, newline="")
-    except OSError as e:
-        fail(f"cannot read '{path}': {e.strerror}")
-    with f:
-        reader = csv.DictReader(f)
-        missing = [c for c in COLUMNS if c not in (reader.fieldnames or [])]
-        if missing:
-            fail(f"{path} lacks the column(s) {', '.join(missing)}")
-        rows = []
-        for line, row in enumerate(reader, start=2):
-            where = f"{path} line {line}"
-            rows.append(dict(dofs=int(positive(row["dofs"], f"{where}, dofs")),
-                             ranks=int(positive(row["ranks"], f"{where}, ranks")),
-                             wall=positive(row["wall_s"], f"{where}, wall_s"),
-                             rss=positive(row["max_rss_mb"], f"{where}, max_rss_mb"),
-                             machine=(row["machine"] or "").strip()))
-    if not rows:
-        fail(f"{path} holds no rows")
+    rows = []
+    for line, row in read_checked_rows(path, COLUMNS, SCRIPT):
+        where = f"{path} line {line}"
+
+        def number(column):
+            return positive_number(row[column], f"{where}, {column}", SCRIPT)
+
+        rows.append(dict(dofs=int(number("dofs")), ranks=int(number("ranks")), wall=number("wall_s"),
+                         rss=number("max_rss_mb"), machine=(row["machine"] or "").strip()))
     return rows
 
 

@@ -43,23 +43,7 @@ namespace beamslider
       const double modes_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       SolidModalCoefficients<dim> coefficients(model, modes, N);
       const Eigen::VectorXd omega  = coefficients.omega();
-      const Eigen::MatrixXd omega2 = omega.array().square().matrix().asDiagonal();
-      CubicFit fit;
-      if (method == "exact")
-        fit = coefficients.exact_polynomial();
-      else if (method == "step")
-        // Amplitudes of one thickness: exact for the cubic law at any size.
-        fit = identify_cubic_step([&](const Eigen::VectorXd &q) { return coefficients.modal_force(q); },
-                                  {coefficients.amplitudes(scene.beam.thickness), omega2});
-      else
-        {
-          // Load level 1: a linear response of 0.03 h, as for the beam.
-          IceSettings ice;
-          ice.omega      = omega;
-          ice.amplitudes = coefficients.amplitudes(0.03 * scene.beam.thickness);
-          fit            = identify_cubic_ice(
-            [&](const Eigen::VectorXd &f_hat) { return coefficients.modal_static_response(f_hat); }, ice);
-        }
+      const CubicFit fit = solid_cubic_fit(coefficients, method, scene.beam.thickness);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
       if (root)

@@ -141,13 +141,8 @@ namespace beamslider
 
       // b_111 by ICE on mode 1 at the beam's load level (linear response 0.03 h).
       SolidModalCoefficients<dim> coefficients(model, modes, 1);
-      IceSettings ice;
-      ice.omega      = coefficients.omega();
-      ice.amplitudes = coefficients.amplitudes(0.03 * scene.beam.thickness);
-      r.b111 = identify_cubic_ice([&](const Eigen::VectorXd &f) { return coefficients.modal_static_response(f); }, ice)
-                 .cubic.front()
-                 .value;
-      r.omega1               = ice.omega[0];
+      r.b111 = solid_cubic_fit(coefficients, "ice", scene.beam.thickness).cubic.front().value;
+      r.omega1               = coefficients.omega()[0];
       const ModalBasis basis = make_solid_modal_basis(model, modes, 1, scene);
       Eigen::VectorXd phi(1), dphi(1);
       basis.evaluate(0.5 * scene.beam.length, phi, dphi);
