@@ -131,7 +131,8 @@ namespace beamslider
       report.text << "| " << k + 1 << ". " << titles[k] << " | " << fixed(s, 0) << " |\n";
     report.text << "| total | " << fixed(seconds, 0) << " |\n";
     flush();
-    console() << "Wrote " << report.dir << "/report.md (" << seconds << " s)" << std::endl;
+    // fixed(): a section may leave the console stream at a low precision.
+    console() << "Wrote " << report.dir << "/report.md (" << fixed(seconds, 0) << " s)" << std::endl;
     return 0;
   }
 } // namespace beamslider
