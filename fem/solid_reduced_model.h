@@ -34,9 +34,6 @@ namespace beamslider
   {
     ModalBasis basis;              // the solid's beam line, N bending modes
     std::vector<CubicTerm> cubic;  // empty for "analytic"
-    double max_abs_quadratic = 0;  // 0 for a flat strip (up to round-off)
-    std::string coefficients;      // ice | step | exact | analytic
-    unsigned int n_dofs = 0;
     double build_seconds = 0;      // modes + coefficients, wall time
   };
 

@@ -71,8 +71,10 @@ namespace beamslider
         return found->second;
       auto rom = std::make_shared<const SolidReducedModel>(build_solid_reduced_model(
         scene, N, method, [](const std::string &line) { console() << "Building the " << line << std::endl; }));
-      console() << "Built the solid's reduced model in " << std::fixed << std::setprecision(1) << rom->build_seconds
-                << std::defaultfloat << std::setprecision(6) << " s" << std::endl;
+      // Formatted apart: console()'s own precision stays as it was.
+      std::ostringstream seconds;
+      seconds << std::fixed << std::setprecision(1) << rom->build_seconds;
+      console() << "Built the solid's reduced model in " << seconds.str() << " s" << std::endl;
       built.emplace(key, rom);
       return rom;
     }
