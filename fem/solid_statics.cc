@@ -168,16 +168,19 @@ namespace beamslider
   }
 
   template <int dim>
-  double SolidStatics<dim>::mid_span_deflection(const PETScWrappers::MPI::Vector &u) const
+  double SolidStatics<dim>::section_deflection(const PETScWrappers::MPI::Vector &u, const double x) const
   {
-    return model.generated() ? section_average_on_strip(u) : section_average_by_points(u);
+    if (!(x >= 0 && x < model.length()))
+      throw std::invalid_argument("section deflection: x = " + std::to_string(x) + " m lies outside [0, " +
+                                  std::to_string(model.length()) + ") m");
+    return model.generated() ? section_average_on_strip(u, x) : section_average_by_points(u, x);
   }
 
   template <int dim>
-  double SolidStatics<dim>::section_average_on_strip(const PETScWrappers::MPI::Vector &u) const
+  double SolidStatics<dim>::section_average_on_strip(const PETScWrappers::MPI::Vector &u, const double x_section) const
   {
-    // The cross-section x = L/2 cuts the axis-aligned cells of the strip at
-    // reference coordinate ξ_0 = (L/2 − x_0)/Δx: a quadrature on that plane
+    // The cross-section x cuts the axis-aligned cells of the strip at
+    // reference coordinate ξ_0 = (x − x_0)/Δx: a quadrature on that plane
     // of the reference cell (Gauss in the other directions) integrates u_z
     // over the section, whether or not it is a mesh plane. A cell whose
     // right face is the section is skipped: its neighbour has it on its left.
@@ -186,12 +189,11 @@ namespace beamslider
     const auto &fe = model.get_dof_handler().get_fe();
     const QGauss<dim - 1> section(fe.degree + 1);
     double integral = 0, area = 0;
-    const double x_mid = 0.5 * model.length();
     for (const auto &cell : model.get_dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const double x0 = cell->vertex(0)[0], dx = cell->vertex(1)[0] - x0;
-          const double xi = (x_mid - x0) / dx;
+          const double xi = (x_section - x0) / dx;
           if (xi < 0 || xi >= 1)
             continue;
           std::vector<Point<dim>> points;
@@ -224,17 +226,17 @@ namespace beamslider
   }
 
   template <int dim>
-  double SolidStatics<dim>::section_average_by_points(const PETScWrappers::MPI::Vector &u) const
+  double SolidStatics<dim>::section_average_by_points(const PETScWrappers::MPI::Vector &u, const double x) const
   {
     // A mesh file's cells need not follow the section: u_z is sampled at
     // 8 Gauss points per direction of the nominal section
-    // y ∈ [−b/2, b/2], z ∈ [−h/2, h/2] at x = L/2.
+    // y ∈ [−b/2, b/2], z ∈ [−h/2, h/2] at x.
     const QGauss<dim - 1> rule(8);
     std::vector<Point<dim>> points;
     for (unsigned int q = 0; q < rule.size(); ++q)
       {
         Point<dim> p;
-        p[0] = 0.5 * model.length();
+        p[0] = x;
         if (dim == 3)
           p[1] = (rule.point(q)[0] - 0.5) * model.width();
         p[dim - 1] = (rule.point(q)[dim - 2] - 0.5) * model.thickness();

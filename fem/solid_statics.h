@@ -56,18 +56,23 @@ namespace beamslider
     // top edge), per unit of the face projected on the x–y plane. Throws
     // InputError if the mesh has no loaded face.
     dealii::PETScWrappers::MPI::Vector line_load(double q_n_per_m) const;
-    // The mid-span deflection [m]: u_z averaged over the cross-section x = L/2
-    // (exactly on the generated strip, by 8 Gauss points per direction of
-    // the Beam's b × h section on a mesh file).
-    double mid_span_deflection(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
+    // The deflection of the section x [m], 0 <= x < L: u_z averaged over the
+    // cross-section (exactly on the generated strip, by 8 Gauss points per
+    // direction of the Beam's b × h section on a mesh file).
+    double section_deflection(const dealii::PETScWrappers::MPI::Vector &u_ghosted, double x) const;
+    // The mid-span deflection [m]: that of the section x = L/2.
+    double mid_span_deflection(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const
+    {
+      return section_deflection(u_ghosted, 0.5 * model.length());
+    }
 
     unsigned int n_static_solves() const { return static_solves; }
     unsigned int n_linear_solves() const { return linear_solves; }
     unsigned int n_factorisations() const { return tangent.n_factorisations(); }
 
   private:
-    double section_average_on_strip(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
-    double section_average_by_points(const dealii::PETScWrappers::MPI::Vector &u_ghosted) const;
+    double section_average_on_strip(const dealii::PETScWrappers::MPI::Vector &u_ghosted, double x) const;
+    double section_average_by_points(const dealii::PETScWrappers::MPI::Vector &u_ghosted, double x) const;
 
     const SolidModel<dim> &model;
     unsigned int static_solves = 0, linear_solves = 0;

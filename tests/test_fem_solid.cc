@@ -1,12 +1,14 @@
 // The St. Venant–Kirchhoff solid strip (fem/solid_model, fem/solid_modes):
 // its tangent against finite differences of its internal force, and its
-// modes against the von Kármán beam's and against the thin strip's torsion.
+// modes against the von Kármán beam's and against the thin strip's torsion,
+// and the animation of its reduced model on it.
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
+#include "fem/solid_rom_animation.h"
 #include "fem/solid_statics.h"
 #include "fem/fe_modal_basis.h"
 #include "meshes/scene.h"
@@ -21,9 +23,14 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <random>
+#include <regex>
+
+#include <unistd.h>
 
 using namespace beamslider;
 using dealii::PETScWrappers::MPI::SparseMatrix;
@@ -562,4 +569,71 @@ TEST(SolidModalBasis, TheSolidsBeamLineCarriesTheBeamsModes)
             EXPECT_NEAR(solid.gamma[n] / fe.gamma[n], 1., c) << name << ", mode " << n + 1;
         }
     }
+}
+
+// The animation of a solid-derived ROM run draws Σ q_n φ_n on the solid: its
+// sections must deflect as the reduced model's beam line says, mode by mode
+// (a wrong sign or order of the modes would be O(1) off). The two readings
+// differ by the line's Hermite interpolation and by u_z's variation through
+// the thickness (a section average against the mid-surface), both far below
+// 1e-3. Frames are listed in solid.pvd with their times.
+TEST(SolidRomAnimation, TheSolidFramesDeflectAsTheReducedModelsBeamLine)
+{
+  const Scene scene = read_scene(scene_dir + "mueller2023-solid.prm",
+                                 {"Solid/Continuum=plane stress", "Solid/Elements along length=70"});
+  const unsigned int N = 3;
+  const SolidModel<2> model(scene, MPI_COMM_SELF);
+  const ModalBasis line = make_solid_modal_basis(model, compute_solid_modes(model, N), N, scene);
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("beamslider_solid_animation_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    SolidRomAnimation animation(scene, N, dir.string());
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> coordinate(-1e-3, 1e-3);
+    Eigen::VectorXd phi, dphi;
+    double worst = 0; // the largest difference, relative to the frame's deflection
+    for (unsigned int trial = 0; trial <= N; ++trial)
+      {
+        // The unit coordinates e_1 … e_N, then a random combination.
+        Eigen::VectorXd q = Eigen::VectorXd::Zero(N);
+        if (trial < N)
+          q[trial] = 1e-3;
+        else
+          for (unsigned int n = 0; n < N; ++n)
+            q[n] = coordinate(random);
+        double scale = 0;
+        for (const double x_over_L : {0.25, 0.5, 0.7})
+          {
+            line.evaluate(x_over_L * scene.beam.length, phi, dphi);
+            scale = std::max(scale, std::abs(phi.dot(q)));
+          }
+        for (const double x_over_L : {0.25, 0.5, 0.7})
+          {
+            const double x = x_over_L * scene.beam.length;
+            line.evaluate(x, phi, dphi);
+            const double w_solid = animation.section_deflection(q, x);
+            worst                = std::max(worst, std::abs(w_solid - phi.dot(q)) / scale);
+            EXPECT_NEAR(w_solid, phi.dot(q), 1e-3 * scale)
+              << "trial " << trial << " at x/L = " << x_over_L;
+          }
+        animation.write(0.001 * trial, 1e-6 * trial, q);
+      }
+    std::cout << "solid frames against the beam line: largest difference " << worst << " of the deflection\n";
+    animation.finish();
+    EXPECT_EQ(animation.n_frames(), N + 1);
+  }
+  // solid.pvd lists every frame at its time, and every listed record exists.
+  std::ifstream pvd(dir / "solid.pvd");
+  const std::string text((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  const std::regex entry("timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"");
+  unsigned int k = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it, ++k)
+    {
+      EXPECT_NEAR(std::stod((*it)[1]), 0.001 * k, 1e-12);
+      EXPECT_TRUE(fs::exists(dir / (*it)[2].str())) << (*it)[2];
+    }
+  EXPECT_EQ(k, N + 1);
+  fs::remove_all(dir);
 }

@@ -6,12 +6,17 @@
 // `--frame-rate` frames per simulated second from `--start-time`, plus
 // trace.csv (the ROM's columns), frames.csv and frames.png (a strip of stills
 // drawn by scripts/plot_frames.py).
+// On a scene with a Solid, `--model rom` runs the reduced model built from
+// the solid, and the run is also drawn on the solid itself
+// (fem/solid_rom_animation.h): solid.pvd, one .pvtu per frame with the
+// displacement w0 e_z + Σ q_n φ_n of the whole strip.
 #include "contact/adaptation_run.h"
 #include "contact/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "fem/solid_rom_animation.h"
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
@@ -61,6 +66,10 @@ namespace beamslider
     run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
 
     VtkAnimationWriter writer(dir, options.magnification);
+    // The reduced model of a solid scene moves the solid's own modes.
+    std::unique_ptr<SolidRomAnimation> solid;
+    if (scene.solid.enabled() && options.model == "rom")
+      solid = std::make_unique<SolidRomAnimation>(scene, setting.n_modes, dir);
     const auto start = std::chrono::steady_clock::now();
     RunResult last;
     for (long k = 0; k < static_cast<long>(n_frames); ++k)
@@ -70,15 +79,21 @@ namespace beamslider
         last                 = run.run_until(t_frame);
         if (last.status != RunStatus::completed)
           break;
-        writer.write(make_animation_frame(run.stepper()));
+        const AnimationFrame frame = make_animation_frame(run.stepper());
+        writer.write(frame);
+        if (solid)
+          solid->write(frame.t, frame.beam.base_displacement, run.state().q);
       }
     run.finish_trace();
     trace.close();
     writer.finish();
+    if (solid)
+      solid->finish();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (last.status != RunStatus::completed)
       std::cerr << "animate: the run stopped early (" << to_string(last.status) << "): " << last.message << "\n";
-    console() << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file() << " (" << wall
+    console() << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file()
+              << (solid ? " and, on the solid, " + solid->pvd_file() : std::string()) << " (" << wall
               << " s wall, final x_C/L = " << run.state().s[0] / scene.beam.length << ")" << std::endl;
 
     if (last.status == RunStatus::interrupted)
