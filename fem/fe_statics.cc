@@ -97,20 +97,30 @@ namespace beamslider
     return project(f);
   }
 
-  Eigen::VectorXd FEStatics::modal_static_response(const Eigen::VectorXd &f_hat)
+  Vector<double> FEStatics::modal_load(const Eigen::VectorXd &f_hat) const
   {
-    Vector<double> F(beam.n_dofs()), x(beam.n_dofs());
+    Vector<double> F(beam.n_dofs()), MPhi(beam.n_dofs());
     for (unsigned int k = 0; k < Phi.size(); ++k)
       {
-        Vector<double> MPhi(beam.n_dofs());
         M.vmult(MPhi, Phi[k]);
         F.add(f_hat[k], MPhi);
       }
     beam.constraints().set_zero(F);
-    solve(F, x);
+    return F;
+  }
+
+  Eigen::VectorXd FEStatics::modal_coordinates(const Vector<double> &x) const
+  {
     Vector<double> Mx(beam.n_dofs());
     M.vmult(Mx, x);
     return project(Mx);
+  }
+
+  Eigen::VectorXd FEStatics::modal_static_response(const Eigen::VectorXd &f_hat)
+  {
+    Vector<double> x(beam.n_dofs());
+    solve(modal_load(f_hat), x);
+    return modal_coordinates(x);
   }
 
   unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x, const Vector<double> *F_start)

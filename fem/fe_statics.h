@@ -55,6 +55,10 @@ namespace beamslider
     Eigen::VectorXd modal_force_condensed(const Eigen::VectorXd &q);
     // ICE callback: f̂ [N kg^-1/2] ↦ q = Φᵀ M x [m kg^1/2].
     Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
+    // Its two halves: the modal load M Φ f̂ [N] (zero on the supports' DoFs),
+    // and the modal coordinates Φᵀ M x [m kg^1/2] of a displacement x.
+    dealii::Vector<double> modal_load(const Eigen::VectorXd &f_hat) const;
+    Eigen::VectorXd modal_coordinates(const dealii::Vector<double> &x) const;
 
     // Solves f(x) = F for x (starting from x, which is overwritten), with
     // load stepping from F_start (x's equilibrium load; null: zero) to F.

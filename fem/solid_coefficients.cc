@@ -154,24 +154,40 @@ namespace beamslider
   }
 
   template <int dim>
-  Eigen::VectorXd SolidModalCoefficients<dim>::modal_static_response(const Eigen::VectorXd &f_hat)
+  PETScWrappers::MPI::Vector SolidModalCoefficients<dim>::modal_load(const Eigen::VectorXd &f_hat) const
   {
-    PETScWrappers::MPI::Vector load, F, u, Mu;
+    PETScWrappers::MPI::Vector load, F;
     model.reinit_vector(load);
     model.reinit_vector(F);
-    model.reinit_vector(u);
-    model.reinit_vector(Mu);
     for (unsigned int j = 0; j < Phi.size(); ++j)
       load.add(f_hat[j], Phi[j]);
     M.vmult(F, load);
     model.constraints().set_zero(F); // Φ is zero there; M's diagonal filler is not a load
-    statics.solve(F, u);
-    model.constraints().set_zero(u); // M's filler diagonal is no mass
-    M.vmult(Mu, u);
+    return F;
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::modal_coordinates(const PETScWrappers::MPI::Vector &u) const
+  {
+    PETScWrappers::MPI::Vector free_part, Mu;
+    model.reinit_vector(free_part);
+    model.reinit_vector(Mu);
+    free_part = u;
+    model.constraints().set_zero(free_part); // M's filler diagonal is no mass
+    M.vmult(Mu, free_part);
     Eigen::VectorXd q(Phi.size());
     for (unsigned int n = 0; n < Phi.size(); ++n)
       q[n] = Phi[n] * Mu;
     return q;
+  }
+
+  template <int dim>
+  Eigen::VectorXd SolidModalCoefficients<dim>::modal_static_response(const Eigen::VectorXd &f_hat)
+  {
+    PETScWrappers::MPI::Vector u;
+    model.reinit_vector(u);
+    statics.solve(modal_load(f_hat), u);
+    return modal_coordinates(u);
   }
 
   template <int dim>

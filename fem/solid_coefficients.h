@@ -47,6 +47,11 @@ namespace beamslider
     Eigen::VectorXd modal_force(const Eigen::VectorXd &q) const;
     // f̂ ↦ q = Φᵀ M u with f(u) = M Φ f̂ (ICE's callback).
     Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
+    // Its two halves: the modal load M Φ f̂ [N] (zero on constrained DoFs),
+    // and the modal coordinates Φᵀ M u [m kg^1/2] of a displacement u
+    // (owned entries; its constrained entries carry no mass).
+    dealii::PETScWrappers::MPI::Vector modal_load(const Eigen::VectorXd &f_hat) const;
+    Eigen::VectorXd modal_coordinates(const dealii::PETScWrappers::MPI::Vector &u) const;
 
     // a_j = length / max |φ_j|: the amplitude of a peak displacement `length`.
     Eigen::VectorXd amplitudes(double length) const;

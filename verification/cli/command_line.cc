@@ -83,12 +83,23 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
 
   StaticsOptions statics;
-  auto *statics_cmd = app.add_subcommand("statics", "nonlinear statics under a uniform line load (statics.csv)");
+  auto *statics_cmd =
+    app.add_subcommand("statics", "nonlinear statics under a uniform line load or a modal load (statics.csv)");
   add_common(statics_cmd);
-  statics_cmd->add_option("--line-load", statics.line_load_n_per_m, "uniform dead load Q [N/m], positive downward")
-    ->required()
-    ->check(finite_nonzero());
-  statics_cmd->add_option("--steps", statics.n_steps, "equal load steps to Q")->check(integer_in(1, 10000));
+  auto *line_load_opt =
+    statics_cmd->add_option("--line-load", statics.line_load_n_per_m, "uniform dead load Q [N/m], positive downward")
+      ->check(finite_nonzero());
+  auto *modal_load_opt =
+    statics_cmd
+      ->add_option("--modal-load", statics.modal_load,
+                   "modal load f [N kg^-1/2]: the dead load M phi_n f on bending mode n (--mode), along +phi_n")
+      ->check(finite_nonzero())
+      ->excludes(line_load_opt);
+  statics_cmd->add_option("--mode", statics.mode, "n of --modal-load: the n-th bending mode")
+    ->check(integer_in(1, 10))
+    ->needs(modal_load_opt);
+  statics_cmd->add_option("--steps", statics.n_steps, "equal load steps to the full load")
+    ->check(integer_in(1, 10000));
 
   BackboneOptions backbone;
   auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");

@@ -1,7 +1,14 @@
 // `beamslider statics`: the full-order nonlinear static solution of the
-// scene's FE beam under a uniform dead line load, load-stepped (Newton from
-// each step's equilibrium to the next). It is the independent check of every
-// reduced model's static response: a ROM that is right reproduces statics.csv.
+// scene's FE beam under a dead load, load-stepped (Newton from each step's
+// equilibrium to the next). It is the independent check of every reduced
+// model's static response: a ROM that is right reproduces statics.csv.
+//
+// The load is one of
+//   --line-load Q    a uniform line load Q [N/m], positive downward;
+//   --modal-load f   the modal load M φ_n f [N] of bending mode n (--mode,
+//                    mass-normalised φ_n, f in N kg^-1/2), along +φ_n: ICE's
+//                    load (fem/fe_statics.h), whose linear response is the
+//                    modal coordinate q_n = f / ω_n².
 //
 // On a scene with a solid the same load path is the solid's
 // (command_statics_solid.cc).
@@ -11,6 +18,7 @@
 // downward load gives w_mid_m < 0.
 #include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
@@ -19,44 +27,77 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace beamslider
 {
   int run_statics(const CommonOptions &common, const StaticsOptions &options)
   {
     const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
-    if (!std::isfinite(options.line_load_n_per_m) || options.line_load_n_per_m == 0)
-      throw InputError("--line-load = " + std::to_string(options.line_load_n_per_m) +
-                       " is not allowed: the line load must be a finite, non-zero force per length [N/m]");
+    const std::optional<double> &Q = options.line_load_n_per_m, &f = options.modal_load;
+    if (Q.has_value() == f.has_value())
+      throw InputError("statics needs exactly one load: --line-load Q [N/m] or --modal-load f [N kg^-1/2]");
+    for (const auto &[name, value] : {std::pair{"--line-load", Q}, std::pair{"--modal-load", f}})
+      if (value && (!std::isfinite(*value) || *value == 0))
+        throw InputError(std::string(name) + " = " + std::to_string(*value) + " is not allowed: the load must be "
+                         "finite and non-zero");
     if (scene.solid.enabled())
       return run_solid_statics(common, scene, options);
     const std::string dir = prepare_output_dir(common, scene, "statics");
 
     const auto start = std::chrono::steady_clock::now();
     const FEBeam beam(scene);
+    // The modal load's mode; FEStatics' basis Φ is then modes 1 … n.
+    const unsigned int n = f ? options.mode : 0;
+    const FEModes modes = n > 0 ? compute_bending_modes(beam, n) : FEModes{};
+    FEStatics statics = n > 0 ? FEStatics(beam, modes, n) : FEStatics(beam);
     dealii::Vector<double> F;
-    beam.assemble_line_load(-options.line_load_n_per_m, F); // downward = -w
-    FEStatics statics(beam);
+    if (Q)
+      beam.assemble_line_load(-*Q, F); // downward = -w
+    else
+      {
+        Eigen::VectorXd f_hat = Eigen::VectorXd::Zero(n);
+        f_hat[n - 1]          = *f;
+        F                     = statics.modal_load(f_hat);
+      }
     const std::vector<FEStatics::LoadStep> path = statics.load_path(F, options.n_steps);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    const double x_mid = 0.5 * scene.beam.length;
-    CsvWriter csv(dir + "/statics.csv", {"line_load_n_per_m", "w_mid_m", "newton_iterations"});
+    const double x_mid = 0.5 * scene.beam.length, load = Q ? *Q : *f;
+    CsvWriter csv(dir + "/statics.csv", Q ? std::vector<std::string>{"line_load_n_per_m", "w_mid_m", "newton_iterations"}
+                                          : std::vector<std::string>{"modal_load_n_per_sqrt_kg", "q_m_sqrt_kg",
+                                                                     "w_mid_m", "newton_iterations"});
     std::vector<NamedShape> shapes;
     for (unsigned int k = 0; k < path.size(); ++k)
       {
-        csv.row({CsvWriter::cell(path[k].load_factor * options.line_load_n_per_m),
-                 CsvWriter::cell(beam.deflection(path[k].x, x_mid)), CsvWriter::cell(path[k].newton_iterations)});
+        std::vector<std::string> row{CsvWriter::cell(path[k].load_factor * load)};
+        if (f)
+          row.push_back(CsvWriter::cell(statics.modal_coordinates(path[k].x)[n - 1]));
+        row.push_back(CsvWriter::cell(beam.deflection(path[k].x, x_mid)));
+        row.push_back(CsvWriter::cell(path[k].newton_iterations));
+        csv.row(row);
         shapes.push_back({"step_" + std::to_string(k + 1), path[k].x, 1.});
       }
     csv.close();
-    write_beam_shapes_vtu(beam, shapes, dir + "/statics.vtu", {{"line_load_n_per_m", options.line_load_n_per_m}});
+    write_beam_shapes_vtu(beam, shapes, dir + "/statics.vtu",
+                          {{Q ? "line_load_n_per_m" : "modal_load_n_per_sqrt_kg", load}});
 
     const double w_end = beam.deflection(path.back().x, x_mid);
     console() << "Statics of scene '" << scene.name << "' (" << beam.n_elements() << " elements, " << beam.n_dofs()
-              << " DoFs): line load " << options.line_load_n_per_m << " N/m downward in " << options.n_steps
-              << " steps, " << statics.n_linear_solves() << " Newton iterations, " << seconds << " s\n"
-              << "  mid-span deflection " << w_end << " m = " << w_end / beam.thickness_at(x_mid) << " h (h at mid-span)\n"
+              << " DoFs): ";
+    if (Q)
+      console() << "line load " << *Q << " N/m downward";
+    else
+      console() << "modal load " << *f << " N kg^-1/2 on bending mode " << n << " (" << modes.omega[n - 1] / (2 * M_PI)
+                << " Hz)";
+    console() << " in " << options.n_steps << " steps, " << statics.n_linear_solves() << " Newton iterations, "
+              << seconds << " s\n";
+    if (f)
+      console() << "  modal coordinate q_" << n << " = " << statics.modal_coordinates(path.back().x)[n - 1]
+                << " m kg^1/2 (linear: f / omega^2 = " << *f / std::pow(modes.omega[n - 1], 2) << ")\n";
+    console() << "  mid-span deflection " << w_end << " m = " << w_end / beam.thickness_at(x_mid)
+              << " h (h at mid-span)\n"
               << "Wrote " << dir << "/statics.csv and " << dir << "/statics.vtu (displacement arrays step_k)\n";
     return 0;
   }

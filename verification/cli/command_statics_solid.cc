@@ -1,10 +1,14 @@
 // `beamslider statics` on a scene with a solid: the load path of the SVK
 // strip under the uniform line load Q (the pressure Q/b on its top face,
-// downward), on every rank of an mpirun launch (rank 0 writes and prints).
-// statics.csv has the beam's columns; w_mid_m is u_z averaged over the
-// cross-section x = L/2. statics.pvtu holds the deformed strip at every step.
+// downward) or the modal load M φ_n f of its n-th bending mode, on every
+// rank of an mpirun launch (rank 0 writes and prints). statics.csv has the
+// beam's columns; w_mid_m is u_z averaged over the cross-section x = L/2,
+// q_m_sqrt_kg (modal load) the coordinate φ_nᵀ M u. statics.pvtu holds the
+// deformed strip at every step.
 #include "contact/csv_writer.h"
+#include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
+#include "fem/solid_modes.h"
 #include "fem/solid_output.h"
 #include "fem/solid_statics.h"
 #include "meshes/scene.h"
@@ -15,6 +19,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 namespace beamslider
@@ -31,15 +36,37 @@ namespace beamslider
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
       SolidStatics<dim> statics(model);
-      const auto F = statics.line_load(-options.line_load_n_per_m); // downward = −z
+      const std::optional<double> &Q = options.line_load_n_per_m, &f = options.modal_load;
+      // A modal load takes the first n bending modes as its basis Φ.
+      const unsigned int n = f ? options.mode : 0;
+      std::optional<SolidModes> modes;
+      std::optional<SolidModalCoefficients<dim>> basis;
+      if (f)
+        {
+          modes.emplace(compute_solid_modes(model, n));
+          basis.emplace(model, *modes, n);
+        }
+      dealii::PETScWrappers::MPI::Vector F;
+      if (Q)
+        F = statics.line_load(-*Q); // downward = −z
+      else
+        {
+          Eigen::VectorXd f_hat = Eigen::VectorXd::Zero(n);
+          f_hat[n - 1]          = *f;
+          F                     = basis->modal_load(f_hat);
+        }
+      const double load = Q ? *Q : *f;
       dealii::PETScWrappers::MPI::Vector u, F_k, F_previous;
       model.reinit_vector(u);
       model.reinit_vector(F_previous);
       std::optional<CsvWriter> csv;
       if (root)
-        csv.emplace(dir + "/statics.csv", std::vector<std::string>{"line_load_n_per_m", "w_mid_m", "newton_iterations"});
+        csv.emplace(dir + "/statics.csv",
+                    Q ? std::vector<std::string>{"line_load_n_per_m", "w_mid_m", "newton_iterations"}
+                      : std::vector<std::string>{"modal_load_n_per_sqrt_kg", "q_m_sqrt_kg", "w_mid_m",
+                                                 "newton_iterations"});
       std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
-      double w_mid = 0;
+      double w_mid = 0, q_n = 0;
       for (unsigned int k = 1; k <= options.n_steps; ++k)
         {
           const double lambda = double(k) / options.n_steps;
@@ -59,9 +86,17 @@ namespace beamslider
           model.reinit_ghosted_vector(states[k - 1]);
           states[k - 1] = u;
           w_mid         = statics.mid_span_deflection(states[k - 1]);
+          if (f)
+            q_n = basis->modal_coordinates(u)[n - 1]; // collective
           if (root)
-            csv->row({CsvWriter::cell(lambda * options.line_load_n_per_m), CsvWriter::cell(w_mid),
-                      CsvWriter::cell(iterations)});
+            {
+              std::vector<std::string> row{CsvWriter::cell(lambda * load)};
+              if (f)
+                row.push_back(CsvWriter::cell(q_n));
+              row.push_back(CsvWriter::cell(w_mid));
+              row.push_back(CsvWriter::cell(iterations));
+              csv->row(row);
+            }
         }
       if (root)
         csv->close();
@@ -71,12 +106,22 @@ namespace beamslider
       const std::string record = write_solid_fields(model, fields, dir, "statics");
       const double seconds     = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       if (root)
-        console() << "Statics of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
-                  << model.n_dofs() << " DoFs): line load " << options.line_load_n_per_m << " N/m downward in "
-                  << options.n_steps << " steps, " << statics.n_linear_solves() << " Newton iterations, " << seconds
-                  << " s\n"
-                  << "  mid-span deflection " << w_mid << " m = " << w_mid / scene.beam.thickness << " h\n"
-                  << "Wrote " << dir << "/statics.csv and " << record << "\n";
+        {
+          console() << "Statics of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
+                    << model.n_dofs() << " DoFs): ";
+          if (Q)
+            console() << "line load " << *Q << " N/m downward";
+          else
+            console() << "modal load " << *f << " N kg^-1/2 on bending mode " << n << " ("
+                      << modes->all[modes->bending[n - 1]].omega / (2 * M_PI) << " Hz)";
+          console() << " in " << options.n_steps << " steps, " << statics.n_linear_solves() << " Newton iterations, "
+                    << seconds << " s\n";
+          if (f)
+            console() << "  modal coordinate q_" << n << " = " << q_n << " m kg^1/2 (linear: f / omega^2 = "
+                      << *f / std::pow(modes->all[modes->bending[n - 1]].omega, 2) << ")\n";
+          console() << "  mid-span deflection " << w_mid << " m = " << w_mid / scene.beam.thickness << " h\n"
+                    << "Wrote " << dir << "/statics.csv and " << record << "\n";
+        }
       return 0;
     }
   } // namespace

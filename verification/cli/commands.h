@@ -51,8 +51,11 @@ namespace beamslider
   // a uniform dead line load (command_statics.cc).
   struct StaticsOptions
   {
-    double line_load_n_per_m = 0; // Q [N/m], positive downward
-    unsigned int n_steps     = 10; // equal load steps to Q
+    // Exactly one of the two loads:
+    std::optional<double> line_load_n_per_m; // Q [N/m], uniform, positive downward
+    std::optional<double> modal_load;        // f̂ [N kg^-1/2]: the load M φ_n f̂ on bending mode n
+    unsigned int mode    = 1;  // n (1-based) of the modal load
+    unsigned int n_steps = 10; // equal load steps to the full load
   };
   int run_statics(const CommonOptions &common, const StaticsOptions &options);
   // A solid scene's statics (command_statics_solid.cc).
