@@ -1,10 +1,12 @@
 // Solid meshes from files (fem/solid_mesh): the Gmsh hexahedral strip gives
 // what the generated strip gives, a tetrahedral mesh of it gives the same
-// hardening, Gmsh's formats 2 and 4 read alike, and a mesh that cannot serve
+// hardening, Gmsh's formats 2 and 4 read alike, an Abaqus deck of the strip
+// gives the generated strip's modes and load, and a mesh that cannot serve
 // is refused with an InputError naming the problem.
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
+#include "fem/solid_statics.h"
 #include "meshes/scene.h"
 #include "reduced/cubic_fit.h"
 #include "tests/solid_tangent_check.h"
@@ -79,6 +81,36 @@ TEST(SolidMesh, GmshHexStripGivesTheGeneratedStripsModes)
   EXPECT_NEAR(torsion[1]->omega / torsion[0]->omega, 2., 0.05) << "the second torsion mode of a clamped strip";
   EXPECT_LT(torsion[1]->twist_correlation, 0.1);
   EXPECT_NEAR(torsion[1]->width_order, 1., 0.01);
+}
+
+// An Abaqus input deck in Abaqus/CAE's layout (a part, element sets, element
+// surfaces SS1-SS3, a solid section of Material-1; strip-hex-abaqus.py wrote
+// it) with the generated strip's cells: the same bending frequencies, the
+// clamps on its surfaces 1 and 2, and the line load on surface 3 (the top)
+// that of the generated strip.
+TEST(SolidMesh, AbaqusDeckOfTheStripGivesTheGeneratedStripsModesAndLoad)
+{
+  const Scene generated = read_scene(scene_dir + "mueller2023-ideal-solid.prm");
+  const Scene abaqus    = read_scene(scene_dir + "strip-hex-abaqus.prm");
+  const auto f_generated = bending_frequencies(generated, 5), f_abaqus = bending_frequencies(abaqus, 5);
+  for (unsigned int j = 0; j < 5; ++j)
+    EXPECT_NEAR(f_abaqus[j] / f_generated[j], 1., 1e-8) << "bending mode " << j + 1;
+
+  // The load vector's entries sum to its resultant in z less the share of
+  // the clamped DoFs: on quadratic elements a uniform pressure puts 1/6 of
+  // an element's load on each end node row (Simpson's weights), so with
+  // n_x = 70 elements along x the clamps take 2 (1/6) / n_x of Q L.
+  const double Q = 300, n_x = 70; // N/m, elements along x in both meshes
+  std::vector<double> resultant;
+  for (const Scene *scene : {&generated, &abaqus})
+    {
+      const SolidModel<3> model(*scene, MPI_COMM_WORLD);
+      const SolidStatics<3> statics(model);
+      const auto F = statics.line_load(Q);
+      resultant.push_back(F.mean_value() * F.size());
+      EXPECT_NEAR(resultant.back() / (Q * scene->beam.length), 1. - 1. / (3 * n_x), 1e-10) << scene->name;
+    }
+  EXPECT_NEAR(resultant[1] / resultant[0], 1., 1e-10);
 }
 
 // Gmsh format 2 and format 4 of one tetrahedral mesh: the same model.
