@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace beamslider
@@ -82,7 +83,7 @@ namespace beamslider
       {
         plate_axial_stiffness      = scene.supports.axial_spring_per_end();
         plate_rotational_stiffness = scene.supports.rotational_stiffness;
-        make_end_plates();
+        make_end_plates(scene.solid.clamped_boundaries);
       }
     else
       {
@@ -99,7 +100,7 @@ namespace beamslider
   }
 
   template <int dim>
-  void SolidModel<dim>::make_end_plates()
+  void SolidModel<dim>::make_end_plates(const std::vector<std::string> &group_names)
   {
     // Every DoF this rank sees (owned and ghost cells) on the two end faces
     // (the mesh's clamped groups, which elastic supports turn into plates),
@@ -129,6 +130,39 @@ namespace beamslider
                   {indices[i], fe.face_system_to_component_index(i, f).first, points.quadrature_point(i)});
             }
 
+    // A mesh file's clamped groups must be the strip's two end faces: the
+    // plates are planes x = 0 and x = L spanning the section |z| ≤ h/2.
+    // Checked on every rank alike (reductions), so that all of them throw.
+    if (groups.clamped.size() != 2)
+      throw InputError("Parameter 'Supports/Type' = elastic: the solid needs exactly two clamped groups, the end "
+                       "faces x = 0 and x = L that become the supports' rigid plates ('Solid/Clamped boundaries' "
+                       "names " + std::to_string(groups.clamped.size()) + ")");
+    for (unsigned int end = 0; end < 2; ++end)
+      {
+        double x_min = std::numeric_limits<double>::max(), x_max = -x_min, z_max = 0;
+        for (const FaceDof &d : face_dofs[end])
+          {
+            x_min = std::min(x_min, d.point[0]);
+            x_max = std::max(x_max, d.point[0]);
+            z_max = std::max(z_max, std::abs(d.point[dim - 1]));
+          }
+        x_min = Utilities::MPI::min(x_min, mpi_communicator);
+        x_max = Utilities::MPI::max(x_max, mpi_communicator);
+        z_max = Utilities::MPI::max(z_max, mpi_communicator);
+        const double L = beam.length, x_tol = 1e-9 * L;
+        const bool at_an_end = std::abs(x_min) < x_tol || std::abs(x_max - L) < x_tol;
+        if (x_max - x_min > x_tol || !at_an_end || z_max > 0.5 * h + tol)
+          {
+            std::ostringstream message;
+            message << "Parameter 'Supports/Type' = elastic: the clamped group '"
+                    << (end < group_names.size() ? group_names[end] : std::to_string(groups.clamped[end]))
+                    << "' is not an end face of the strip (its nodes span x = " << x_min << " ... " << x_max
+                    << " m, |z| up to " << z_max << " m); the elastic supports need the faces x = 0 and x = L = "
+                    << L << " m within |z| <= h/2 = " << 0.5 * h << " m (or use Supports/Type = clamped)";
+            throw InputError(message.str());
+          }
+      }
+
     // The plate's nodes: u_x at z = ∓h/2 nearest y = 0, the same on every
     // rank (the best candidate of each rank, gathered, the smallest |y|
     // then the smallest index).
@@ -137,8 +171,13 @@ namespace beamslider
       for (const FaceDof &d : dofs)
         if (d.component == 0 && std::abs(d.point[dim - 1] - z) < tol)
           best = std::min(best, std::make_pair(dim == 3 ? std::abs(d.point[1]) : 0., d.index));
-      const auto all = Utilities::MPI::all_gather(mpi_communicator, best);
-      return std::min_element(all.begin(), all.end())->second;
+      const auto all  = Utilities::MPI::all_gather(mpi_communicator, best);
+      const auto most = std::min_element(all.begin(), all.end());
+      if (most->first == std::numeric_limits<double>::max())
+        throw InputError("Parameter 'Supports/Type' = elastic: an end face of the solid has no node at z = " +
+                         std::to_string(z) + " m, where the supports' plate is held (the mesh must reach "
+                         "z = ±h/2 at both ends)");
+      return most->second;
     };
     for (unsigned int end = 0; end < 2; ++end)
       plates.push_back({master(face_dofs[end], -0.5 * h), master(face_dofs[end], 0.5 * h)});

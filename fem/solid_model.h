@@ -90,8 +90,9 @@ namespace beamslider
     // "FE_Q(2)", "FE_SimplexP(2)": for messages.
     std::string element_name() const;
 
-    // The published elastic supports (Supports/Type = elastic, on the
-    // generated strip): each end face moves as a rigid plate,
+    // The published elastic supports (Supports/Type = elastic; on a mesh
+    // file, its two clamped groups must be the end faces x = 0 and x = L):
+    // each end face moves as a rigid plate,
     //   u_x = U − θ z,  u_y = u_z = 0,
     // its axial translation U on the spring 2 k_t (k_t is both ends'
     // total, as in the beam) and its rotation θ on k_r. The plate's two
@@ -145,7 +146,7 @@ namespace beamslider
     };
     std::vector<EndPlate> plates; // none: clamped
     double plate_axial_stiffness = 0, plate_rotational_stiffness = 0; // 2 k_t [N/m], k_r [N m/rad]
-    void make_end_plates();
+    void make_end_plates(const std::vector<std::string> &group_names);
     void add_support_springs(const dealii::PETScWrappers::MPI::Vector &u_ghosted,
                              dealii::PETScWrappers::MPI::Vector *f,
                              dealii::PETScWrappers::MPI::SparseMatrix *K_t) const;

@@ -654,12 +654,11 @@ namespace beamslider
         if (s.beam.from_mesh())
           throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum +
                            "' is not allowed with 'Beam/Mesh file': the solid is generated from a uniform strip");
-        if (s.supports.type() != "clamped" && (s.supports.type() != "elastic" || s.solid.from_mesh()))
+        if (s.supports.type() != "clamped" && s.supports.type() != "elastic")
           throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum + "' is not allowed with "
                            "'Supports/Type' = " + s.supports.type() + ": a solid is clamped (its clamped faces, or "
-                           "both end faces of the generated strip) or, the generated strip only, on the elastic "
-                           "supports; set 'Supports/Type' = clamped" +
-                           (s.solid.from_mesh() ? "" : " or elastic"));
+                           "both end faces of the generated strip) or on the elastic supports (rigid end plates "
+                           "on springs); set 'Supports/Type' = clamped or elastic");
         require(std::isfinite(s.solid.arch_rise) && s.solid.arch_rise >= 0 && s.solid.arch_rise <= s.beam.length / 10,
                 "Solid/Arch rise", s.solid.arch_rise,
                 "must be in [0, L/10 = " + num(s.beam.length / 10) + "] m (a shallow arch)");

@@ -113,6 +113,34 @@ TEST(SolidMesh, AbaqusDeckOfTheStripGivesTheGeneratedStripsModesAndLoad)
   EXPECT_NEAR(resultant[1] / resultant[0], 1., 1e-10);
 }
 
+// The published elastic supports on a mesh file: its two clamped groups (the
+// end faces) become the rigid plates on the springs, as on the generated
+// strip: strip-hex.msh on them gives mueller2023-solid's modes. A clamped
+// group that is not an end face (strip-blocks: the blocks' outer faces) is
+// refused, naming it.
+TEST(SolidMesh, ElasticSupportsOnAMeshFileActAsOnTheGeneratedStrip)
+{
+  const auto generated = bending_frequencies(read_scene(scene_dir + "mueller2023-solid.prm"), 5);
+  const auto from_file = bending_frequencies(read_scene(scene_dir + "strip-hex.prm", {"Supports/Type=elastic"}), 5);
+  for (unsigned int j = 0; j < 5; ++j)
+    EXPECT_NEAR(from_file[j] / generated[j], 1., 1e-8) << "bending mode " << j + 1;
+  const auto clamped = bending_frequencies(read_scene(scene_dir + "strip-hex.prm"), 1);
+  EXPECT_LT(from_file[0] / clamped[0], 0.99) << "the supports' springs lower f1 (the published rig's 2 %)";
+
+  try
+    {
+      const SolidModel<3> model(read_scene(scene_dir + "strip-blocks.prm", {"Supports/Type=elastic"}),
+                                MPI_COMM_WORLD);
+      ADD_FAILURE() << "elastic supports on the blocks' faces were accepted";
+    }
+  catch (const InputError &e)
+    {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("is not an end face"), std::string::npos) << message;
+      EXPECT_NE(message.find("Supports/Type"), std::string::npos) << message;
+    }
+}
+
 // Gmsh format 2 and format 4 of one tetrahedral mesh: the same model.
 TEST(SolidMesh, GmshFormatsTwoAndFourReadAlike)
 {
