@@ -16,15 +16,28 @@ namespace beamslider
   template <int dim>
   SolidModalCoefficients<dim>::SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes,
                                                       const unsigned int n_modes)
-    : model(model)
-    , statics(model)
+    : SolidModalCoefficients(model, modes,
+                             std::vector<unsigned int>(modes.bending.begin(),
+                                                       modes.bending.begin() +
+                                                         std::min<std::size_t>(n_modes, modes.bending.size())))
   {
     if (n_modes > modes.bending.size())
       throw std::invalid_argument("SolidModalCoefficients: " + std::to_string(n_modes) + " modes asked, " +
                                   std::to_string(modes.bending.size()) + " bending modes computed");
-    for (unsigned int k = 0; k < n_modes; ++k)
+  }
+
+  template <int dim>
+  SolidModalCoefficients<dim>::SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes,
+                                                      const std::vector<unsigned int> &indices)
+    : model(model)
+    , statics(model)
+  {
+    for (const unsigned int i : indices)
       {
-        const SolidMode &mode = modes.all[modes.bending[k]];
+        if (i >= modes.all.size())
+          throw std::invalid_argument("SolidModalCoefficients: mode " + std::to_string(i + 1) + " asked, " +
+                                      std::to_string(modes.all.size()) + " modes computed");
+        const SolidMode &mode = modes.all[i];
         Phi.emplace_back();
         model.reinit_vector(Phi.back());
         Phi.back() = mode.vector;

@@ -40,6 +40,10 @@ namespace beamslider
   public:
     // Φ: the bending modes of `modes` (modes.bending), the first n_modes.
     SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes, unsigned int n_modes);
+    // Φ: the modes modes.all[i] for i in `indices` (0-based, any shapes, in
+    // that order): torsion or lateral modes beside the bending ones.
+    SolidModalCoefficients(const SolidModel<dim> &model, const SolidModes &modes,
+                           const std::vector<unsigned int> &indices);
 
     // The reduced SVK polynomial (fit.linear = K, fit.quadratic, fit.cubic).
     CubicFit exact_polynomial() const;

@@ -131,7 +131,8 @@ namespace beamslider
   } // namespace
 
   template <int dim>
-  SolidModes compute_solid_modes(const SolidModel<dim> &model, const unsigned int n_bending)
+  SolidModes compute_solid_modes(const SolidModel<dim> &model, const unsigned int n_bending,
+                                 const unsigned int n_lowest)
   {
     require_petsc();
     PETScWrappers::MPI::SparseMatrix K, M;
@@ -143,11 +144,13 @@ namespace beamslider
     SolidModes modes;
     // Torsion (3D) and, higher up, lateral and axial modes lie between the
     // bending modes: ask for twice as many plus a few, and more if short.
-    for (unsigned int n = 2 * n_bending + 4;; n *= 2)
+    auto enough = [&]() { return modes.bending.size() == n_bending && modes.all.size() >= n_lowest; };
+    for (unsigned int n = std::max(2 * n_bending + 4, n_lowest);; n *= 2)
       {
         if (n > model.n_dofs() - model.constraints().n_constraints())
           throw std::runtime_error("the solid mesh has too few DoFs (" + std::to_string(model.n_dofs()) + ") for " +
-                                   std::to_string(n_bending) + " bending modes: refine it");
+                                   std::to_string(n_bending) + " bending modes and " + std::to_string(n_lowest) +
+                                   " modes in all: refine it");
         std::vector<double> eigenvalues;
         std::vector<PETScWrappers::MPI::Vector> vectors;
         modes.eigensolver_iterations += lowest_modes(model, K, M, n, eigenvalues, vectors);
@@ -181,14 +184,14 @@ namespace beamslider
             if (mode.shape == "bending" && modes.bending.size() < n_bending)
               modes.bending.push_back(modes.all.size());
             modes.all.push_back(std::move(mode));
-            if (modes.bending.size() == n_bending)
+            if (enough())
               break;
           }
-        if (modes.bending.size() == n_bending)
+        if (enough())
           return modes;
       }
   }
 
-  template SolidModes compute_solid_modes(const SolidModel<2> &, unsigned int);
-  template SolidModes compute_solid_modes(const SolidModel<3> &, unsigned int);
+  template SolidModes compute_solid_modes(const SolidModel<2> &, unsigned int, unsigned int);
+  template SolidModes compute_solid_modes(const SolidModel<3> &, unsigned int, unsigned int);
 } // namespace beamslider

@@ -49,8 +49,9 @@ namespace beamslider
   };
 
   // The lowest modes, as many as it takes to find n_bending bending modes
-  // (computed in rounds of growing size). Throws std::runtime_error with
-  // SLEPc's message if the eigensolver fails.
+  // and at least n_lowest modes of any shape (computed in rounds of growing
+  // size). Throws std::runtime_error with SLEPc's message if the eigensolver
+  // fails.
   template <int dim>
-  SolidModes compute_solid_modes(const SolidModel<dim> &model, unsigned int n_bending);
+  SolidModes compute_solid_modes(const SolidModel<dim> &model, unsigned int n_bending, unsigned int n_lowest = 0);
 } // namespace beamslider

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -172,5 +174,60 @@ TEST(StaticsCommand, ModalLoadGivesTheLinearModalResponseAndTheSameHardeningOnBe
       EXPECT_NEAR(std::stod(s[k][2]) / std::stod(b[k][2]), 1., 2e-3) << "w_mid at step " << k;
     }
   for (const auto &dir : {modes, small, beam, solid})
+    fs::remove_all(dir);
+}
+
+// coefficients --mode-indices on a solid: the modes by their index in
+// modes.csv, here bending 1 and 2 and the first torsion mode (mode 4 of the
+// clamped strip). STEP equals the exact polynomial on them too (to 1e-9 of
+// the largest term); the terms among the bending modes alone are those of
+// --modes 2 (the polynomial of a subset does not see the other modes); every
+// term odd in the twist vanishes (a twist is odd in y, bending even: by
+// symmetry, to 1e-8 of the largest); and the twist hardens (c^(t)_ttt > 0,
+// the membrane strain θ'² r² / 2 of a twisted strip held at its ends).
+TEST(SolidCoefficientsCommand, ModesChosenByIndexIncludeTorsionWithItsSymmetries)
+{
+  const fs::path modes = fresh_folder("indices_modes"), exact = fresh_folder("indices_exact"),
+                 step = fresh_folder("indices_step"), bending = fresh_folder("indices_bending");
+  auto run = [](const std::vector<std::string> &extra, const fs::path &dir) {
+    std::vector<std::string> args = {BEAMSLIDER_EXECUTABLE, "coefficients", "mueller2023-ideal-solid", "--output",
+                                     dir.string(), "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_clean_mpi_program(args);
+  };
+  ASSERT_EQ(run_clean_mpi_program({BEAMSLIDER_EXECUTABLE, "modes", "mueller2023-ideal-solid", "--modes", "4",
+                                   "--output", modes.string(), "-q"}),
+            0);
+  const auto listed = read_csv_cells(modes / "modes.csv");
+  ASSERT_GE(listed.size(), 5u);
+  ASSERT_EQ(listed[4][2], "torsion") << "mode 4 of the clamped strip";
+  ASSERT_EQ(run({"--method", "exact", "--mode-indices", "1,2,4"}, exact), 0);
+  ASSERT_EQ(run({"--method", "step", "--mode-indices", "1,2,4"}, step), 0);
+  ASSERT_EQ(run({"--method", "exact", "--modes", "2"}, bending), 0);
+
+  // n,j,k,l (1-based; 3 = the torsion mode here) -> value
+  auto terms = [](const fs::path &file) {
+    std::map<std::string, double> t;
+    const auto cells = read_csv_cells(file);
+    for (std::size_t r = 1; r < cells.size(); ++r)
+      t[cells[r][0] + cells[r][1] + cells[r][2] + cells[r][3]] = std::stod(cells[r][4]);
+    return t;
+  };
+  const auto e = terms(exact / "coefficients.csv"), s = terms(step / "coefficients.csv"),
+             b = terms(bending / "coefficients.csv");
+  double largest = 0;
+  for (const auto &[key, value] : e)
+    largest = std::max(largest, std::abs(value));
+  ASSERT_GT(largest, 0);
+  for (const auto &[key, value] : e)
+    {
+      EXPECT_NEAR(s.count(key) ? s.at(key) : 0., value, 1e-9 * largest) << "STEP against exact, term " << key;
+      if (std::count(key.begin(), key.end(), '3') % 2 == 1)
+        EXPECT_LT(std::abs(value), 1e-8 * largest) << "term " << key << " is odd in the twist";
+    }
+  for (const auto &[key, value] : b)
+    EXPECT_NEAR(e.at(key), value, 1e-9 * std::abs(value) + 1e-12 * largest) << "bending term " << key;
+  EXPECT_GT(e.at("3333"), 0.) << "the twist hardens";
+  for (const auto &dir : {modes, exact, step, bending})
     fs::remove_all(dir);
 }

@@ -22,7 +22,11 @@ namespace beamslider
     const Scene scene     = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     const unsigned int N  = options.n_modes ? options.n_modes : scene.discretisation.n_modes;
     if (scene.solid.enabled())
-      return run_solid_coefficients(common, scene, options.method == "analytic" ? "exact" : options.method, N);
+      return run_solid_coefficients(common, scene, options.method == "analytic" ? "exact" : options.method, N,
+                                    options.mode_indices);
+    if (!options.mode_indices.empty())
+      throw InputError("--mode-indices is for a scene with a Solid: a beam's modes are all bending modes, chosen "
+                       "by --modes N");
     require_mesh_for_modes(scene.discretisation.n_elements, N, "--modes");
     const std::string dir = prepare_output_dir(common, scene, "coefficients");
 

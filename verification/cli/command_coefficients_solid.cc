@@ -1,6 +1,8 @@
 // `beamslider coefficients` on a scene with a solid: the quadratic and cubic
 // modal coefficients of its first N bending modes (fem/solid_coefficients.h),
-// on every rank of an mpirun launch (rank 0 writes and prints).
+// or of the modes `--mode-indices i,j,...` (their `mode` in modes.csv, any
+// shape: torsion and lateral modes too), on every rank of an mpirun launch
+// (rank 0 writes and prints).
 //
 //   --method exact  the reduced SVK polynomial, integrated from the cubic law
 //   --method step   plain STEP: u = Φ q prescribed, every other DoF held
@@ -21,6 +23,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -31,7 +34,7 @@ namespace beamslider
   {
     template <int dim>
     int solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
-                           const unsigned int N)
+                           const unsigned int n_bending, const std::vector<unsigned int> &indices)
     {
       const MPI_Comm comm = MPI_COMM_WORLD;
       const bool root     = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
@@ -39,9 +42,15 @@ namespace beamslider
 
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
-      const SolidModes modes = compute_solid_modes(model, N);
+      // The first N bending modes, or the modes asked for by index.
+      const unsigned int n_lowest = indices.empty() ? 0 : *std::max_element(indices.begin(), indices.end()) + 1;
+      const SolidModes modes      = compute_solid_modes(model, indices.empty() ? n_bending : 0, n_lowest);
+      std::vector<unsigned int> kept = indices;
+      if (kept.empty())
+        kept.assign(modes.bending.begin(), modes.bending.end());
+      const unsigned int N = kept.size();
       const double modes_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      SolidModalCoefficients<dim> coefficients(model, modes, N);
+      SolidModalCoefficients<dim> coefficients(model, modes, kept);
       const Eigen::VectorXd omega  = coefficients.omega();
       const CubicFit fit = solid_cubic_fit(coefficients, method, scene.beam.thickness);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -56,9 +65,10 @@ namespace beamslider
                   << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", "
                   << model.element_name() << ", " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
                   << dealii::Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
-                  << "- bending modes kept (Hz):";
+                  << "- modes kept, n = 1 ... N of coefficients.csv (index in modes.csv, shape, Hz):";
           for (unsigned int k = 0; k < N; ++k)
-            summary << " " << omega[k] / (2 * M_PI);
+            summary << (k ? "; " : " ") << kept[k] + 1 << " " << modes.all[kept[k]].shape << " "
+                    << omega[k] / (2 * M_PI);
           summary << "\n- b_111 (= c^(1)_111) = " << fit.cubic.front().value << " 1/(s^2 m^2 kg)\n"
                   << "- largest quadratic coefficient (0 for a flat strip): " << fit.max_abs_quadratic() << "\n"
                   << "- nonlinear static solves: " << coefficients.n_static_solves()
@@ -78,11 +88,24 @@ namespace beamslider
   } // namespace
 
   int run_solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
-                             const unsigned int n_modes)
+                             const unsigned int n_modes, const std::vector<unsigned int> &mode_indices)
   {
     if (method != "exact" && method != "step" && method != "ice")
       throw InputError("--method " + method + " is not for a solid scene (Solid/Continuum = '" +
                        scene.solid.continuum + "'): use exact, step or ice");
-    return run_on_solid(scene, [&](auto dim) { return solid_coefficients<decltype(dim)::value>(common, scene, method, n_modes); });
+    std::vector<unsigned int> indices; // 0-based into SolidModes::all
+    for (const unsigned int i : mode_indices)
+      {
+        if (i == 0)
+          throw InputError("--mode-indices: 0 is not a mode; the indices of modes.csv start at 1");
+        if (std::find(indices.begin(), indices.end(), i - 1) != indices.end())
+          throw InputError("--mode-indices: mode " + std::to_string(i) + " is given twice; give each mode once");
+        indices.push_back(i - 1);
+      }
+    if (indices.size() > 10)
+      throw InputError("--mode-indices: " + std::to_string(indices.size()) + " modes, at most 10");
+    return run_on_solid(scene, [&](auto dim) {
+      return solid_coefficients<decltype(dim)::value>(common, scene, method, n_modes, indices);
+    });
   }
 } // namespace beamslider

@@ -80,7 +80,14 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
                                "analytic | step | step-condensed | ice (a solid scene: exact | step | ice; "
                                "analytic means exact there)")
     ->check(CLI::IsMember({"analytic", "exact", "step", "step-condensed", "ice"}));
-  coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
+  auto *coefficient_modes =
+    coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
+  coefficients_cmd
+    ->add_option("--mode-indices", coefficients.mode_indices,
+                 "a solid scene: the modes by their index in modes.csv (any shape), e.g. 1,2,4")
+    ->delimiter(',')
+    ->check(integer_in(1, 50))
+    ->excludes(coefficient_modes);
 
   StaticsOptions statics;
   auto *statics_cmd =

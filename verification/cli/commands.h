@@ -41,11 +41,16 @@ namespace beamslider
   {
     std::string method = "analytic"; // analytic | step | step-condensed | ice; a solid: exact | step | ice
     unsigned int n_modes = 0;        // 0 = the scene's N
+    // A solid: the modes by their index in modes.csv (1-based, every shape,
+    // ascending frequency) instead of the first n_modes bending modes.
+    std::vector<unsigned int> mode_indices;
   };
   int run_coefficients(const CommonOptions &common, const CoefficientsOptions &options);
-  // A solid scene's coefficients (command_coefficients_solid.cc): exact | step | ice.
+  // A solid scene's coefficients (command_coefficients_solid.cc): exact | step
+  // | ice, of its first n_modes bending modes or of the modes `mode_indices`
+  // (1-based, when not empty).
   int run_solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
-                             unsigned int n_modes);
+                             unsigned int n_modes, const std::vector<unsigned int> &mode_indices = {});
 
   // `beamslider statics`: load-stepped nonlinear statics of the FE beam under
   // a uniform dead line load (command_statics.cc).
