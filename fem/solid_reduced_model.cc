@@ -7,6 +7,7 @@
 #include "fem/solid_modes.h"
 #include "reduced/cubic_fit.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <sstream>
@@ -49,9 +50,10 @@ namespace beamslider
     if (!scene.solid.enabled())
       throw InputError("a reduced model from the solid needs a scene with a Solid (Solid/Continuum = 3d or "
                        "plane stress)");
-    if (coefficients != "ice" && coefficients != "step" && coefficients != "exact" && coefficients != "analytic")
+    const auto &methods = solid_rom_coefficient_methods();
+    if (std::find(methods.begin(), methods.end(), coefficients) == methods.end())
       throw InputError("coefficients '" + coefficients + "' are not available on a solid scene (Solid/Continuum = '" +
-                       scene.solid.continuum + "'): use one of " + solid_rom_coefficient_methods());
+                       scene.solid.continuum + "'): use one of " + solid_rom_coefficient_method_list());
     if (n_modes == 0)
       throw InputError("a reduced model from the solid needs N >= 1 modes");
     require_petsc();

@@ -37,8 +37,20 @@ namespace beamslider
     double build_seconds = 0;      // modes + coefficients, wall time
   };
 
-  // The methods a solid scene's ROM accepts, for error messages.
-  inline const char *solid_rom_coefficient_methods() { return "ice, step, exact, analytic"; }
+  // The methods a solid scene's ROM accepts (the first is the default), and
+  // the same as a list for messages.
+  inline const std::vector<std::string> &solid_rom_coefficient_methods()
+  {
+    static const std::vector<std::string> methods{"ice", "step", "exact", "analytic"};
+    return methods;
+  }
+  inline std::string solid_rom_coefficient_method_list()
+  {
+    std::string list;
+    for (const std::string &m : solid_rom_coefficient_methods())
+      list += (list.empty() ? "" : ", ") + m;
+    return list;
+  }
 
   // The reduced model of `scene`'s solid (scene.solid.enabled()) with
   // n_modes bending modes and cubic terms by `coefficients`; starts PETSc if

@@ -61,7 +61,7 @@ namespace
     }
 
   private:
-    static constexpr std::array<int, 4> signals = {SIGINT, SIGTERM, SIGXFSZ, SIGPIPE};
+    static constexpr std::array<int, 4> signals = {{SIGINT, SIGTERM, SIGXFSZ, SIGPIPE}};
     std::array<struct sigaction, 4> saved{};
   };
 

@@ -458,7 +458,9 @@ TEST(SolidStatics, LoadPathFollowsTheBeamAndTheIceModelFollowsTheLoadPath)
           if (k % 8 == 7)
             std::cout << "ICE ROM (modes 1-5), nu = 0.3: w = " << w_full[k] / h << " h, relative error " << error << "\n";
           if (std::abs(w_full[k]) <= 2.05 * h)
-            EXPECT_LT(std::abs(error), 0.01) << "w = " << w_full[k] / h << " h";
+            {
+              EXPECT_LT(std::abs(error), 0.01) << "w = " << w_full[k] / h << " h";
+            }
         }
     }
 }
@@ -534,7 +536,7 @@ TEST(SolidStatics, ArchQuadraticCoefficientsGiveTheAsymmetricLoadPath)
 // rotation), γ_n (modes 1, 3, 5) within |c_n|, and |c_n| < 0.3 %.
 TEST(SolidModalBasis, TheSolidsBeamLineCarriesTheBeamsModes)
 {
-  for (const std::string &name : {"mueller2023-ideal", "mueller2023"})
+  for (const std::string name : {"mueller2023-ideal", "mueller2023"})
     {
       Scene scene = read_scene(scene_dir + (name == "mueller2023" ? "mueller2023-solid.prm" : "mueller2023-ideal-solid.prm"),
                                {"Solid/Continuum=plane stress", "Solid/Poisson's ratio=0", "Solid/Elements along length=140"});
@@ -566,7 +568,9 @@ TEST(SolidModalBasis, TheSolidsBeamLineCarriesTheBeamsModes)
           EXPECT_LT(err_p[n], c * max_p[n]) << name << ", mode " << n + 1;
           EXPECT_LT(err_dp[n], 3 * c * max_dp[n]) << name << ", mode " << n + 1;
           if (n % 2 == 0) // the antisymmetric modes have γ = 0
-            EXPECT_NEAR(solid.gamma[n] / fe.gamma[n], 1., c) << name << ", mode " << n + 1;
+            {
+              EXPECT_NEAR(solid.gamma[n] / fe.gamma[n], 1., c) << name << ", mode " << n + 1;
+            }
         }
     }
 }

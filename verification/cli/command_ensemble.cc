@@ -21,6 +21,7 @@
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
+#include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/member_runs.h"
@@ -113,12 +114,12 @@ namespace beamslider
         if (options.model != "rom")
           throw InputError("--coefficients " + options.coefficients + " applies to --model rom only");
         const bool solid = scene.solid.enabled();
+        // Checked here, so that a bad method exits 2 before any member runs.
         const std::vector<std::string> allowed =
-          solid ? std::vector<std::string>{"ice", "step", "exact", "analytic"}
-                : std::vector<std::string>{"analytic", "step-condensed", "ice"};
+          solid ? solid_rom_coefficient_methods() : std::vector<std::string>{"analytic", "step-condensed", "ice"};
         if (std::find(allowed.begin(), allowed.end(), options.coefficients) == allowed.end())
           throw InputError("--coefficients " + options.coefficients + " is not one of " +
-                           (solid ? "ice, step, exact, analytic (a solid scene's ROM)"
+                           (solid ? solid_rom_coefficient_method_list() + " (a solid scene's ROM)"
                                   : "analytic, step-condensed, ice (a beam scene's ROM)"));
         settings.model.coefficients = options.coefficients;
       }
