@@ -49,6 +49,14 @@ namespace beamslider
     CubicFit exact_polynomial() const;
     // q ↦ Φᵀ f(Φ q) [N kg^-1/2] (plain STEP's callback; includes K q).
     Eigen::VectorXd modal_force(const Eigen::VectorXd &q) const;
+    // Relaxed STEP's callback (the solid's condensed STEP): q ↦ λ = Φᵀ f(u)
+    // with u = Φ q + v, every DoF outside the kept modes relaxed: Φᵀ M v = 0
+    // and f(u) = M Φ λ, by Newton on the bordered system
+    //   [K_t  −MΦ] [dv]   [M Φ λ − f(u)]
+    //   [(MΦ)ᵀ  0] [dλ] = [     0      ]
+    // through its N × N Schur complement on a MUMPS factorisation of K_t.
+    // Throws SolidStaticSolveError if Newton does not converge.
+    Eigen::VectorXd modal_force_relaxed(const Eigen::VectorXd &q);
     // f̂ ↦ q = Φᵀ M u with f(u) = M Φ f̂ (ICE's callback).
     Eigen::VectorXd modal_static_response(const Eigen::VectorXd &f_hat);
     // Its two halves: the modal load M Φ f̂ [N] (zero on constrained DoFs),
@@ -71,6 +79,7 @@ namespace beamslider
     std::vector<double> omegas;
     dealii::PETScWrappers::MPI::SparseMatrix M;
     SolidStatics<dim> statics;
+    KeptFactorisation relaxed_tangent{model.communicator()};
   };
 
   // The coefficients of `coefficients`' modes by a method, at the load or
@@ -78,6 +87,8 @@ namespace beamslider
   //   exact  the reduced SVK polynomial;
   //   step   plain STEP with amplitudes of one thickness (exact for the cubic
   //          law at any size);
+  //   step-relaxed  STEP with the other DoFs relaxed, amplitudes of one
+  //          thickness;
   //   ice    ICE at load level 1 = a linear response of 0.03 h.
   // Throws std::invalid_argument for another method.
   template <int dim>

@@ -6,6 +6,8 @@
 //
 //   --method exact  the reduced SVK polynomial, integrated from the cubic law
 //   --method step   plain STEP: u = Φ q prescribed, every other DoF held
+//   --method step-condensed  STEP with every other DoF relaxed (Φᵀ M v = 0,
+//                   f(u) ∈ span MΦ; fitted at 0.03 h)
 //   --method ice    ICE: modal loads M Φ f̂, full nonlinear statics, q = Φᵀ M u
 //
 //   coefficients.csv            n,j,k,l,value (the beam's columns and units)
@@ -90,9 +92,12 @@ namespace beamslider
   int run_solid_coefficients(const CommonOptions &common, const Scene &scene, const std::string &method,
                              const unsigned int n_modes, const std::vector<unsigned int> &mode_indices)
   {
-    if (method != "exact" && method != "step" && method != "ice")
+    // step-condensed means on a solid what it means on a beam: STEP with the
+    // DoFs outside the kept modes relaxed.
+    const std::string solid_method = method == "step-condensed" ? "step-relaxed" : method;
+    if (solid_method != "exact" && solid_method != "step" && solid_method != "step-relaxed" && solid_method != "ice")
       throw InputError("--method " + method + " is not for a solid scene (Solid/Continuum = '" +
-                       scene.solid.continuum + "'): use exact, step or ice");
+                       scene.solid.continuum + "'): use exact, step, step-condensed or ice");
     std::vector<unsigned int> indices; // 0-based into SolidModes::all
     for (const unsigned int i : mode_indices)
       {
@@ -105,7 +110,7 @@ namespace beamslider
     if (indices.size() > 10)
       throw InputError("--mode-indices: " + std::to_string(indices.size()) + " modes, at most 10");
     return run_on_solid(scene, [&](auto dim) {
-      return solid_coefficients<decltype(dim)::value>(common, scene, method, n_modes, indices);
+      return solid_coefficients<decltype(dim)::value>(common, scene, solid_method, n_modes, indices);
     });
   }
 } // namespace beamslider

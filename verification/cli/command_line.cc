@@ -77,7 +77,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
   add_common(coefficients_cmd);
   coefficients_cmd->add_option("--method", coefficients.method,
-                               "analytic | step | step-condensed | ice (a solid scene: exact | step | ice; "
+                               "analytic | step | step-condensed | ice (a solid scene: exact | step | step-condensed | ice; "
                                "analytic means exact there)")
     ->check(CLI::IsMember({"analytic", "exact", "step", "step-condensed", "ice"}));
   auto *coefficient_modes =
