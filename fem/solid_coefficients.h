@@ -87,8 +87,8 @@ namespace beamslider
   //   exact  the reduced SVK polynomial;
   //   step   plain STEP with amplitudes of one thickness (exact for the cubic
   //          law at any size);
-  //   step-relaxed  STEP with the other DoFs relaxed, amplitudes of one
-  //          thickness;
+  //   step-relaxed  STEP with the other DoFs relaxed, amplitudes of 0.03 h
+  //          (not exactly cubic: the other bending modes respond too);
   //   ice    ICE at load level 1 = a linear response of 0.03 h.
   // Throws std::invalid_argument for another method.
   template <int dim>

@@ -65,7 +65,7 @@ namespace beamslider
       void write(const std::string &folder, const std::string &basename, const double base_displacement,
                  const Eigen::VectorXd &q) override
       {
-        superpose(q);
+        superpose(q, deflection);
         displacement = deflection;
         displacement.add(base_displacement, unit_z);
         write_solid_fields(model, {{"displacement", &displacement, 1.}, {"deflection", &deflection, 1.}}, folder,
@@ -74,11 +74,9 @@ namespace beamslider
 
       double section_deflection(const Eigen::VectorXd &q, const double x) const override
       {
-        check_size(q);
         PETScWrappers::MPI::Vector sum;
         model.reinit_vector(sum);
-        for (unsigned int n = 0; n < bending.size(); ++n)
-          sum.add(q[n], bending[n]);
+        superpose(q, sum);
         PETScWrappers::MPI::Vector ghosted;
         model.reinit_ghosted_vector(ghosted);
         ghosted = sum;
@@ -86,19 +84,15 @@ namespace beamslider
       }
 
     private:
-      void check_size(const Eigen::VectorXd &q) const
+      // sum = Σ q_n φ_n (sum: a vector of the model's owned DoFs).
+      void superpose(const Eigen::VectorXd &q, PETScWrappers::MPI::Vector &sum) const
       {
         if (static_cast<std::size_t>(q.size()) != bending.size())
           throw std::invalid_argument("solid animation: " + std::to_string(q.size()) + " modal coordinates for " +
                                       std::to_string(bending.size()) + " modes");
-      }
-
-      void superpose(const Eigen::VectorXd &q)
-      {
-        check_size(q);
-        deflection = 0;
+        sum = 0;
         for (unsigned int n = 0; n < bending.size(); ++n)
-          deflection.add(q[n], bending[n]);
+          sum.add(q[n], bending[n]);
       }
 
       const SolidModel<dim> model;

@@ -56,18 +56,12 @@ namespace beamslider
     if (Q)
       beam.assemble_line_load(-*Q, F); // downward = -w
     else
-      {
-        Eigen::VectorXd f_hat = Eigen::VectorXd::Zero(n);
-        f_hat[n - 1]          = *f;
-        F                     = statics.modal_load(f_hat);
-      }
+      F = statics.modal_load(*f * Eigen::VectorXd::Unit(n, n - 1));
     const std::vector<FEStatics::LoadStep> path = statics.load_path(F, options.n_steps);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const double x_mid = 0.5 * scene.beam.length, load = Q ? *Q : *f;
-    CsvWriter csv(dir + "/statics.csv", Q ? std::vector<std::string>{"line_load_n_per_m", "w_mid_m", "newton_iterations"}
-                                          : std::vector<std::string>{"modal_load_n_per_sqrt_kg", "q_m_sqrt_kg",
-                                                                     "w_mid_m", "newton_iterations"});
+    CsvWriter csv(dir + "/statics.csv", statics_csv_columns(options));
     std::vector<NamedShape> shapes;
     for (unsigned int k = 0; k < path.size(); ++k)
       {

@@ -50,21 +50,14 @@ namespace beamslider
       if (Q)
         F = statics.line_load(-*Q); // downward = −z
       else
-        {
-          Eigen::VectorXd f_hat = Eigen::VectorXd::Zero(n);
-          f_hat[n - 1]          = *f;
-          F                     = basis->modal_load(f_hat);
-        }
+        F = basis->modal_load(*f * Eigen::VectorXd::Unit(n, n - 1));
       const double load = Q ? *Q : *f;
       dealii::PETScWrappers::MPI::Vector u, F_k, F_previous;
       model.reinit_vector(u);
       model.reinit_vector(F_previous);
       std::optional<CsvWriter> csv;
       if (root)
-        csv.emplace(dir + "/statics.csv",
-                    Q ? std::vector<std::string>{"line_load_n_per_m", "w_mid_m", "newton_iterations"}
-                      : std::vector<std::string>{"modal_load_n_per_sqrt_kg", "q_m_sqrt_kg", "w_mid_m",
-                                                 "newton_iterations"});
+        csv.emplace(dir + "/statics.csv", statics_csv_columns(options));
       std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
       double w_mid = 0, q_n = 0;
       for (unsigned int k = 1; k <= options.n_steps; ++k)

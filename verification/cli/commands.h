@@ -62,6 +62,14 @@ namespace beamslider
     unsigned int mode    = 1;  // n (1-based) of the modal load
     unsigned int n_steps = 10; // equal load steps to the full load
   };
+  // statics.csv's columns, for both the beam and the solid: q_m_sqrt_kg is
+  // the loaded mode's coordinate φ_nᵀ M u under a modal load.
+  inline std::vector<std::string> statics_csv_columns(const StaticsOptions &options)
+  {
+    if (options.modal_load)
+      return {"modal_load_n_per_sqrt_kg", "q_m_sqrt_kg", "w_mid_m", "newton_iterations"};
+    return {"line_load_n_per_m", "w_mid_m", "newton_iterations"};
+  }
   int run_statics(const CommonOptions &common, const StaticsOptions &options);
   // A solid scene's statics (command_statics_solid.cc).
   int run_solid_statics(const CommonOptions &common, const Scene &scene, const StaticsOptions &options);
