@@ -5,6 +5,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -98,6 +99,8 @@ namespace beamslider
     block_w_.resize(rank, max_block_columns);
     block_column_.resize(n);
     block_solution_.resize(n);
+    inverse_columns_.resize(n, n_inverse_columns);
+    clear_inverse_columns();
     Z_.resize(n, rank);
     Dg_.resize(rank);
     capacitance_matrix_.resize(rank, rank);
@@ -390,6 +393,29 @@ namespace beamslider
     if (ldlt_.info() != Eigen::Success)
       throw std::runtime_error("FE transient: the LDL^T factorisation of S = M + dt^2/4 K_t failed (dt = " +
                                std::to_string(dt) + " s)");
+    // L row by row (see L_rows_): set up on the first factorisation, then
+    // only the values move.
+    const auto &L = ldlt_.matrixL().nestedExpression();
+    const Eigen::Index nnz = L.nonZeros();
+    if (static_cast<Eigen::Index>(L_pattern_.size()) != nnz ||
+        !std::equal(L_pattern_.begin(), L_pattern_.end(), L.innerIndexPtr()))
+      {
+        L_rows_ = L;
+        L_rows_.makeCompressed();
+        L_pattern_.assign(L.innerIndexPtr(), L.innerIndexPtr() + nnz);
+        L_rows_entry_.resize(nnz);
+        for (Eigen::Index j = 0; j < L.outerSize(); ++j)
+          for (Eigen::Index k = L.outerIndexPtr()[j]; k < L.outerIndexPtr()[j + 1]; ++k)
+            {
+              const int i    = L.innerIndexPtr()[k];
+              const int *row = L_rows_.innerIndexPtr();
+              const auto at  = std::lower_bound(row + L_rows_.outerIndexPtr()[i], row + L_rows_.outerIndexPtr()[i + 1], j);
+              L_rows_entry_[k] = at - row;
+            }
+      }
+    for (Eigen::Index k = 0; k < nnz; ++k)
+      L_rows_.valuePtr()[L_rows_entry_[k]] = L.valuePtr()[k];
+    inverse_D_ = ldlt_.diagonal().cwiseInverse();
 
     // Woodbury terms of the rank-N damping, S = S₀ + U Dg Uᵀ.
     const unsigned int rank = damping_->rank();
@@ -398,9 +424,9 @@ namespace beamslider
         // Into storage sized once (a refactorisation allocates nothing).
         for (unsigned int k = 0; k < rank; ++k)
           {
-            block_column_   = U_.col(k);
-            block_solution_ = ldlt_.solve(block_column_);
-            Z_.col(k)       = block_solution_;
+            block_column_ = U_.col(k);
+            solve_factored(block_column_, block_solution_);
+            Z_.col(k)     = block_solution_;
           }
         Dg_ = (0.5 * dt) * modal_c_;
         capacitance_matrix_.noalias() = U_.transpose() * Z_;
@@ -408,6 +434,7 @@ namespace beamslider
         capacitance_matrix_.diagonal().array() += 1.;
         capacitance_.compute(capacitance_matrix_);
       }
+    clear_inverse_columns();
     factorised_       = true;
     factorised_dt_    = dt;
     factorised_step_  = stats_.steps;
@@ -453,9 +480,19 @@ namespace beamslider
       }
   }
 
+  void FETransientBeam::solve_factored(const Eigen::VectorXd &b, Eigen::VectorXd &x) const
+  {
+    // S₀ = L D Lᵀ: forward row by row, scale, backward with Lᵀ (which
+    // Eigen already walks row by row).
+    x = b;
+    L_rows_.triangularView<Eigen::UnitLower>().solveInPlace(x);
+    x.array() *= inverse_D_.array();
+    ldlt_.matrixU().solveInPlace(x);
+  }
+
   void FETransientBeam::solve(const Eigen::VectorXd &b, Eigen::VectorXd &x) const
   {
-    x = ldlt_.solve(b);
+    solve_factored(b, x);
     const unsigned int rank = damping_->rank();
     if (rank == 0)
       return;
@@ -531,7 +568,7 @@ namespace beamslider
         // the contraction of this (already modified) Newton iteration; the
         // residual keeps the damping exactly, so the converged u_free is
         // the same. The contact impulses still see the full S (solve()).
-        du_.noalias() = ldlt_.solve(res_);
+        solve_factored(res_, du_);
         u_ -= du_;
         ++stats_.newton_iterations;
 
@@ -583,6 +620,28 @@ namespace beamslider
       u_E[i] = (q_E[i] - q_B[i]) / dt;
   }
 
+  void FETransientBeam::clear_inverse_columns()
+  {
+    inverse_column_dof_.fill(-1);
+    next_inverse_column_ = 0;
+  }
+
+  const double *FETransientBeam::inverse_column(const unsigned int dof) const
+  {
+    for (unsigned int k = 0; k < n_inverse_columns; ++k)
+      if (inverse_column_dof_[k] == static_cast<int>(dof))
+        return inverse_columns_.col(k).data();
+    const unsigned int k = next_inverse_column_;
+    next_inverse_column_ = (k + 1) % n_inverse_columns;
+    block_column_.setZero();
+    block_column_[dof] = 1.;
+    solve(block_column_, block_solution_);
+    inverse_columns_.col(k) = block_solution_;
+    inverse_column_dof_[k]  = static_cast<int>(dof);
+    ++stats_.inverse_column_solves;
+    return inverse_columns_.col(k).data();
+  }
+
   void FETransientBeam::apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
                                                Eigen::Ref<Eigen::MatrixXd> X) const
   {
@@ -598,6 +657,31 @@ namespace beamslider
     const Eigen::Index m = B.cols();
     if (m > block_rhs_.cols())
       throw std::logic_error("FE transient: more right-hand sides than the scratch holds");
+    // A block whose columns each touch a few DoFs (the contact directions:
+    // four) is combined from the kept columns of S⁻¹.
+    const unsigned int n = n_dofs();
+    constexpr unsigned int max_sparse_entries = 8;
+    bool sparse = true;
+    for (Eigen::Index j = 0; j < m && sparse; ++j)
+      {
+        unsigned int count = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          count += (B(i, j) != 0. && !constrained_[i]);
+        sparse = count <= max_sparse_entries;
+      }
+    if (sparse)
+      {
+        for (Eigen::Index j = 0; j < m; ++j)
+          {
+            auto x = X.col(j);
+            x.setZero();
+            for (unsigned int i = 0; i < n; ++i)
+              if (B(i, j) != 0. && !constrained_[i])
+                x += B(i, j) * Eigen::Map<const Eigen::VectorXd>(inverse_column(i), n);
+          }
+        stats_.iteration_matrix_solves += B.cols();
+        return;
+      }
     auto rhs = block_rhs_.leftCols(m);
     rhs      = B;
     for (const unsigned int i : constrained_list_)
@@ -606,9 +690,9 @@ namespace beamslider
       {
         // Through plain vectors: Eigen's permuted solve into a column of a
         // Ref allocates a temporary.
-        block_column_   = rhs.col(j);
-        block_solution_ = ldlt_.solve(block_column_);
-        X.col(j)        = block_solution_;
+        block_column_ = rhs.col(j);
+        solve_factored(block_column_, block_solution_);
+        X.col(j)      = block_solution_;
       }
     const unsigned int rank = damping_->rank();
     if (rank > 0)

@@ -31,9 +31,13 @@
 // order; symbolic analysis once, numeric factorisation on refactorisation).
 // We started with deal.II's UMFPACK: on the 131-DoF default mesh a
 // factorisation cost about 100 µs and a solve about 10 µs, mostly call
-// overhead. LAPACK's band Cholesky (dpbtrf/dpbtrs) was tried twice: with
-// Debian's reference BLAS a solve takes 3.9 µs against Eigen's 2.6 µs
-// (measured 2026-11-25, half-bandwidth 7, one core).
+// overhead. A solve is ~1000 multiply-adds, but each unknown of a
+// triangular solve waits for the previous ones, so it is bound by that
+// chain's latency, not by the arithmetic: on a banded SPD matrix of this
+// size and half-bandwidth (131, 7; one core, 2026-11-27) Eigen's
+// SimplicialLDLT::solve takes 2.6 µs, the same factor with L walked row by
+// row and 1/D kept (what solve_factored does) 2.3 µs, LAPACK's band
+// dpbtrs 2.3 µs (3.9 µs in an earlier measurement), a dense LLᵀ 5.7 µs.
 // The damping is folded in by Sherman–Morrison–Woodbury:
 //   S⁻¹ b = y − Z (I + Dg UᵀZ)⁻¹ Dg Uᵀ y,   y = S₀⁻¹ b,  Z = S₀⁻¹ U,
 // which costs N extra solves per factorisation and an N × N dense solve per
@@ -117,9 +121,14 @@ namespace beamslider
     double max_contraction = 0.01;
     // Newton's start: u_B plus the last step's smooth velocity change (true),
     // or u_B (false). Extrapolating gains nothing measurable (4.6 against 4.5
-    // iterations per step on the signature move): the undamped stiff axial
+    // iterations per step on the signature move): the undamped stiff
     // modes, ωΔt ≫ 1, flip sign every step under the midpoint rule and
-    // dominate the first correction either way.
+    // dominate the first correction either way. Measured again 2026-11-27
+    // (FeContact/32/0): the first correction is 2e7–6e7 tolerances, almost
+    // all of it in the bending DoFs (the axial part ~1e3); extrapolating the
+    // bending velocities linearly and repeating the axial ones of two steps
+    // back (the period-two flip) leaves it as large, and Newton at its floor
+    // of two iterations per step (2.00 against 2.02).
     bool extrapolate = false;
     // Refactorise at least every this many steps (0: only when Newton needs it).
     unsigned int refactor_interval = 0;
@@ -142,6 +151,9 @@ namespace beamslider
   struct FETransientStatistics
   {
     unsigned long steps = 0, newton_iterations = 0, factorisations = 0, iteration_matrix_solves = 0;
+    // Columns of S⁻¹ solved for the contact directions (the rest come from
+    // those kept since the last factorisation).
+    unsigned long inverse_column_solves = 0;
   };
 
   class FETransientBeam : public BeamSystem
@@ -257,8 +269,24 @@ namespace beamslider
     {
     public:
       void factorize_upper(const Eigen::SparseMatrix<double> &upper) { this->template factorize_preordered<true>(upper); }
+      // D by reference (vectorD() returns a copy: an allocation).
+      const Eigen::VectorXd &diagonal() const { return this->m_diag; }
     };
     BandOrderLDLT ldlt_;
+    // The factor's L once more, row by row, and 1/D: Eigen solves a
+    // column-major L by scattering into x, each entry of a band updated by
+    // several columns in turn (a chain through memory), and divides by D;
+    // row by row the forward solve is a dot product per row. This halved
+    // the time of S₀⁻¹ b (the largest part of a step). L's pattern is fixed
+    // by the symbolic analysis, so the copy is set up once and each
+    // factorisation only moves the values (L_rows_entry_[k]: where L's k-th
+    // value goes), allocating nothing.
+    Eigen::SparseMatrix<double, Eigen::RowMajor> L_rows_;
+    std::vector<Eigen::Index> L_rows_entry_;
+    std::vector<int> L_pattern_; // L's row indices when L_rows_ was set up
+    Eigen::VectorXd inverse_D_;
+    // x = S₀⁻¹ b with the factors above (x may not alias b).
+    void solve_factored(const Eigen::VectorXd &b, Eigen::VectorXd &x) const;
     bool factorised_        = false;
     double factorised_dt_   = 0;
     unsigned long factorised_step_ = 0;
@@ -273,6 +301,24 @@ namespace beamslider
     static constexpr Eigen::Index max_block_columns = 8;
     mutable Eigen::MatrixXd block_rhs_, block_v_, block_w_;
     mutable Eigen::VectorXd block_column_, block_solution_;
+    // Columns of S⁻¹ (Woodbury included) for single DoFs, kept until the
+    // next factorisation. A contact direction is ∂g/∂q at one point of the
+    // beam: it touches the 4 Hermite DoFs of one cell, so S⁻¹ W needs S⁻¹
+    // e_i for those few DoFs only, and the slider stays on the same cells
+    // for thousands of steps between refactorisations. Each column costs
+    // one solve the first time, then an axpy of length n (the contact part
+    // of a step went from one sparse solve per direction to a few axpys).
+    // Round-robin replacement when full; the values do not depend on which
+    // columns are kept, so a run restored from a checkpoint gives the same
+    // bits.
+    static constexpr unsigned int n_inverse_columns = 16;
+    mutable Eigen::MatrixXd inverse_columns_; // n × n_inverse_columns
+    mutable std::array<int, n_inverse_columns> inverse_column_dof_{};
+    mutable unsigned int next_inverse_column_ = 0;
+    // S⁻¹ e_i from the cache, solved and stored on first use.
+    const double *inverse_column(unsigned int dof) const;
+    // Forget the kept columns (a new factorisation).
+    void clear_inverse_columns();
 
     // Last step, for the predictor and step_work.
     double last_dt_ = 0, last_acceleration_ = 0;

@@ -171,6 +171,7 @@ static void FeContact(benchmark::State &state)
   state.counters["newton/step"]         = (after.newton_iterations - before.newton_iterations) * per_step;
   state.counters["factorisations/step"] = (after.factorisations - before.factorisations) * per_step;
   state.counters["contact solves/step"] = (after.iteration_matrix_solves - before.iteration_matrix_solves) * per_step;
+  state.counters["S^-1 columns/step"]   = (after.inverse_column_solves - before.inverse_column_solves) * per_step;
   state.counters["allocations/step"]    = double(allocations) / std::max<unsigned long>(counted_steps, 1);
 }
 BENCHMARK(FeContact)->Args({16, 0})->Args({32, 0})->Args({64, 0})->Args({32, 12})->Unit(benchmark::kSecond)->Iterations(1);
