@@ -124,11 +124,12 @@ namespace beamslider
     // iterations per step on the signature move): the undamped stiff
     // modes, ωΔt ≫ 1, flip sign every step under the midpoint rule and
     // dominate the first correction either way. Measured again 2026-11-27
-    // (FeContact/32/0): the first correction is 2e7–6e7 tolerances, almost
-    // all of it in the bending DoFs (the axial part ~1e3); extrapolating the
-    // bending velocities linearly and repeating the axial ones of two steps
-    // back (the period-two flip) leaves it as large, and Newton at its floor
-    // of two iterations per step (2.00 against 2.02).
+    // (FeContact/32/0): the first correction is 2e7–6e7 tolerances, 85–95 %
+    // of it (M-norm) in the undamped bending modes with ωΔt ≥ 2, the axial
+    // part ~1e3 tolerances; extrapolating the bending velocities linearly
+    // and repeating the axial ones of two steps back (the period-two flip)
+    // leaves it as large, and Newton at its floor of two iterations per
+    // step (2.00 against 2.02).
     bool extrapolate = false;
     // Refactorise at least every this many steps (0: only when Newton needs it).
     unsigned int refactor_interval = 0;
