@@ -277,8 +277,8 @@ namespace beamslider
     // The factor's L once more, row by row, and 1/D: Eigen solves a
     // column-major L by scattering into x, each entry of a band updated by
     // several columns in turn (a chain through memory), and divides by D;
-    // row by row the forward solve is a dot product per row. This halved
-    // the time of S₀⁻¹ b (the largest part of a step). L's pattern is fixed
+    // row by row the forward solve is a dot product per row: 2.6 → 2.3 µs
+    // per S₀⁻¹ b (the largest part of a step). L's pattern is fixed
     // by the symbolic analysis, so the copy is set up once and each
     // factorisation only moves the values (L_rows_entry_[k]: where L's k-th
     // value goes), allocating nothing.
