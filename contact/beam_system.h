@@ -5,10 +5,11 @@
 // Moreau step and the prox solver are written once against this interface, so
 // an FE trace and a ROM trace differ only through the beam model.
 //
-// Step structure (Moreau midpoint / Moreau–Jean with θ = 1/2):
-//   q_M    = q_B + Δt/2 u_B                           (where contacts are detected)
+// Step structure (Moreau–Jean θ-scheme; θ = 1/2, the Moreau midpoint rule,
+// unless the model asks for more, see theta()):
+//   q_M    = q_B + (1 − θ) Δt u_B                     (where contacts are detected)
 //   u_E    = u_free + S⁻¹ W P                         (P: contact impulses)
-//   q_E    = q_M + Δt/2 u_E
+//   q_E    = q_M + θ Δt u_E
 // u_free is the end velocity without contact impulses; S is the iteration
 // matrix (the mass matrix M for the explicit midpoint scheme; the effective
 // matrix M + θΔt C + θ²Δt² K_t for an implicit scheme). The Delassus matrix
@@ -111,7 +112,8 @@ namespace beamslider
     virtual void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const = 0;
 
     // Begins a step of size dt: the end velocity u_free without contact
-    // impulses, given the midpoint time t_M, midpoint coordinates q_M and start
+    // impulses, given the time t_M = t_B + (1 − θ) Δt of the detection
+    // configuration q_M (the midpoint for θ = 1/2) and the start
     // velocity u_B. The returned step solves with this step's iteration matrix
     // and gives its works. A model whose own solver fails (an implicit model's
     // Newton iteration) throws a std::runtime_error saying where and why;
@@ -123,6 +125,12 @@ namespace beamslider
       compute_free_velocity(t_M, q_M, u_B, dt, u_free);
       return BeamStep(*this, step_serial_, dt);
     }
+
+    // θ ∈ [1/2, 1] of the step structure above: q_E = q_B + Δt ((1 − θ) u_B
+    // + θ u_E). 1/2 (the midpoint rule, second order, no numerical damping)
+    // for every model but an FE beam set to damp its unresolved modes
+    // (FETransientSettings::theta); the stepper moves the slider with it too.
+    virtual double theta() const { return 0.5; }
 
     // Largest time step the scheme can take (infinity for unconditionally
     // stable schemes). The stepper refuses larger steps with a clear message.

@@ -228,7 +228,12 @@ namespace beamslider
     const unsigned int n = beam_.n_dofs();
     const double L       = beam_.length();
     const double t_B     = state_.t;
-    const double t_M     = t_B + 0.5 * dt_;
+    // The θ-scheme's weights (beam_system.h); θ = 1/2, the midpoint rule,
+    // gives 0.5 and 0.5 exactly.
+    const double theta   = beam_.theta();
+    const double dt_B    = (1. - theta) * dt_; // from the start to the detection configuration
+    const double dt_E    = theta * dt_;        // from there to the end
+    const double t_M     = t_B + dt_B;
     report_              = StepReport();
 
     // Midpoint configuration; no beam evaluation before the corners are known
@@ -236,7 +241,7 @@ namespace beamslider
     Eigen::Vector3d v_B = state_.v;
     if (prescribed_x_)
       v_B[0] = 0.;
-    const Eigen::Vector3d s_M = state_.s + 0.5 * dt_ * v_B;
+    const Eigen::Vector3d s_M = state_.s + dt_B * v_B;
     const SliderFrame frame   = SliderGeometry::frame(t_M, base_, s_M[2]);
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
@@ -259,7 +264,7 @@ namespace beamslider
             throw SliderAtSupport(t_B, state_.s[0], x, L);
           }
       }
-    q_M_ = state_.q + 0.5 * dt_ * state_.u;
+    q_M_ = state_.q + dt_B * state_.u;
 
     // Free motion.
     const BeamStep beam_step = beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
@@ -377,8 +382,8 @@ namespace beamslider
 
     // The end state, checked before it replaces the old one.
     q_next_ = q_M_;
-    q_next_.noalias() += (0.5 * dt_) * u_E_;
-    const Eigen::Vector3d s_E = s_M + 0.5 * dt_ * v_E;
+    q_next_.noalias() += dt_E * u_E_;
+    const Eigen::Vector3d s_E = s_M + dt_E * v_E;
     if (!q_next_.allFinite() || !u_E_.allFinite() || !s_E.allFinite() || !v_E.allFinite())
       {
         std::ostringstream msg;

@@ -2,7 +2,9 @@
 // frictional contact and Newton impact (doc/physics.md §7–8; Moreau 1988;
 // Studer 2009; Krack et al. 2017), written once for any BeamSystem.
 //
-// One step from (t_B, q_B, u_B, s_B, v_B), Δt:
+// One step from (t_B, q_B, u_B, s_B, v_B), Δt, written here for θ = 1/2 (the
+// beam model's theta(): with θ > 1/2 the Δt/2 before the contact detection
+// becomes (1 − θ) Δt and the one after it θ Δt, for beam and slider alike):
 //   t_M = t_B + Δt/2,  q_M = q_B + Δt/2 u_B,  s_M = s_B + Δt/2 v_B
 //   u_free from the beam (BeamSystem::free_velocity), v_free = v_B + Δt (0, −g, 0)
 //   active set: corners with g_N(t_M, q_M, s_M) ≤ 0

@@ -16,6 +16,7 @@ namespace beamslider
   {
     FETransientSettings settings;
     settings.axial_inertia      = axial_inertia;
+    settings.theta              = scene.time_stepping.fe_theta;
     settings.relative_tolerance = scene.solvers.newton_relative_tolerance;
     settings.absolute_tolerance = scene.solvers.newton_absolute_tolerance;
     settings.max_iterations     = scene.solvers.newton_iterations;

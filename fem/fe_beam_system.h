@@ -1,6 +1,6 @@
 // The FE beam as a BeamSystem (contact/beam_system.h) for the shared contact
-// code: the implicit Moreau–Jean θ-scheme (θ = 1/2, implicit midpoint rule)
-// on the von Kármán forces, doc/physics.md §7–8. The scheme, its linear algebra
+// code: the implicit Moreau–Jean θ-scheme (the scene's FE theta; 1/2, the
+// implicit midpoint rule, by default) on the von Kármán forces, doc/physics.md §7–8. The scheme, its linear algebra
 // and its energy bookkeeping are documented in fem/fe_transient.h.
 #pragma once
 

@@ -40,6 +40,10 @@ namespace beamslider
     , settings_(settings)
     , damping_ratio_(scene.damping_ratio)
   {
+    if (!(settings_.theta >= 0.5 && settings_.theta <= 1.))
+      throw std::invalid_argument("FE transient: theta = " + std::to_string(settings_.theta) +
+                                  " of the Moreau-Jean scheme is outside the allowed range [0.5, 1] (0.5: the "
+                                  "midpoint rule, no numerical damping; above: the unresolved modes are damped)");
     const FEBeam &beam = *beam_;
     const unsigned int n = beam.n_dofs();
     const auto &c        = beam.constraints();
@@ -193,7 +197,7 @@ namespace beamslider
     for (const auto &[dof, k] : springs_)
       spring_entry_.push_back(entry_of(dof, dof));
 
-    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
+    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &u_theta_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
       v->setZero(n);
   }
 
@@ -281,12 +285,13 @@ namespace beamslider
 
   void FETransientBeam::assemble_iteration_matrix(const Eigen::VectorXd &q_bar, const double dt)
   {
-    // S₀ = M + Δt²/4 K_t(q̄): K_t = ∂f/∂q of internal_force_cached, cell by
+    // S₀ = M + θ²Δt² K_t(q̄) (Δt²/4 for θ = 1/2): K_t = ∂f/∂q of internal_force_cached, cell by
     // cell, with N = EA ε the membrane force:
     //   K_uu = ∫ EA u_i' u_j',   K_uw = ∫ EA w' u_i' N_b',
     //   K_ww = ∫ (EA w'² + N) N_a' N_b' + EI N_a'' N_b''.
     const bool nonlinear = beam_->geometric_nonlinearity();
-    const double scale = 0.25 * dt * dt;
+    const double theta = settings_.theta;
+    const double scale = theta * theta * dt * dt;
     double *values = S0_.valuePtr();
     Eigen::Map<Eigen::VectorXd>(values, S0_.nonZeros()) = M_in_S0_;
     for (const CellData &cell : cells_)
@@ -428,7 +433,7 @@ namespace beamslider
             solve_factored(block_column_, block_solution_);
             Z_.col(k)     = block_solution_;
           }
-        Dg_ = (0.5 * dt) * modal_c_;
+        Dg_ = (settings_.theta * dt) * modal_c_;
         capacitance_matrix_.noalias() = U_.transpose() * Z_;
         capacitance_matrix_           = Dg_.asDiagonal() * capacitance_matrix_;
         capacitance_matrix_.diagonal().array() += 1.;
@@ -437,6 +442,7 @@ namespace beamslider
     clear_inverse_columns();
     factorised_       = true;
     factorised_dt_    = dt;
+    factorised_theta_ = settings_.theta;
     factorised_step_  = stats_.steps;
     factorised_q_bar_ = q_bar;
     ++stats_.factorisations;
@@ -509,7 +515,10 @@ namespace beamslider
     if (!(dt > 0.))
       throw std::invalid_argument("FE transient: time step Delta t = " + std::to_string(dt) + " s must be positive");
     const bool nonlinear = beam_->geometric_nonlinearity();
-    const double a       = excitation_.acceleration(t_M);
+    // The smooth forces act at t_θ = t_B + θΔt, and t_M = t_B + (1 − θ)Δt
+    // (both the midpoint for θ = 1/2).
+    const double theta   = settings_.theta;
+    const double a       = excitation_.acceleration(t_M + (2. * theta - 1.) * dt);
     const unsigned int rank = damping_->rank();
 
     // Predictor: the start velocity (plus, optionally, the last step's smooth
@@ -520,7 +529,7 @@ namespace beamslider
     for (const unsigned int i : constrained_list_)
       u_[i] = 0.;
 
-    bool refactor = !factorised_ || factorised_dt_ != dt ||
+    bool refactor = !factorised_ || factorised_dt_ != dt || factorised_theta_ != theta ||
                     (nonlinear && settings_.refactor_interval > 0 &&
                      stats_.steps - factorised_step_ >= settings_.refactor_interval);
     double previous = std::numeric_limits<double>::infinity(), correction = 0;
@@ -529,40 +538,45 @@ namespace beamslider
     while (it < settings_.max_iterations)
       {
         ++it;
-        // q̄ = q_M + Δt/4 (u − u_B).
+        // q̄ = (1 − θ) q_B + θ q_E = q_M + θ²Δt (u − u_B) + (2θ − 1)Δt u_B
+        // (q_M + Δt/4 (u − u_B) for θ = 1/2).
         tmp_ = u_ - u_B;
         q_bar_ = q_M;
-        q_bar_.noalias() += (0.25 * dt) * tmp_;
+        q_bar_.noalias() += (theta * theta * dt) * tmp_;
+        if (theta != 0.5)
+          q_bar_.noalias() += ((2. * theta - 1.) * dt) * u_B;
         internal_force_cached(q_bar_, f_);
         if (refactor)
           {
             factorise(q_bar_, dt);
             refactor = false;
           }
-        // R = M(u − u_B) + Δt [f(q̄) + C(u_B + u)/2 − r ẅ0], C = U diag(2Dω) Uᵀ.
+        // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
         res_.noalias() = M_eigen_ * tmp_;
         res_.noalias() += dt * f_;
         res_.noalias() -= (dt * a) * r_eigen_;
         if (rank > 0)
           {
-            tmp_ = u_ + u_B;
+            // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
+            tmp_ = theta * u_ + (1. - theta) * u_B;
             woodbury_rhs_.noalias() = U_.transpose() * tmp_;
-            woodbury_rhs_.array() *= (0.5 * dt) * modal_c_.array();
+            woodbury_rhs_.array() *= dt * modal_c_.array();
             res_.noalias() += U_ * woodbury_rhs_;
           }
         if (!massless_axial_.empty())
           {
             // Massless axial DoFs: equilibrium at the step's end (see
             // FETransientSettings::axial_inertia).
+            // θΔt f_axial(q_E): its Jacobian θ²Δt² K_axial is S₀'s axial block.
             q_end_ = q_M;
-            q_end_.noalias() += (0.5 * dt) * u_;
+            q_end_.noalias() += (theta * dt) * u_;
             internal_force_cached(q_end_, f_end_);
             for (const unsigned int i : massless_axial_)
-              res_[i] = 0.5 * dt * f_end_[i];
+              res_[i] = theta * dt * f_end_[i];
           }
         for (const unsigned int i : constrained_list_)
           res_[i] = 0.;
-        // The correction with S₀ alone: the damping's part of S, Δt/2 C,
+        // The correction with S₀ alone: the damping's part of S, θΔt C,
         // is of relative size Δt D ω_n ≤ 1e-4 on the N damped modes, so
         // leaving it out of the iteration matrix only adds that factor to
         // the contraction of this (already modified) Newton iteration; the
@@ -590,9 +604,10 @@ namespace beamslider
             converged = true;
             break;
           }
-        // A linear beam with an exact factorisation is solved in one step
-        // (up to round-off).
-        if (!nonlinear && it == 1)
+        // A linear beam without damping is solved in one step (up to
+        // round-off): S₀ is then the exact Jacobian. With damping the
+        // correction left out θΔt C, so the test above decides.
+        if (!nonlinear && rank == 0 && it == 1)
           {
             converged = true;
             break;
@@ -791,14 +806,15 @@ namespace beamslider
         damping_work = excitation_work = 0.;
         return;
       }
-    // ū·C ū = Σ 2Dω_n (M φ_n · ū)², C = U diag(2Dω) Uᵀ.
-    u_mean_ = 0.5 * (last_u_B_ + u_E);
+    // The damping impulse Δt C u_θ, u_θ = (1 − θ)u_B + θu_E, times ū:
+    // ū·C u_θ = Σ 2Dω_n (M φ_n · ū)(M φ_n · u_θ), C = U diag(2Dω) Uᵀ
+    // (θ = 1/2: u_θ = ū to the bit, and the work is ū·C ū).
+    const double theta = settings_.theta;
+    u_mean_  = 0.5 * (last_u_B_ + u_E);
+    u_theta_ = (1. - theta) * last_u_B_ + theta * u_E;
     double c_work = 0;
     for (Eigen::Index k = 0; k < U_.cols(); ++k)
-      {
-        const double projection = U_.col(k).dot(u_mean_);
-        c_work += modal_c_[k] * projection * projection;
-      }
+      c_work += modal_c_[k] * U_.col(k).dot(u_mean_) * U_.col(k).dot(u_theta_);
     damping_work    = -last_dt_ * c_work;
     excitation_work = last_dt_ * last_acceleration_ * r_eigen_.dot(u_mean_);
   }

@@ -1,5 +1,6 @@
 // The FE beam as a BeamSystem (contact/beam_system.h): the implicit
-// Moreau–Jean θ-scheme, θ = 1/2, on the von Kármán beam of fem/fe_beam.h
+// Moreau–Jean θ-scheme, θ = 1/2 unless set higher (FETransientSettings::theta),
+// on the von Kármán beam of fem/fe_beam.h
 // (doc/physics.md §2–3, §7–8; Jean 1999; Acary & Brogliato 2008, ch. 10).
 //
 // Smooth equations of motion, in the FE DoFs q = (u, w, θ) relative to the base:
@@ -11,7 +12,8 @@
 // all axial modes stay undamped: φ_mᵀ C φ_m = 0 for m > N).
 //
 // One step from (t_B, q_B, u_B), Δt, with the midpoint structure of the
-// shared stepper (q_M = q_B + Δt/2 u_B, q_E = q_M + Δt/2 u_E):
+// shared stepper (q_M = q_B + Δt/2 u_B, q_E = q_M + Δt/2 u_E), written for
+// θ = 1/2 (the general θ at FETransientSettings::theta):
 // the implicit midpoint rule on the smooth forces,
 //   R(u) = M (u − u_B) + Δt [ f(q̄(u)) + C (u_B + u)/2 − r ẅ0(t_M) ] = 0,
 //   q̄(u) = (q_B + q_E)/2 = q_M + Δt/4 (u − u_B),
@@ -131,6 +133,20 @@ namespace beamslider
     // leaves it as large, and Newton at its floor of two iterations per
     // step (2.00 against 2.02).
     bool extrapolate = false;
+    // θ ∈ [1/2, 1] of the Moreau–Jean scheme: q_E = q_B + Δt((1 − θ)u_B + θu_E),
+    //   R(u) = M (u − u_B) + Δt [ f(q_θ) + C u_θ − r ẅ0(t_B + θΔt) ],
+    //   q_θ = (1 − θ) q_B + θ q_E,  u_θ = (1 − θ) u_B + θ u,
+    //   S = M + θΔt C + θ²Δt² K_t(q_θ).
+    // 1/2 is the implicit midpoint rule above (second order, no numerical
+    // damping). Above 1/2 the scheme is first order and damps each mode per
+    // step by a factor that goes from 1 − (θ − ½)(ωΔt)² for ωΔt ≪ 1 (a
+    // numerical damping ratio (θ − ½)ωΔt) to (1 − θ)/θ for ωΔt → ∞ (the
+    // spectral radius of the amplification matrix of ẍ = −ω²x): it removes the undamped high bending modes that ring
+    // after each impact and that the step does not resolve. Whether an end
+    // state computed so agrees with the reference's is measured, not
+    // assumed: doc/verification.md §7. The stepper moves the slider with the
+    // same θ (BeamSystem::theta).
+    double theta = 0.5;
     // Refactorise at least every this many steps (0: only when Newton needs it).
     unsigned int refactor_interval = 0;
     // false: the axial DoFs carry no mass, so the membrane is in static
@@ -175,6 +191,7 @@ namespace beamslider
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
 
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
+    double theta() const override { return settings_.theta; }
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
     // The exact FE fields, 4 samples per element: u, w, w', w'' from the shape
@@ -290,10 +307,11 @@ namespace beamslider
     void solve_factored(const Eigen::VectorXd &b, Eigen::VectorXd &x) const;
     bool factorised_        = false;
     double factorised_dt_   = 0;
+    double factorised_theta_ = 0.5;
     unsigned long factorised_step_ = 0;
     Eigen::VectorXd factorised_q_bar_; // where K_t of the factorisation was taken
     Eigen::MatrixXd Z_;            // S₀⁻¹ U
-    Eigen::VectorXd Dg_;           // Δt/2 · 2 D ω_n
+    Eigen::VectorXd Dg_;           // θΔt · 2 D ω_n
     Eigen::MatrixXd capacitance_matrix_;              // I + Dg UᵀZ
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_; // its LU
     mutable Eigen::VectorXd woodbury_rhs_, woodbury_v_; // scratch of size rank
@@ -361,7 +379,7 @@ namespace beamslider
     // Without axial inertia: the free axial DoFs, and q_E, f(q_E) scratch.
     std::vector<unsigned int> massless_axial_;
     Eigen::VectorXd q_end_, f_end_;
-    mutable Eigen::VectorXd u_mean_;
+    mutable Eigen::VectorXd u_mean_, u_theta_; // ū and u_θ of step_work
     mutable Eigen::VectorXd energy_q_, energy_f_, energy_Mu_; // scratch of energy()
   };
 } // namespace beamslider

@@ -240,6 +240,11 @@ namespace beamslider
     // §7: 0.458, 0.432, 0.371, 0.371 L at 2e-5, 1e-5, 5e-6, 2.5e-6 s on
     // mueller2023), so every `--model fe` command uses this step.
     double fe_time_step = 5e-6;
+    // θ ∈ [0.5, 1] of the FE's Moreau–Jean scheme (fem/fe_transient.h): 0.5,
+    // the implicit midpoint rule, keeps every mode undamped by the scheme;
+    // above 0.5 the modes the step cannot resolve are damped numerically
+    // (and the resolved ones a little: damping ratio (θ − 0.5) ω Δt).
+    double fe_theta = 0.5;
     double end_time    = 60.;  // [s]
     double output_rate = 1000.; // samples per second written to trace.csv [1/s]
   };

@@ -301,6 +301,10 @@ namespace beamslider
       e.bind("FE time step", s.time_stepping.fe_time_step, Double(0),
              "Delta t [s] of the FE model (every --model fe run), > 0, at most 1/20 of the excitation period; "
              "the FE's end state converges only where the step resolves its undamped high bending modes");
+      e.bind("FE theta", s.time_stepping.fe_theta, Double(0.5, 1),
+             "theta of the FE's Moreau-Jean scheme, in [0.5, 1]: 0.5 is the implicit midpoint rule (no numerical "
+             "damping); above, the modes the FE time step cannot resolve are damped, and the resolved ones by a "
+             "damping ratio (theta - 0.5) omega Delta t");
       e.bind("End time", s.time_stepping.end_time, Double(0), "[s], at most 1e11 time steps");
       e.bind("Output rate", s.time_stepping.output_rate, Double(0), "samples per second in trace.csv [1/s]");
       e.leave();
@@ -755,6 +759,8 @@ namespace beamslider
               "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
                 " s, to resolve the excitation");
     }
+    require(s.time_stepping.fe_theta >= 0.5 && s.time_stepping.fe_theta <= 1., "Time stepping/FE theta",
+            s.time_stepping.fe_theta, "must be in [0.5, 1] (0.5: the midpoint rule; 1: the implicit Euler step)");
     require(std::isfinite(s.time_stepping.end_time) && s.time_stepping.end_time >= 0, "Time stepping/End time",
             s.time_stepping.end_time, "must be >= 0 s");
     {

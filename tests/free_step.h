@@ -1,7 +1,8 @@
 // One smooth step of a beam model without contact, in the Moreau stepper's
-// midpoint structure, from time t: q_M = q + Δt/2 u, u ← u_free,
-// q ← q_M + Δt/2 u, then the step's finish (massless coordinates take the
-// step's mean velocity). Shared by the tests that integrate a beam alone.
+// structure, from time t: q_M = q + (1 − θ)Δt u, u ← u_free,
+// q ← q_M + θΔt u (θ = 1/2: the midpoint), then the step's finish (massless
+// coordinates take the step's mean velocity). Shared by the tests that
+// integrate a beam alone.
 #pragma once
 
 #include "contact/beam_system.h"
@@ -10,10 +11,11 @@ namespace beamslider::testing
 {
   inline void free_step(BeamSystem &beam, const double t, const double dt, Eigen::VectorXd &q, Eigen::VectorXd &u)
   {
-    const Eigen::VectorXd q_B = q, q_M = q + 0.5 * dt * u;
+    const double theta        = beam.theta();
+    const Eigen::VectorXd q_B = q, q_M = q + (1. - theta) * dt * u;
     Eigen::VectorXd u_E;
-    const BeamStep step = beam.free_velocity(t + 0.5 * dt, q_M, u, dt, u_E);
-    q                   = q_M + 0.5 * dt * u_E;
+    const BeamStep step = beam.free_velocity(t + (1. - theta) * dt, q_M, u, dt, u_E);
+    q                   = q_M + theta * dt * u_E;
     u                   = u_E;
     step.finish(q_B, q, u);
   }

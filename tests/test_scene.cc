@@ -286,3 +286,14 @@ TEST(SceneErrors, FETimeStepMustBePositiveAndResolveTheExcitation)
   expect_contains(m, "Time stepping/FE time step");
   expect_contains(m, "a twentieth of the excitation period");
 }
+
+TEST(SceneErrors, FEThetaMustLieBetweenTheMidpointRuleAndImplicitEuler)
+{
+  for (const std::string value : {"0.4", "1.5", "-1"})
+    {
+      const std::string m = error_for("Time stepping/FE theta=" + value);
+      expect_contains(m, "Time stepping/FE theta");
+      expect_contains(m, value);
+    }
+  EXPECT_EQ(read_scene(scene_dir + "mueller2023.prm", {"Time stepping/FE theta=0.51"}).time_stepping.fe_theta, 0.51);
+}

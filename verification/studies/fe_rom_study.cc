@@ -31,6 +31,8 @@ namespace beamslider
       s << "ROM N=" << n_modes << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     if (damped_modes)
       s << " damped " << damped_modes;
+    if (family == "fe" && theta != 0.5)
+      s << " theta=" << theta;
     s << " dt=" << time_step; // no comma: labels go into CSV cells
     if (slider_offset_over_L != 0)
       s << " x0+" << slider_offset_over_L;
@@ -95,6 +97,8 @@ namespace beamslider
     // Each model family at its own step: the ROM at the scene's Time step,
     // the FE at its FE time step (scene.h says why they differ).
     s.time_step = family == "fe" ? scene.time_stepping.fe_time_step : scene.time_stepping.time_step;
+    if (family == "fe")
+      s.theta = scene.time_stepping.fe_theta;
     return s;
   }
 
@@ -108,6 +112,7 @@ namespace beamslider
           scene.discretisation.n_elements = setting.n_elements;
         if (setting.damped_modes) // the FE damps the scene's N modes
           scene.discretisation.n_modes = setting.damped_modes;
+        scene.time_stepping.fe_theta = setting.theta;
         return make_fe_beam_system(scene, 0, setting.axial_inertia);
       }
     if (setting.family != "rom")

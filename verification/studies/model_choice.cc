@@ -76,6 +76,8 @@ namespace beamslider
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
       << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
       << " ladder-2"; // the ladder's rungs: version 2 has the FE reference at Δt/4
+    if (s.time_stepping.fe_theta != 0.5) // keys of midpoint-rule scenes stay as they were
+      c << " fe-theta " << s.time_stepping.fe_theta;
     // A mesh beam by its elements and sections (not its file name alone:
     // the file may change), and the point bodies.
     for (const BeamMeshCell &cell : s.beam.mesh_cells)
