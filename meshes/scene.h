@@ -234,11 +234,12 @@ namespace beamslider
   struct TimeSteppingData
   {
     double time_step   = 2e-5; // Delta t [s] of the reduced model (ROM)
-    // Delta t [s] of the FE model. The FE keeps the bending modes above the
-    // ROM's N undamped, and they ring after every impact; its adaptation end
-    // state converges only once the step resolves them (doc/verification.md
-    // §7: 0.458, 0.432, 0.371, 0.371 L at 2e-5, 1e-5, 5e-6, 2.5e-6 s on
-    // mueller2023), so every `--model fe` command uses this step.
+    // Delta t [s] of the FE model, used by every `--model fe` command. The FE
+    // keeps the bending modes above the ROM's N undamped, and they ring after
+    // every impact; its adaptation end state moves with the step and with
+    // the mesh and has not been found to converge (doc/verification.md §7:
+    // on mueller2023's 32 elements 0.493, 0.432, 0.371, 0.371, 0.409 L at
+    // 2e-5 … 1.25e-6 s). 5e-6 s is the FE reference's step by choice.
     double fe_time_step = 5e-6;
     // θ ∈ [0.5, 1] of the FE's Moreau–Jean scheme (fem/fe_transient.h): 0.5,
     // the implicit midpoint rule, keeps every mode undamped by the scheme;

@@ -125,7 +125,7 @@ static void StartUp(benchmark::State &state)
 BENCHMARK(StartUp)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 // FE beam with contact (implicit midpoint, Newton) on 16/32/64 elements at
-// the scene's FE time step (5e-6 s, where the FE's end state converges):
+// the scene's FE time step (5e-6 s, the FE reference's step):
 // time per step, the Newton counters and the heap allocations per step over
 // the window [from, from + 0.2 s] of the signature move. Arg 2 is `from` in seconds: 0 (slider resting at first,
 // low amplitude) or 12 (after the jump, on the high branch at ~1.8 h, where

@@ -228,12 +228,14 @@ namespace beamslider
          << (fe_refined->position_to_reference.distinguishable
                ? "; the FE reference is not converged in the time step on the end position, so a ROM's distance to it "
                  "below that of the FE's own refinement is not a model error."
-               : "; the FE reference is converged in the time step as far as this ensemble size can tell.");
+               : "; the FE reference agrees with its refinement at this ensemble size. That is not convergence: "
+                 "on mueller2023 a further halving (Δt/16) ends at 0.409 L (doc/verification.md §7).");
     if (settings.quick_ladder)
-      md << "The reference is the FE at a quarter of the scene's Δt because the FE's end position is not converged at "
-            "larger steps (measured on mueller2023, 4 members over 25 s: median 0.458 L at Δt = 2e-5 s, 0.432 L at 1e-5 s, "
-            "0.371 L at 5e-6 s and 0.371 L at 2.5e-6 s; doc/verification.md §7); `verify --full` shows that "
-            "refinement itself.";
+      md << "The reference is the FE at a quarter of the scene's Δt, the step at which its end position stopped moving "
+            "for one halving (measured on mueller2023, 4 members over 25 s: median 0.458 L at Δt = 2e-5 s, 0.432 L at "
+            "1e-5 s, 0.371 L at 5e-6 s and 0.371 L at 2.5e-6 s); it is not converged: at 1.25e-6 s it ends at 0.409 L, "
+            "and on other meshes elsewhere again (doc/verification.md §7). `verify --full` shows the refinement to "
+            "Δt/8.";
     md << " What all models share is in the last column (the class of each member's adaptation) and the jump-time "
           "column.\n\n";
 

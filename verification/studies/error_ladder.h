@@ -72,15 +72,14 @@ namespace beamslider
   // The default ladder for a scene. Quick: the published ROM (N = scene's, Δt
   // = scene's), converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
   // explicit step's limit 2/ω_N forces the smaller steps) and the FE at Δt/4
-  // as the reference (its end state is converged in Δt there, not at the
-  // scene's Δt). Full: adds the ROM N = 20 with the FE's implicit midpoint
+  // as the reference (where its end state stopped moving for one halving of
+  // Δt; not converged, doc/verification.md §7). Full: adds the ROM N = 20 with the FE's implicit midpoint
   // rule; the implicit ROM with every bending mode of the FE mesh damping
   // 20 of them and then all; the FE without axial inertia damping all and
   // then 20 modes, and the FE with axial inertia damping 20 (each step
   // changes one thing: modes, damped set, beam model, damped set, axial
   // inertia); the FE at Δt and Δt/2 (not converged: they show how far off
-  // an FE at the ROM's step is) and at Δt/8 (whether the reference is
-  // converged).
+  // an FE at the ROM's step is) and at Δt/8 (the reference's own refinement).
   std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
 
   // Every rung's ensemble as one list of member runs (ensemble.h): rung i
