@@ -48,6 +48,8 @@
 #include "meshes/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
+#include "tests/trace_difference.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -117,27 +119,14 @@ namespace
     return run(scene, rom, window);
   }
 
-  // Largest differences over the window relative to a's signal: w(L/2)
-  // against max |w|, slider z against max |z − z(0)|; x_C/L absolute.
-  struct Difference
-  {
-    double w = 0, z = 0, x = 0;
-  };
+  // Largest differences over the whole window, relative to a's signal
+  // (tests/trace_difference.h).
+  using Difference = beamslider::testing::TraceDifference;
 
   Difference difference(const Trace &a, const Trace &b)
   {
     EXPECT_EQ(a.rows.size(), b.rows.size());
-    double dw = 0, w = 0, dz = 0, z = 0, dx = 0;
-    for (std::size_t k = 0; k < std::min(a.rows.size(), b.rows.size()); ++k)
-      {
-        EXPECT_NEAR(a.rows[k].t, b.rows[k].t, 1e-12);
-        dw = std::max(dw, std::abs(a.rows[k].w_center - b.rows[k].w_center));
-        w  = std::max(w, std::abs(a.rows[k].w_center));
-        dz = std::max(dz, std::abs(a.rows[k].slider_z - b.rows[k].slider_z));
-        z  = std::max(z, std::abs(a.rows[k].slider_z - a.rows[0].slider_z));
-        dx = std::max(dx, std::abs(a.rows[k].slider_x_over_L - b.rows[k].slider_x_over_L));
-      }
-    return {dw / w, dz / z, dx};
+    return beamslider::testing::trace_difference(a.rows, b.rows, a.rows.back().t, 1e-12);
   }
 } // namespace
 

@@ -52,6 +52,7 @@
 #include "verification/studies/fe_rom_study.h"
 
 #include "tests/fem_test_loads.h"
+#include "tests/trace_difference.h"
 
 #include <gtest/gtest.h>
 
@@ -100,27 +101,13 @@ namespace
     return tr;
   }
 
-  // Max differences over t ≤ t_end relative to the FE signal a (w(L/2): max
-  // |w|; slider z: max |z − z(0)|), and of x_C/L (absolute).
-  struct Difference
-  {
-    double w = 0, z = 0, x = 0;
-  };
+  // Max differences over t ≤ t_end relative to the FE signal a
+  // (tests/trace_difference.h).
+  using Difference = beamslider::testing::TraceDifference;
 
   Difference difference(const Trace &a, const Trace &b, const double t_end)
   {
-    double dw = 0, w = 0, dz = 0, z = 0, dx = 0;
-    const std::size_t n = std::min(a.rows.size(), b.rows.size());
-    for (std::size_t k = 0; k < n && a.rows[k].t <= t_end + 1e-9; ++k)
-      {
-        EXPECT_NEAR(a.rows[k].t, b.rows[k].t, 1e-9);
-        dw = std::max(dw, std::abs(a.rows[k].w_center - b.rows[k].w_center));
-        w  = std::max(w, std::abs(a.rows[k].w_center));
-        dz = std::max(dz, std::abs(a.rows[k].slider_z - b.rows[k].slider_z));
-        z  = std::max(z, std::abs(a.rows[k].slider_z - a.rows[0].slider_z));
-        dx = std::max(dx, std::abs(a.rows[k].slider_x_over_L - b.rows[k].slider_x_over_L));
-      }
-    return {dw / w, dz / z, dx};
+    return beamslider::testing::trace_difference(a.rows, b.rows, t_end, 1e-9);
   }
 
   double mean_amplitude(const Trace &t)
