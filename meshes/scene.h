@@ -234,18 +234,20 @@ namespace beamslider
   struct TimeSteppingData
   {
     double time_step   = 2e-5; // Delta t [s] of the reduced model (ROM)
-    // Delta t [s] of the FE model, used by every `--model fe` command. The FE
-    // keeps the bending modes above the ROM's N undamped, and they ring after
-    // every impact; its adaptation end state moves with the step and with
-    // the mesh and has not been found to converge (doc/verification.md §7:
-    // on mueller2023's 32 elements 0.493, 0.432, 0.371, 0.371, 0.409 L at
-    // 2e-5 … 1.25e-6 s). 5e-6 s is the FE reference's step by choice.
-    double fe_time_step = 5e-6;
-    // θ ∈ [0.5, 1] of the FE's Moreau–Jean scheme (fem/fe_transient.h): 0.5,
-    // the implicit midpoint rule, keeps every mode undamped by the scheme;
-    // above 0.5 the modes the step cannot resolve are damped numerically
-    // (and the resolved ones a little: damping ratio (θ − 0.5) ω Δt).
-    double fe_theta = 0.5;
+    // Delta t [s] and Moreau–Jean θ ∈ [0.5, 1] (fem/fe_transient.h) of the
+    // FE model, used by every `--model fe` command and by the error ladder's
+    // FE reference. θ = 0.5 is the implicit midpoint rule, no numerical
+    // damping; above 0.5 the modes the step cannot resolve (ωΔt ≳ 1) are
+    // damped by the scheme, the resolved ones a little (damping ratio about
+    // (θ − 0.5) ω Δt). The FE keeps the bending modes above the ROM's N
+    // undamped, and they ring after every impact; with θ = 0.5 the end state
+    // of an adaptation converges in Δt only at ≤ 1.25e-6 s, after a plateau
+    // at 5e-6 … 2.5e-6 s (doc/verification.md §7: on mueller2023's 32
+    // elements 0.493, 0.432, 0.371, 0.371, 0.409, 0.409 L at 2e-5 …
+    // 6.25e-7 s). θ = 0.51 at 1e-5 s ends where the converged midpoint rule
+    // ends (0.409 L) with an eighth of its steps: the defaults.
+    double fe_time_step = 1e-5;
+    double fe_theta     = 0.51;
     double end_time    = 60.;  // [s]
     double output_rate = 1000.; // samples per second written to trace.csv [1/s]
   };

@@ -299,8 +299,9 @@ namespace beamslider
       e.enter("Time stepping");
       e.bind("Time step", s.time_stepping.time_step, Double(0), "Delta t [s] of the reduced model, > 0, at most 1/20 of the excitation period and below the model's stability limit (explicit ROM: 2/omega_max)");
       e.bind("FE time step", s.time_stepping.fe_time_step, Double(0),
-             "Delta t [s] of the FE model (every --model fe run), > 0, at most 1/20 of the excitation period; "
-             "the FE's end state moves with this step and with the mesh (doc/verification.md section 7)");
+             "Delta t [s] of the FE model (every --model fe run and the error ladder's FE reference), > 0, at most "
+             "1/20 of the excitation period; with FE theta = 0.5 the FE's end state converges only at a much "
+             "smaller step than with theta slightly above 0.5 (doc/verification.md section 7)");
       e.bind("FE theta", s.time_stepping.fe_theta, Double(0.5, 1),
              "theta of the FE's Moreau-Jean scheme, in [0.5, 1]: 0.5 is the implicit midpoint rule (no numerical "
              "damping); above, the modes the FE time step cannot resolve are damped, and the resolved ones by a "

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -125,10 +126,11 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
-    << "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,reference,cost_units,final_x_median,w1,w1_high\n"
-    << "ROM N=5,rom,5,0,explicit,2e-05,0,0,2500000,0.33,0.09,0.1\n"
-    << "ROM N=20,rom,20,0,explicit,5e-06,0,0,8.5e7,0.40,0.02,0.025\n"
-    << "FE,fe,0,32,implicit,2e-05,0,1,1.56e9,0.43,0,0\n";
+    << "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
+       "w1,w1_high\n"
+    << "ROM N=5,rom,5,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1\n"
+    << "ROM N=20,rom,20,0,explicit,5e-06,0,0.5,0,8.5e7,0.40,0.02,0.025\n"
+    << "FE,fe,0,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0,0\n";
   std::string why;
   const ModelSetting picked = choose_model(scene, 0.03, dir, why);
   EXPECT_EQ(picked.family, "rom");
@@ -138,14 +140,16 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   const ModelSetting strict = choose_model(scene, 0.001, dir, why);
   EXPECT_EQ(strict.family, "fe");
   EXPECT_EQ(strict.n_elements, 32u);
+  EXPECT_EQ(strict.time_step, 1e-5);
+  EXPECT_EQ(strict.theta, 0.51); // the FE reference's own scheme, not the midpoint rule
   std::filesystem::remove_all(dir);
 }
 
 
-// The full ladder runs its diagnostic rungs (the attribution steps and the FE
-// at other time steps) with half the members, and the published ROM, the
-// converged ROM and the FE reference with all of them; the quick ladder has
-// no diagnostic rung.
+// The full ladder runs its diagnostic rungs (the ROM with all modes and the
+// midpoint-rule FE at other time steps) with half the members, and the
+// published ROM, the converged ROMs and the FE reference with all of them;
+// the quick ladder has no diagnostic rung.
 TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
 {
   const Scene scene = read_scene(mueller);
@@ -161,10 +165,43 @@ TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
       EXPECT_EQ(groups[i].n_members, kept_whole ? 8u : 4u) << full[i].name;
       n_diagnostic += full[i].diagnostic;
     }
-  EXPECT_EQ(n_diagnostic, 9u);
-  EXPECT_EQ(rung_members(full.back(), 3), 2u); // never fewer than two (W₁ needs a spread)
+  EXPECT_EQ(n_diagnostic, 5u);
+  ASSERT_TRUE(full[reference - 1].diagnostic);
+  EXPECT_EQ(rung_members(full[reference - 1], 3), 2u); // never fewer than two (W₁ needs a spread)
 
   const std::vector<LadderRung> quick = default_ladder(scene, false, reference);
   for (const MemberGroup &g : ladder_groups(scene, quick, 25., 4))
     EXPECT_EQ(g.n_members, 4u) << g.name;
+}
+
+// The reference is the scene's own FE model, its step and θ, on either
+// ladder, and always the last rung; a scene whose FE model is one of the
+// full ladder's midpoint-rule rungs runs it once, as the reference.
+TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
+{
+  const Scene scene = read_scene(mueller);
+  for (const bool full : {false, true})
+    {
+      std::size_t reference = 0;
+      const std::vector<LadderRung> rungs = default_ladder(scene, full, reference);
+      ASSERT_EQ(reference, rungs.size() - 1);
+      const ModelSetting &fe = rungs[reference].model;
+      EXPECT_EQ(fe.family, "fe");
+      EXPECT_EQ(fe.time_step, scene.time_stepping.fe_time_step);
+      EXPECT_EQ(fe.theta, scene.time_stepping.fe_theta);
+      EXPECT_EQ(fe.damped_modes, 0u); // the scene's N, as every FE run of the scene
+      EXPECT_EQ(rungs[reference].name, fe_step_name(scene.time_stepping.time_step, fe.time_step, fe.theta));
+    }
+  EXPECT_EQ(fe_step_name(2e-5, 1e-5, 0.51), "FE Δt/2 θ=0.51");
+  EXPECT_EQ(fe_step_name(2e-5, 2e-5, 0.5), "FE Δt");
+  EXPECT_EQ(fe_step_name(2e-5, 3e-6, 0.5), "FE Δt=3e-06 s");
+
+  Scene midpoint                     = scene;
+  midpoint.time_stepping.fe_time_step = scene.time_stepping.time_step / 4;
+  midpoint.time_stepping.fe_theta     = 0.5;
+  std::size_t reference               = 0;
+  const std::vector<LadderRung> rungs = default_ladder(midpoint, true, reference);
+  EXPECT_EQ(rungs[reference].name, "FE Δt/4");
+  EXPECT_EQ(std::count_if(rungs.begin(), rungs.end(), [](const LadderRung &r) { return r.name == "FE Δt/4"; }), 1);
+  EXPECT_FALSE(rungs[reference].diagnostic);
 }

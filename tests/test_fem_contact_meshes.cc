@@ -46,6 +46,7 @@
 #include "contact/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "meshes/scene.h"
+#include "verification/studies/error_ladder.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include "tests/trace_difference.h"
@@ -109,10 +110,9 @@ namespace
   Trace run_all_mode_rom(const unsigned int n_elements, const double dt, const double window)
   {
     const Scene scene = linear_scene(n_elements, dt);
-    const FEBeam beam(scene);
     ModelSetting rom;
     rom.family       = "rom";
-    rom.n_modes      = beam.n_dofs() - beam.bending_constraints().n_constraints();
+    rom.n_modes      = fe_bending_modes(scene);
     rom.integrator   = "implicit";
     rom.damped_modes = scene.discretisation.n_modes;
     rom.time_step    = dt;
@@ -196,8 +196,9 @@ TEST(FEContactOnEveryMesh, OneStepPointMassConvergesInTheMeshAndVanishesWithTheS
   //   G = (1/m_beam) ∫₀^∞ dn / (1 + a² n⁴) = (1/m_beam) π / (2√2 √a),
   //   a = c π² Δt / (2 L²).
   const Scene scene = read_scene(scene_file);
-  const double L = scene.beam.length, h = scene.beam.thickness, rho = scene.beam.density;
-  const double m_beam = rho * scene.beam.width * h * L, c = h * std::sqrt(scene.beam.youngs_modulus / (12 * rho));
+  const double L      = scene.beam.length;
+  const double m_beam = scene.beam.mass_per_length() * L;
+  const double c      = std::sqrt(scene.beam.bending_stiffness() / scene.beam.mass_per_length());
   for (const double dt : {2e-5, 5e-6, 1.25e-6})
     {
       const double a         = c * M_PI * M_PI * dt / (2 * L * L);

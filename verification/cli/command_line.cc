@@ -219,7 +219,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   add_common(ladder_cmd);
   ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
   ladder_cmd->add_option("--rung", ladder.rungs,
-                         "run only this rung of the full ladder, by name (repeatable; the reference FE Δt/4 always runs)");
+                         "run only this rung of the full ladder, by name (repeatable; the reference, the scene's FE model, always runs)");
   ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
     ->check(integer_in(2, 1000));
   ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")

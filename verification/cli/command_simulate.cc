@@ -89,6 +89,13 @@ namespace beamslider
       out.put(std::uint64_t(d.setting.n_modes));
       out.put(std::uint64_t(d.setting.n_elements));
       out.put(d.setting.time_step);
+      // The rest of the model (format 2): --model auto may pick an implicit
+      // ROM or an FE with θ ≠ ½, and a resumed run must rebuild exactly it.
+      out.put(d.setting.coefficients);
+      out.put(d.setting.integrator);
+      out.put(d.setting.axial_inertia);
+      out.put(std::uint64_t(d.setting.damped_modes));
+      out.put(d.setting.theta);
       out.put(d.end_time);
       out.put(d.why);
       out.put(d.trace_bytes);
@@ -113,6 +120,11 @@ namespace beamslider
       d.setting.n_modes     = in.get_uint();
       d.setting.n_elements  = in.get_uint();
       d.setting.time_step   = in.get_double();
+      d.setting.coefficients  = in.get_string();
+      d.setting.integrator    = in.get_string();
+      d.setting.axial_inertia = in.get_bool();
+      d.setting.damped_modes  = in.get_uint();
+      d.setting.theta         = in.get_double();
       d.end_time            = in.get_double();
       d.why                 = in.get_string();
       d.trace_bytes         = in.get_uint();

@@ -68,15 +68,11 @@ namespace beamslider
       const std::string fe_dir = report.dir + "/slow_manifold_fe", rom_dir = report.dir + "/slow_manifold_rom";
       std::filesystem::create_directories(fe_dir);
       std::filesystem::create_directories(rom_dir);
-      // The FE at a fraction of the scene's (the ROM's) Δt: at Δt itself it
-      // does not resolve the contacts once the amplitude is high (measured:
-      // its up branch wedges the window, both sides through the beam, right
-      // after 0.35 L); Δt/2 follows the Δt/4 branches to 1 % in amplitude
-      // (0.556 → 0.861 h against 0.551 → 0.857 h at the jump), Δt/4 is the
-      // ladder's converged reference.
-      const unsigned int fe_step_divisor = full ? 4 : 2;
-      Scene fe_scene                     = scene;
-      fe_scene.time_stepping.fe_time_step = scene.time_stepping.time_step / fe_step_divisor;
+      // The FE at the scene's FE time step and θ (θ = 0.51 at Δt/2 on
+      // mueller2023). The midpoint rule at the ROM's Δt does not resolve the
+      // contacts once the amplitude is high (measured: its up branch wedges
+      // the window, both sides through the beam, right after 0.35 L).
+      const Scene &fe_scene = scene;
       settings.model        = "fe";
       const PcsStudy fe     = run_pcs_sweep(fe_scene, settings, fe_dir);
       settings.model        = "rom";
@@ -109,9 +105,9 @@ namespace beamslider
          << "The slider is held at x_C/L = " << settings.sweep.low_over_L << " … " << settings.sweep.high_over_L << " (step "
          << settings.sweep.step_over_L << ", both directions, " << settings.sweep.settle_time << " s settling and "
          << settings.sweep.average_time
-         << " s averaging per position) on the FE model at Δt/" << fe_step_divisor
-         << " (at the ROM's Δt the FE does not resolve the contacts of the high branch and its sweep leaves the physically "
-            "possible set; Δt/2 follows Δt/4 to 1 % in amplitude) and on the scene's ROM at Δt. The amplitude branches are "
+         << " s averaging per position) on the scene's FE model (" << scene_model(scene, "fe").label()
+         << "; the midpoint rule at the ROM's Δt does not resolve the contacts of the high branch and its sweep leaves "
+            "the physically possible set) and on the scene's ROM at Δt. The amplitude branches are "
             "deterministic; "
             "the period-mean horizontal force F̄_x is small against its rattling noise, so it carries a 95 % batch-means "
             "interval, and its zero crossings (the free slider's equilibria) carry the interval of positions where the "

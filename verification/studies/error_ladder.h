@@ -40,6 +40,14 @@ namespace beamslider
     bool diagnostic = false;
   };
 
+  // The number of bending modes the scene's FE mesh has: its free w and θ
+  // DoFs, counted as compute_bending_modes counts them (64 on 32 elements).
+  unsigned int fe_bending_modes(const Scene &scene);
+
+  // The name of an FE rung: "FE Δt/k" by its step against the scene's
+  // (ROM's) Δt, with " θ=…" when θ is not ½.
+  std::string fe_step_name(double scene_dt, double fe_dt, double theta);
+
   // The members rung `rung` runs when the ladder runs `members` per rung.
   unsigned int rung_members(const LadderRung &rung, unsigned int members);
 
@@ -71,15 +79,16 @@ namespace beamslider
 
   // The default ladder for a scene. Quick: the published ROM (N = scene's, Δt
   // = scene's), converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
-  // explicit step's limit 2/ω_N forces the smaller steps) and the FE at Δt/4
-  // as the reference (where its end state stopped moving for one halving of
-  // Δt; not converged, doc/verification.md §7). Full: adds the ROM N = 20 with the FE's implicit midpoint
-  // rule; the implicit ROM with every bending mode of the FE mesh damping
-  // 20 of them and then all; the FE without axial inertia damping all and
-  // then 20 modes, and the FE with axial inertia damping 20 (each step
-  // changes one thing: modes, damped set, beam model, damped set, axial
-  // inertia); the FE at Δt and Δt/2 (not converged: they show how far off
-  // an FE at the ROM's step is) and at Δt/8 (the reference's own refinement).
+  // explicit step's limit 2/ω_N forces the smaller steps) and the reference:
+  // the scene's own FE model (its FE time step and θ; on mueller2023 θ =
+  // 0.51 at Δt/2, which ends where the midpoint-rule FE converged in Δt
+  // ends, doc/verification.md §7). Full: adds the ROM
+  // N = 20 with the FE's implicit midpoint rule and, as diagnostic rungs,
+  // the implicit ROM with every bending mode of the FE mesh at Δt/4 and the
+  // midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt, all damping the
+  // scene's N: the plateau the undamped high modes put the midpoint rule
+  // on, shared by the ROM with all modes.
+  // The reference is always the last rung.
   std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
 
   // Every rung's ensemble as one list of member runs (ensemble.h): rung i

@@ -21,7 +21,7 @@ namespace beamslider
     constexpr double ladder_end_time      = 25.; // [s]: the end state of the published cases is reached by ~25 s
 
     const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "n_elements",
-                                                    "integrator",  "time_step_s",  "damped_modes", "reference",
+                                                    "integrator",  "time_step_s",  "damped_modes", "theta", "reference",
                                                     "cost_units",  "final_x_median", "w1",         "w1_high"};
 
     // The cache, or an empty vector if there is none or it is not ours.
@@ -45,11 +45,12 @@ namespace beamslider
           r.model.integrator    = c[4];
           r.model.time_step     = std::stod(c[5]);
           r.model.damped_modes  = std::stoul(c[6]);
-          r.reference           = c[7] == "1";
-          r.cost_units          = std::stod(c[8]);
-          r.final_x_median      = std::stod(c[9]);
-          r.w1                  = std::stod(c[10]);
-          r.w1_high             = std::stod(c[11]);
+          r.model.theta         = std::stod(c[7]);
+          r.reference           = c[8] == "1";
+          r.cost_units          = std::stod(c[9]);
+          r.final_x_median      = std::stod(c[10]);
+          r.w1                  = std::stod(c[11]);
+          r.w1_high             = std::stod(c[12]);
           rows.push_back(r);
         }
       return rows;
@@ -75,9 +76,8 @@ namespace beamslider
       << s.time_stepping.time_step << ' ' << s.solvers.contact_tolerance << ' ' << s.solvers.contact_sweeps << ' '
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
       << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
-      << " ladder-2"; // the ladder's rungs: version 2 has the FE reference at Δt/4
-    if (s.time_stepping.fe_theta != 0.5) // keys of midpoint-rule scenes stay as they were
-      c << " fe-theta " << s.time_stepping.fe_theta;
+      << ' ' << s.time_stepping.fe_time_step << ' ' << s.time_stepping.fe_theta
+      << " ladder-3"; // the ladder's rungs: version 3 has the scene's FE model as the reference
     // A mesh beam by its elements and sections (not its file name alone:
     // the file may change), and the point bodies.
     for (const BeamMeshCell &cell : s.beam.mesh_cells)
@@ -149,7 +149,7 @@ namespace beamslider
         for (const auto &r : rows)
           cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes), CsvWriter::cell(r.model.n_elements),
                      r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
-                     r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
+                     number(r.model.theta), r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
                      number(r.w1_high)});
         cache.close();
         log << "model choice from the error ladder just computed (cached in " << path << "):\n";

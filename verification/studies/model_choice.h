@@ -7,10 +7,11 @@
 //   <cache_dir>/ladder-<key>.csv
 // where <key> is a hash of everything in the scene that the ladder's
 // outcome depends on (beam, supports, slider, contact, damping, excitation,
-// start position, mesh, N, Δt; not the name, end time or output rate). A
+// start position, mesh, N, Δt, the FE's Δt and θ; not the name, end time or
+// output rate). A
 // changed scene gets a new key, so a stale cache is never read.
 // Columns: rung,family,n_modes,n_elements,integrator,time_step_s,
-//          damped_modes,reference,cost_units,final_x_median,w1,w1_high
+//          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high
 #pragma once
 
 #include "meshes/scene.h"
