@@ -72,9 +72,8 @@ namespace beamslider
       // mueller2023). The midpoint rule at the ROM's Δt does not resolve the
       // contacts once the amplitude is high (measured: its up branch wedges
       // the window, both sides through the beam, right after 0.35 L).
-      const Scene &fe_scene = scene;
       settings.model        = "fe";
-      const PcsStudy fe     = run_pcs_sweep(fe_scene, settings, fe_dir);
+      const PcsStudy fe     = run_pcs_sweep(scene, settings, fe_dir);
       settings.model        = "rom";
       const PcsStudy rom    = run_pcs_sweep(scene, settings, rom_dir);
       // A branch that stopped early (its run left the physically possible

@@ -242,8 +242,9 @@ namespace beamslider
          << "). On mueller2023 it ends, after 40 s, where the midpoint-rule FE converged in Δt ends (0.409 L at "
             "1.25e-6 and 6.25e-7 s, 2 members each) and where the ROM converged in N ends, with an eighth of the "
             "steps; the midpoint rule at 5e-6 and 2.5e-6 s sits on a plateau at 0.371 L (doc/verification.md §7). "
-            "`verify --full` shows that plateau.";
-    md << " What all models share is in the last column (the class of each member's adaptation) and the jump-time "
+            "`verify --full` shows that plateau. ";
+    // Every sentence above ends with ". ".
+    md << "What all models share is in the last column (the class of each member's adaptation) and the jump-time "
           "column.\n\n";
 
     md << heading(2, "The ladder: what each step contributes")

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <numeric>
+#include <sstream>
 
 namespace beamslider
 {
@@ -90,11 +90,15 @@ namespace beamslider
                          "every bending mode of the FE mesh, damping the scene's " + std::to_string(N0) +
                            ", the rest ringing undamped as in the FE (implicit midpoint rule)",
                          rom_all, true});
-        rungs.push_back({"FE Δt/4", "the FE beam at the same step and damped set (midpoint rule, θ = ½)",
-                         fe(scene, dt / 4), true});
-        rungs.push_back({"FE Δt/8", "the midpoint-rule FE refined once in Δt", fe(scene, dt / 8), true});
-        rungs.push_back({"FE Δt/2", "the midpoint-rule FE at twice the step of FE Δt/4", fe(scene, dt / 2), true});
-        rungs.push_back({"FE Δt", "the midpoint-rule FE at the scene's (the ROM's) step", fe(scene, dt), true});
+        // Named as the reference is, so that a scene whose FE model is one
+        // of them runs it once (below).
+        const auto midpoint = [&](const double fe_dt, const std::string &change) {
+          rungs.push_back({fe_step_name(dt, fe_dt, 0.5), change, fe(scene, fe_dt), true});
+        };
+        midpoint(dt / 4, "the FE beam at the same step and damped set (midpoint rule, θ = ½)");
+        midpoint(dt / 8, "the midpoint-rule FE refined once in Δt");
+        midpoint(dt / 2, "the midpoint-rule FE at twice the step of FE Δt/4");
+        midpoint(dt, "the midpoint-rule FE at the scene's (the ROM's) step");
       }
     // A user's scene whose FE model is one of the diagnostic rungs runs it
     // once, as the reference.
