@@ -323,7 +323,12 @@ TEST(Commands, LadderWritesRungsWhoseDistancesFollowFromTheMembers)
   run = run_beamslider({"ladder", "--rung", "ROM N=11", "--output", dir.string()});
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.err.find("--rung 'ROM N=11' is not a rung"), std::string::npos) << run.err;
-  EXPECT_NE(run.err.find("'FE Δt/4'"), std::string::npos) << "the error lists the full ladder's rungs: " << run.err;
+  EXPECT_NE(run.err.find("'FE Δt/4'"), std::string::npos) << "the error lists the diagnostic rungs too: " << run.err;
+
+  // The diagnostic rungs belong to the full report: alone they are refused.
+  run = run_beamslider({"verify", "--diagnostics", "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--diagnostics requires --full"), std::string::npos) << run.err;
   fs::remove_all(dir);
 }
 

@@ -146,15 +146,16 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
 }
 
 
-// The full ladder runs its diagnostic rungs (the ROM with all modes and the
-// midpoint-rule FE at other time steps) with half the members, and the
-// published ROM, the converged ROMs and the FE reference with all of them;
-// the quick ladder has no diagnostic rung.
-TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
+// The ladder with diagnostics runs its diagnostic rungs (the ROM with all
+// modes and the midpoint-rule FE at other time steps) with half the members,
+// and the published ROM, the converged ROMs and the FE reference with all of
+// them; the quick and the full ladder have no diagnostic rung, and the full
+// one is the quick one and the implicit ROM N = 20.
+TEST(ErrorLadder, OnlyTheLadderWithDiagnosticsRunsHalfTheMembersOnItsDiagnosticRungs)
 {
   const Scene scene = read_scene(mueller);
   std::size_t reference = 0;
-  const std::vector<LadderRung> full = default_ladder(scene, true, reference);
+  const std::vector<LadderRung> full = default_ladder(scene, LadderScope::diagnostics, reference);
   const std::vector<MemberGroup> groups = ladder_groups(scene, full, 40., 8);
   ASSERT_EQ(groups.size(), full.size());
   unsigned int n_diagnostic = 0;
@@ -169,9 +170,15 @@ TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
   ASSERT_TRUE(full[reference - 1].diagnostic);
   EXPECT_EQ(rung_members(full[reference - 1], 3), 2u); // never fewer than two (W₁ needs a spread)
 
-  const std::vector<LadderRung> quick = default_ladder(scene, false, reference);
+  const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, reference);
   for (const MemberGroup &g : ladder_groups(scene, quick, 25., 4))
     EXPECT_EQ(g.n_members, 4u) << g.name;
+  const std::vector<LadderRung> verdict = default_ladder(scene, LadderScope::full, reference);
+  ASSERT_EQ(verdict.size(), quick.size() + 1);
+  for (const MemberGroup &g : ladder_groups(scene, verdict, 40., 8))
+    EXPECT_EQ(g.n_members, 8u) << g.name;
+  EXPECT_EQ(verdict[reference - 1].name, "ROM N=20 implicit");
+  EXPECT_EQ(verdict[reference - 1].model.integrator, "implicit");
 }
 
 // The reference is the scene's own FE model, its step and θ, on either
@@ -180,10 +187,10 @@ TEST(ErrorLadder, FullLadderRunsHalfTheMembersOnItsDiagnosticRungsOnly)
 TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
 {
   const Scene scene = read_scene(mueller);
-  for (const bool full : {false, true})
+  for (const LadderScope scope : {LadderScope::quick, LadderScope::full, LadderScope::diagnostics})
     {
       std::size_t reference = 0;
-      const std::vector<LadderRung> rungs = default_ladder(scene, full, reference);
+      const std::vector<LadderRung> rungs = default_ladder(scene, scope, reference);
       ASSERT_EQ(reference, rungs.size() - 1);
       const ModelSetting &fe = rungs[reference].model;
       EXPECT_EQ(fe.family, "fe");
@@ -200,7 +207,7 @@ TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
   midpoint.time_stepping.fe_time_step = scene.time_stepping.time_step / 4;
   midpoint.time_stepping.fe_theta     = 0.5;
   std::size_t reference               = 0;
-  const std::vector<LadderRung> rungs = default_ladder(midpoint, true, reference);
+  const std::vector<LadderRung> rungs = default_ladder(midpoint, LadderScope::diagnostics, reference);
   EXPECT_EQ(rungs[reference].name, "FE Δt/4");
   EXPECT_EQ(std::count_if(rungs.begin(), rungs.end(), [](const LadderRung &r) { return r.name == "FE Δt/4"; }), 1);
   EXPECT_FALSE(rungs[reference].diagnostic);

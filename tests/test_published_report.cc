@@ -46,7 +46,7 @@ namespace
 TEST(PublishedReport, ThePublishedROMStillEndsWithinItsPublishedInterval)
 {
   const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm");
-  const ReportLadder full = report_ladder(scene, true);
+  const ReportLadder full = report_ladder(scene, true, false);
   const LadderRung &published = full.rungs.front();
   ASSERT_NE(published.name.find("published"), std::string::npos) << published.name;
 

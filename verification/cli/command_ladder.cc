@@ -1,7 +1,6 @@
 // `beamslider ladder`: the error ladder of report section 5 on its own. Each
 // rung is a model setting run as an ensemble; every rung is compared with
-// the reference (the FE at a quarter of the scene's time step) and with the
-// rung before it. Writes member_runs.csv (each member as it finishes),
+// the reference (the scene's FE model) and with the rung before it. Writes member_runs.csv (each member as it finishes),
 // ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png and summary.md
 // (the same tables and verdict as the report). Under `mpirun -n P` the
 // members run on P ranks; stopped and started again the same way into the
@@ -64,15 +63,22 @@ namespace beamslider
     // Under mpirun every rank runs this; only rank 0 writes and prints.
     MpiSession mpi(launched_by_mpi_launcher());
     const Scene scene = read_command_scene(common, "");
-    const bool full   = options.full || !options.rungs.empty();
+    // --diagnostics implies the full ladder; rungs picked by name come from
+    // the ladder with diagnostics.
+    const bool full = options.full || options.diagnostics || !options.rungs.empty();
+    const LadderScope scope =
+      options.diagnostics || !options.rungs.empty() ? LadderScope::diagnostics
+      : full                                        ? LadderScope::full
+                                                    : LadderScope::quick;
     std::size_t reference = 0;
-    std::vector<LadderRung> rungs = default_ladder(scene, full, reference);
+    std::vector<LadderRung> rungs = default_ladder(scene, scope, reference);
     if (!options.rungs.empty())
       rungs = pick_rungs(rungs, reference, options.rungs, reference);
 
     LadderRunSettings settings;
-    settings.members         = options.members.value_or(options.full ? 8 : 4);
-    settings.end_time        = options.end_time.value_or(options.full ? 40. : 25.);
+    const bool full_length   = options.full || options.diagnostics;
+    settings.members         = options.members.value_or(full_length ? 8 : 4);
+    settings.end_time        = options.end_time.value_or(full_length ? 40. : 25.);
     settings.quick_ladder    = !full;
     settings.progress_prefix = "ladder: ";
     if (mpi.rank() != 0)
@@ -84,7 +90,7 @@ namespace beamslider
 
     std::ostringstream md;
     md << "# Error ladder of scene `" << scene.name << "`\n\n"
-       << "Written by `beamslider ladder`" << (options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
+       << "Written by `beamslider ladder`" << (options.diagnostics ? " --diagnostics" : options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
        << settings.members << " members over " << settings.end_time << " s. The same study as report section 5.1–5.2 "
        << "(doc/verification.md §6).\n\n";
     try

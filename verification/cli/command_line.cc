@@ -209,7 +209,12 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   VerifyOptions verify;
   auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
   add_common(verify_cmd);
-  verify_cmd->add_flag("--full", verify.full, "run the long studies too");
+  auto *verify_full = verify_cmd->add_flag("--full", verify.full, "run the long studies too");
+  verify_cmd
+    ->add_flag("--diagnostics", verify.diagnostics,
+               "with --full: the error ladder's diagnostic rungs too (the midpoint-rule FE in dt, the ROM with all "
+               "modes; about 25 min more on 2 cores)")
+    ->needs(verify_full);
   verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
     ->check(integer_in(1, 8));
 
@@ -218,8 +223,11 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
                                                   "as ensembles against the FE reference");
   add_common(ladder_cmd);
   ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
+  ladder_cmd->add_flag("--diagnostics", ladder.diagnostics,
+                       "the rungs of --full and the diagnostic rungs (the midpoint-rule FE in dt, the ROM with all "
+                       "modes; 4 members each)");
   ladder_cmd->add_option("--rung", ladder.rungs,
-                         "run only this rung of the full ladder, by name (repeatable; the reference, the scene's FE model, always runs)");
+                         "run only this rung of the ladder with diagnostics, by name (repeatable; the reference, the scene's FE model, always runs)");
   ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
     ->check(integer_in(2, 1000));
   ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")

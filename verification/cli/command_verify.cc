@@ -32,7 +32,7 @@ namespace beamslider
         // The other ranks' share of the report: the ladder's members.
         if (ladder_section)
           {
-            const ReportLadder ladder = report_ladder(scene, options.full);
+            const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
             work_on_ladder(scene, ladder.rungs, ladder.settings);
           }
         return 0;
@@ -53,6 +53,7 @@ namespace beamslider
     report.dir        = prepare_output_dir(common, scene, "");
     report.scene_file = resolve_scene_path(common.scene_file);
     report.overrides  = common.overrides;
+    report.ladder_diagnostics = options.diagnostics;
     const auto start = std::chrono::steady_clock::now();
     console() << "beamslider verify: scene '" << scene.name << "', report in " << report.dir
               << (options.full ? " (full studies)" : " (quick studies; --full for the long ones)") << std::endl;
@@ -125,7 +126,9 @@ namespace beamslider
                 << "- build: " << build_revision() << " (run.txt: the exact command line; parameters.prm: the scene)\n"
                 << "- machine: " << machine_description() << "; " << mpi.size() << " MPI rank(s)"
                 << (mpi.size() > 1 ? "" : ", the ensembles' members over the cores") << "\n"
-                << "- studies: " << (options.full ? "full (`--full`)" : "quick") << "\n\n"
+                << "- studies: "
+                << (!options.full ? "quick" : options.diagnostics ? "full with the ladder's diagnostic rungs (`--full --diagnostics`)" : "full (`--full`)")
+                << "\n\n"
                 << "| section | wall time [s] |\n|---|---|\n";
     for (const auto &[k, s] : section_seconds)
       report.text << "| " << k + 1 << ". " << titles[k] << " | " << fixed(s, 0) << " |\n";

@@ -33,6 +33,7 @@ namespace beamslider
   struct VerifyOptions
   {
     bool full = false; // the long studies (minutes to hours)
+    bool diagnostics = false; // with full: the error ladder's diagnostic rungs too
     std::vector<unsigned int> sections; // only these sections (1–7); empty = all
   };
   int run_verify(const CommonOptions &common, const VerifyOptions &options);
@@ -145,7 +146,8 @@ namespace beamslider
   struct LadderOptions
   {
     bool full = false;              // the rungs of `verify --full` (default: those of the quick report)
-    std::vector<std::string> rungs; // names of rungs of the full ladder; the reference always runs
+    bool diagnostics = false;       // and the diagnostic rungs (implies full)
+    std::vector<std::string> rungs; // names of rungs of the ladder with diagnostics; the reference always runs
     std::optional<unsigned int> members; // default 4 (quick) or 8 (full)
     std::optional<double> end_time;      // [s], default 25 (quick) or 40 (full)
   };

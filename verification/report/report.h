@@ -21,6 +21,8 @@ namespace beamslider
     // overrides (the contact cases).
     std::string scene_file;
     std::vector<std::string> overrides;
+    // Section 5's error ladder with its diagnostic rungs (`--diagnostics`).
+    bool ladder_diagnostics = false;
   };
 
   // Numbers in report text: scientific (1.23e-04) or fixed (0.123) notation.

@@ -43,7 +43,7 @@ namespace beamslider
     // 5.1 and 5.2: the ladder.
     std::string ladder_subsections(Report &report, const Scene &scene, const bool full)
     {
-      const ReportLadder ladder = report_ladder(scene, full);
+      const ReportLadder ladder = report_ladder(scene, full, report.ladder_diagnostics);
       return run_and_describe_ladder(report.dir, scene, ladder.rungs, ladder.reference, ladder.settings);
     }
 

@@ -66,13 +66,14 @@ namespace beamslider
   // but the folder): compute the members rank 0 hands out.
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings);
 
-  // The ladder of report section 5: quick (4 rungs, 4 members over 25 s) or
-  // full (`verify --full`: every rung, 8 members over 40 s).
+  // The ladder of report section 5: quick (4 rungs, 4 members over 25 s),
+  // full (`verify --full`: 5 rungs, 8 members over 40 s) or full with the
+  // diagnostic rungs (`verify --full --diagnostics`).
   struct ReportLadder
   {
     std::vector<LadderRung> rungs;
     std::size_t reference = 0;
     LadderRunSettings settings;
   };
-  ReportLadder report_ladder(const Scene &scene, bool full);
+  ReportLadder report_ladder(const Scene &scene, bool full, bool diagnostics);
 } // namespace beamslider

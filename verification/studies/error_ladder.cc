@@ -55,7 +55,7 @@ namespace beamslider
     return name.str();
   }
 
-  std::vector<LadderRung> default_ladder(const Scene &scene, const bool full, std::size_t &reference)
+  std::vector<LadderRung> default_ladder(const Scene &scene, const LadderScope scope, std::size_t &reference)
   {
     const double dt       = scene.time_stepping.time_step;
     const unsigned int N0 = scene.discretisation.n_modes;
@@ -74,9 +74,10 @@ namespace beamslider
     const ModelSetting fe_reference = scene_model(scene, "fe");
     const std::string reference_name =
       fe_step_name(dt, fe_reference.time_step, fe_reference.theta);
-    if (full)
+    if (scope != LadderScope::quick)
+      rungs.push_back({"ROM N=20 implicit", "the FE's integrator (implicit midpoint rule)", rom(20, dt / 4, "implicit")});
+    if (scope == LadderScope::diagnostics)
       {
-        rungs.push_back({"ROM N=20 implicit", "the FE's integrator (implicit midpoint rule)", rom(20, dt / 4, "implicit")});
         // Diagnostic rungs (half the members): the modal model with every
         // bending mode of the FE mesh at the step where the midpoint-rule FE
         // sits on its plateau, then that FE in Δt. The ROM with all modes,

@@ -33,10 +33,10 @@ namespace beamslider
     std::string name;   // e.g. "ROM N=5 (published)"
     std::string change; // what this rung changes against the one before
     ModelSetting model; // its damped_modes keeps the damped set of the rungs beside it
-    // A diagnostic rung of the full ladder (a step of the attribution or of
-    // the time-step study, not the published model, the converged ROM or the
-    // reference) runs half the ladder's members, at least 2: its W₁ interval
-    // is wider, and the full ladder fits its time budget (rung_members).
+    // A diagnostic rung (a step of the time-step study, not the published
+    // model, a converged ROM or the reference; LadderScope::diagnostics)
+    // runs half the ladder's members, at least 2: its W₁ interval is wider,
+    // and the ladder with diagnostics costs less (rung_members).
     bool diagnostic = false;
   };
 
@@ -77,19 +77,34 @@ namespace beamslider
     std::vector<SampleComparison> steps;
   };
 
-  // The default ladder for a scene. Quick: the published ROM (N = scene's, Δt
-  // = scene's), converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
-  // explicit step's limit 2/ω_N forces the smaller steps) and the reference:
-  // the scene's own FE model (its FE time step and θ; on mueller2023 θ =
-  // 0.51 at Δt/2, which ends where the midpoint-rule FE converged in Δt
-  // ends, doc/verification.md §7). Full: adds the ROM
-  // N = 20 with the FE's implicit midpoint rule and, as diagnostic rungs,
-  // the implicit ROM with every bending mode of the FE mesh at Δt/4 and the
-  // midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt, all damping the
-  // scene's N: the plateau the undamped high modes put the midpoint rule
-  // on, shared by the ROM with all modes.
-  // The reference is always the last rung.
-  std::vector<LadderRung> default_ladder(const Scene &scene, bool full, std::size_t &reference);
+  // Which rungs a ladder has.
+  //   quick        the published ROM (N = scene's, Δt = scene's), the
+  //                converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
+  //                explicit step's limit 2/ω_N forces the smaller steps) and
+  //                the reference: the scene's own FE model (its FE time step
+  //                and θ; on mueller2023 θ = 0.51 at Δt/2, which ends where
+  //                the midpoint-rule FE converged in Δt ends,
+  //                doc/verification.md §7);
+  //   full         adds the ROM N = 20 with the FE's implicit midpoint rule
+  //                (the verdict of `verify --full`);
+  //   diagnostics  adds, as diagnostic rungs, the implicit ROM with every
+  //                bending mode of the FE mesh at Δt/4 and the midpoint-rule
+  //                FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt, all damping the
+  //                scene's N: the plateau the undamped high modes put the
+  //                midpoint rule on, shared by the ROM with all modes. They
+  //                explain the choice of the reference and cost as much again
+  //                as the rest of the full ladder, so they run only when asked
+  //                (`verify --full --diagnostics`, `ladder --diagnostics`).
+  enum class LadderScope
+  {
+    quick,
+    full,
+    diagnostics
+  };
+
+  // The default ladder for a scene at that scope. The reference is always
+  // the last rung.
+  std::vector<LadderRung> default_ladder(const Scene &scene, LadderScope scope, std::size_t &reference);
 
   // Every rung's ensemble as one list of member runs (ensemble.h): rung i
   // is group i, `members` members over [0, end_time], ε = 1e-9.

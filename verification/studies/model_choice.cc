@@ -122,7 +122,7 @@ namespace beamslider
     else
       {
         std::size_t reference = 0;
-        const auto rungs      = default_ladder(scene, false, reference);
+        const auto rungs      = default_ladder(scene, LadderScope::quick, reference);
         console() << "simulate --model auto: no cached error ladder for this scene; running it (" << rungs.size()
                   << " models × " << ladder_members << " members over " << ladder_end_time
                   << " s, a few minutes, the FE most of it) ..." << std::endl;
