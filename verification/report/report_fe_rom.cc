@@ -62,8 +62,8 @@ namespace beamslider
       settings.free_time          = 0;
       settings.verbose            = false;
       settings.sweep.validate(scene);
-      console() << "[verify] FE against ROM: slow manifold, sweeps x_C/L " << settings.sweep.low_over_L << " … "
-                << settings.sweep.high_over_L << " on the FE and the ROM" << std::endl;
+      console() << "[verify] FE against ROM: slow manifold, sweeps x_C/L " << fixed(settings.sweep.low_over_L, 3) << " … "
+                << fixed(settings.sweep.high_over_L, 3) << " on the FE and the ROM" << std::endl;
 
       const std::string fe_dir = report.dir + "/slow_manifold_fe", rom_dir = report.dir + "/slow_manifold_rom";
       std::filesystem::create_directories(fe_dir);
