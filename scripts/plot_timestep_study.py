@@ -7,7 +7,7 @@ the successive changes of the median and the orders they imply
 (p = log2(|d_k| / |d_k+1|)), and writes timestep_study.csv and
 timestep_study.png beside ladder.csv.
 
-    python3 scripts/plot_timestep_study.py reports/mueller2023-full
+    python3 scripts/plot_timestep_study.py reports/mueller2023-full/diagnostics
 """
 import math
 import os
@@ -20,7 +20,7 @@ rows = read_rows(os.path.join(folder, "ladder.csv"))
 fe = [r for r in rows if r["rung"] in ("FE Δt", "FE Δt/2", "FE Δt/4", "FE Δt/8")]
 fe.sort(key=lambda r: -float(r["time_step_s"]))
 if len(fe) < 3:
-    sys.exit(f"{folder}/ladder.csv has {len(fe)} of the FE Δt rungs: run the full ladder (verify --full)")
+    sys.exit(f"{folder}/ladder.csv has {len(fe)} of the FE Δt rungs: run the ladder with its diagnostic rungs (verify --full --diagnostics)")
 published = next(r for r in rows if "published" in r["rung"])
 reference = next(r for r in rows if r["reference"] == "1")
 
