@@ -1,7 +1,8 @@
 // `beamslider ladder`: the error ladder of report section 5 on its own. Each
 // rung is a model setting run as an ensemble; every rung is compared with
-// the reference (the scene's FE model) and with the rung before it. Writes member_runs.csv (each member as it finishes),
-// ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png and summary.md
+// the reference (the scene's FE model) and with the rung before it. Writes
+// member_runs.csv (each member as it finishes), ladder.csv,
+// ladder_members.csv, ladder_steps.csv, ladder.png and summary.md
 // (the same tables and verdict as the report). Under `mpirun -n P` the
 // members run on P ranks; stopped and started again the same way into the
 // same folder, it runs only the members not yet in member_runs.csv
@@ -66,20 +67,17 @@ namespace beamslider
     // --diagnostics implies the full ladder; rungs picked by name come from
     // the ladder with diagnostics.
     const bool full = options.full || options.diagnostics || !options.rungs.empty();
-    const LadderScope scope =
-      options.diagnostics || !options.rungs.empty() ? LadderScope::diagnostics
-      : full                                        ? LadderScope::full
-                                                    : LadderScope::quick;
     std::size_t reference = 0;
-    std::vector<LadderRung> rungs = default_ladder(scene, scope, reference);
+    std::vector<LadderRung> rungs =
+      default_ladder(scene, ladder_scope(full, options.diagnostics || !options.rungs.empty()), reference);
     if (!options.rungs.empty())
       rungs = pick_rungs(rungs, reference, options.rungs, reference);
 
-    LadderRunSettings settings;
-    const bool full_length   = options.full || options.diagnostics;
-    settings.members         = options.members.value_or(full_length ? 8 : 4);
-    settings.end_time        = options.end_time.value_or(full_length ? 40. : 25.);
-    settings.quick_ladder    = !full;
+    // Rungs picked by name keep the quick length unless --full is given.
+    LadderRunSettings settings = ladder_run_settings(options.full || options.diagnostics);
+    settings.members           = options.members.value_or(settings.members);
+    settings.end_time          = options.end_time.value_or(settings.end_time);
+    settings.quick_ladder      = !full;
     settings.progress_prefix = "ladder: ";
     if (mpi.rank() != 0)
       {

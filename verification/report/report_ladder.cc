@@ -324,13 +324,24 @@ namespace beamslider
     run_member_groups(ladder_groups(scene, rungs, settings.end_time, settings.members), runs);
   }
 
+  LadderScope ladder_scope(const bool full, const bool diagnostics)
+  {
+    return !full ? LadderScope::quick : diagnostics ? LadderScope::diagnostics : LadderScope::full;
+  }
+
+  LadderRunSettings ladder_run_settings(const bool full_length)
+  {
+    LadderRunSettings settings;
+    settings.members  = full_length ? 8 : 4;
+    settings.end_time = full_length ? 40. : 25.;
+    return settings;
+  }
+
   ReportLadder report_ladder(const Scene &scene, const bool full, const bool diagnostics)
   {
     ReportLadder l;
-    const LadderScope scope = !full ? LadderScope::quick : diagnostics ? LadderScope::diagnostics : LadderScope::full;
-    l.rungs                 = default_ladder(scene, scope, l.reference);
-    l.settings.members         = full ? 8 : 4;
-    l.settings.end_time        = full ? 40. : 25.;
+    l.rungs                    = default_ladder(scene, ladder_scope(full, diagnostics), l.reference);
+    l.settings                 = ladder_run_settings(full);
     l.settings.quick_ladder    = !full;
     l.settings.numbering       = "5.";
     l.settings.progress_prefix = "[verify] FE against ROM: ";

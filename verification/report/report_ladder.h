@@ -66,6 +66,14 @@ namespace beamslider
   // but the folder): compute the members rank 0 hands out.
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings);
 
+  // Which rungs: the quick ladder unless `full`; its diagnostic rungs too
+  // when `diagnostics` (which needs `full`).
+  LadderScope ladder_scope(bool full, bool diagnostics);
+
+  // Members and simulated time per member: 8 over 40 s for the full-length
+  // ladder (`--full`), 4 over 25 s otherwise.
+  LadderRunSettings ladder_run_settings(bool full_length);
+
   // The ladder of report section 5: quick (4 rungs, 4 members over 25 s),
   // full (`verify --full`: 5 rungs, 8 members over 40 s) or full with the
   // diagnostic rungs (`verify --full --diagnostics`).
