@@ -213,7 +213,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   verify_cmd
     ->add_flag("--diagnostics", verify.diagnostics,
                "with --full: the error ladder's diagnostic rungs too (the midpoint-rule FE in dt, the ROM with all "
-               "modes; about 25 min more on 2 cores)")
+               "modes; about 26 min more on 2 cores)")
     ->needs(verify_full);
   verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
     ->check(integer_in(1, 8));

@@ -142,11 +142,12 @@ namespace beamslider
     const unsigned int n_members = settings.members;
     const double end_time        = settings.end_time;
     double expected              = 0;
-    unsigned int n_diagnostic = 0;
+    unsigned int n_diagnostic = 0, n_member_runs = 0; // the diagnostic rungs run fewer members
     for (const auto &r : rungs)
       {
         expected += expected_member_seconds(r.model, scene, end_time) * rung_members(r, n_members) / 2; // two cores
         n_diagnostic += r.diagnostic;
+        n_member_runs += rung_members(r, n_members);
       }
     const std::string diagnostic_members =
       n_diagnostic == 0 ? std::string()
@@ -307,7 +308,7 @@ namespace beamslider
     md << "\n![The ladder: final positions per rung, and speed against accuracy](ladder.png)\n\n"
        << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv; member_runs.csv holds every member as it finished "
           "(the same command started again into this folder runs only the members not there yet). "
-       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(rungs.size() * n_members) +
+       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(n_member_runs) +
                       " members were read back from there, computed by an earlier, stopped run of this same build "
                       "and settings. "
                   : std::string())
