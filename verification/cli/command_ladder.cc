@@ -78,7 +78,7 @@ namespace beamslider
     settings.members           = options.members.value_or(settings.members);
     settings.end_time          = options.end_time.value_or(settings.end_time);
     settings.quick_ladder      = !full;
-    settings.progress_prefix = "ladder: ";
+    settings.progress_prefix   = "ladder: ";
     if (mpi.rank() != 0)
       {
         work_on_ladder(scene, rungs, settings);
