@@ -5,6 +5,7 @@ second thread keeps what it computed. Run by ctest with PYTHONPATH set to
 build/python and BEAMSLIDER_EXECUTABLE to the built program."""
 
 import os
+import re
 import signal
 import subprocess
 import tempfile
@@ -54,6 +55,26 @@ class SimulateIsTheCommandLinesRun(unittest.TestCase):
 
         with self.assertRaises(LookupError):
             beamslider.simulate(end_time=1, progress=refuse)
+
+
+class SweepBranchesRunSideBySide(unittest.TestCase):
+    def test_both_branches_report_whole_lines_and_keep_their_order(self):
+        # The branches and the free run go on two threads; their progress
+        # lines reach the callback one whole line at a time.
+        lines = []
+        run = beamslider.sweep(from_=0.25, to=0.35, step=0.01, settle_time=0.1, average_time=0.1, free_time=0.5,
+                               progress=lines.append)
+        pattern = re.compile(r"^  sweep (up|down): (\d+)/11 positions, x_C/L = \d\.\d{3}, amplitude \d+\.\d{3} h, "
+                             r"F_x = -?\d\.\d{2}e[-+]\d{2} N$")
+        sweep_lines = [line for line in lines if line.startswith("  sweep ")]
+        for line in sweep_lines:
+            self.assertRegex(line, pattern)
+        for direction in ("up", "down"):
+            self.assertIn(f"  sweep {direction}: 11/11", " ".join(sweep_lines))
+        x = run.pcs["x_over_L"]
+        up, down = x[run.pcs["direction"] == "up"], x[run.pcs["direction"] == "down"]
+        self.assertTrue(np.all(np.diff(up) > 0) and np.all(np.diff(down) < 0), (up, down))
+        self.assertTrue(np.allclose(np.sort(up), np.sort(down), rtol=0, atol=1e-12))
 
 
 class CoefficientTensor(unittest.TestCase):

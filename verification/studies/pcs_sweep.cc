@@ -15,12 +15,14 @@
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/console.h"
+#include "verification/studies/parallel_for.h"
 
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 
 namespace beamslider
 {
@@ -97,76 +99,96 @@ namespace beamslider
     // Whether each run reached its end: pcs.csv holds the positions a branch
     // reached, which its rows alone cannot tell from a complete branch.
     CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"});
-    for (const SweepDirection direction : {SweepDirection::up, SweepDirection::down})
-      {
-        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
-        long done                        = 0;
-        auto on_point                    = [&](const PcsPoint &p) {
-          pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
-                   CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
-                   std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
-          ++done;
-          if (settings.verbose && (done % 10 == 0 || done == n_positions))
-            console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
-                      << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
-                      << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
+
+    // The two branches and the free slider are independent runs: each on its
+    // own core. Rows of pcs.csv are written as positions finish (a branch's
+    // rows stay in its order; the readers select by direction), and console
+    // lines whole, under one lock.
+    std::mutex output_mutex;
+    auto say = [&](const std::string &line) {
+      const std::lock_guard<std::mutex> lock(output_mutex);
+      console() << line << std::endl;
+    };
+    auto sweep_branch = [&](const SweepDirection direction) {
+      std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
+      long done                        = 0;
+      auto on_point                    = [&](const PcsPoint &p) {
+        const std::lock_guard<std::mutex> lock(output_mutex);
+        pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
+                 CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
+                 std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
+        ++done;
+        if (settings.verbose && (done % 10 == 0 || done == n_positions))
+          console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
+                    << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
+                    << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
+      };
+      PcsBranch branch = run_pcs_branch(scene, *beam, settings.sweep, direction, on_point);
+      if (branch.last_run.status != RunStatus::completed)
+        say("  sweep " + to_string(direction) + " stopped early (" + to_string(branch.last_run.status) +
+            "): " + branch.last_run.message);
+      (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
+    };
+
+    // The free slider from the scene's own start, for the overlay.
+    auto free_slider = [&]() {
+      std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
+      RunOptions options               = RunOptions::from_scene(scene);
+      options.end_time                 = settings.free_time;
+      options.output_rate              = 1.;
+      options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
+      AdaptationRun run(scene, *beam, options);
+      CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
+      std::vector<PeriodRecord> records;
+      run.on_period = [&periods, &records](const PeriodRecord &r) {
+        write_period_row(periods, r);
+        records.push_back(r);
+      };
+      if (settings.verbose)
+        run.on_progress = [&say](const RunProgress &p) {
+          say("  free slider: t = " + fixed(p.t, 1) + " / " + fixed(p.end_time, 1) + " s, x_C/L = " +
+              fixed(p.slider_x_over_L, 3) + ", amplitude " + fixed(p.amplitude_over_h, 3) + " h");
         };
-        PcsBranch branch = run_pcs_branch(scene, *beam, settings.sweep, direction, on_point);
-        if (branch.last_run.status != RunStatus::completed)
-          console() << "  sweep " << to_string(direction) << " stopped early (" << to_string(branch.last_run.status)
-                    << "): " << branch.last_run.message << std::endl;
-        runs.row({to_string(direction), to_string(branch.last_run.status), CsvWriter::cell(branch.points.size()),
-                  std::to_string(n_positions), CsvWriter::cell(branch.last_run.t_end)});
-        (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
-      }
+      study.free_run            = run.run();
+      study.free_final_x_over_L = run.state().s[0] / L;
+
+      // The free slider's jump by the one trace analysis; the amplitude
+      // after it is the envelope one second later (where the rule checks
+      // that it lasts).
+      const TraceAnalysis analysis = analyse_trace(records, study.free_run.status, trace_thresholds(scene));
+      if (analysis.jumped)
+        {
+          std::size_t k = 0;
+          while (k + 1 < records.size() && records[k].t_end < analysis.jump_time)
+            ++k;
+          const std::size_t later = std::min(records.size() - 1, k + static_cast<std::size_t>(std::lround(
+                                                                       1. / (records[0].t_end - records[0].t_start))));
+          study.free_jump = PcsStudy::FreeJump{analysis.jump_time, records[k].slider_x_over_L,
+                                               analysis.level_before_jump, analysis.envelope[later]};
+        }
+      if (study.free_run.status != RunStatus::completed)
+        say("  free slider stopped early (" + to_string(study.free_run.status) + "): " + study.free_run.message);
+    };
+
+    // The free run first: it is usually the longest.
+    const bool with_free_run = settings.free_time > 0.;
+    const std::size_t first_branch = with_free_run ? 1 : 0;
+    parallel_for(first_branch + 2, 0, [&](const std::size_t i) {
+      if (i < first_branch)
+        free_slider();
+      else
+        sweep_branch(i == first_branch ? SweepDirection::up : SweepDirection::down);
+    });
+
+    for (const PcsBranch *branch : {&study.up, &study.down})
+      runs.row({to_string(branch->direction), to_string(branch->last_run.status), CsvWriter::cell(branch->points.size()),
+                std::to_string(n_positions), CsvWriter::cell(branch->last_run.t_end)});
+    if (with_free_run)
+      runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
     study.crossings_up   = force_zero_crossings(study.up.points);
     study.crossings_down = force_zero_crossings(study.down.points);
     study.jump_up        = largest_amplitude_jump(study.up.points);
     study.jump_down      = largest_amplitude_jump(study.down.points);
-
-    // The free slider from the scene's own start, for the overlay.
-    if (settings.free_time > 0.)
-      {
-        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, scene_model(scene, settings.model));
-        RunOptions options               = RunOptions::from_scene(scene);
-        options.end_time                 = settings.free_time;
-        options.output_rate              = 1.;
-        options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
-        AdaptationRun run(scene, *beam, options);
-        CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
-        std::vector<PeriodRecord> records;
-        run.on_period = [&periods, &records](const PeriodRecord &r) {
-          write_period_row(periods, r);
-          records.push_back(r);
-        };
-        if (settings.verbose)
-          run.on_progress = [](const RunProgress &p) {
-            console() << "  free slider: t = " << fixed(p.t, 1) << " / " << fixed(p.end_time, 1)
-                      << " s, x_C/L = " << fixed(p.slider_x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
-                      << " h" << std::endl;
-          };
-        study.free_run            = run.run();
-        study.free_final_x_over_L = run.state().s[0] / L;
-
-        // The free slider's jump by the one trace analysis; the amplitude
-        // after it is the envelope one second later (where the rule checks
-        // that it lasts).
-        const TraceAnalysis analysis = analyse_trace(records, study.free_run.status, trace_thresholds(scene));
-        if (analysis.jumped)
-          {
-            std::size_t k = 0;
-            while (k + 1 < records.size() && records[k].t_end < analysis.jump_time)
-              ++k;
-            const std::size_t later = std::min(records.size() - 1, k + static_cast<std::size_t>(std::lround(
-                                                                         1. / (records[0].t_end - records[0].t_start))));
-            study.free_jump = PcsStudy::FreeJump{analysis.jump_time, records[k].slider_x_over_L,
-                                                 analysis.level_before_jump, analysis.envelope[later]};
-          }
-        if (study.free_run.status != RunStatus::completed)
-          console() << "  free slider stopped early (" << to_string(study.free_run.status)
-                    << "): " << study.free_run.message << std::endl;
-        runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
-      }
 
     study.plotted = run_plot_script("plot_pcs.py", {dir, scene.name});
     study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -22,6 +22,10 @@
 //                  describe())
 //   pcs.png        amplitude and F̄_x against x_C/L (seed Figs. 10b and 14)
 // Rows are flushed as they are computed: a stopped sweep keeps its points.
+// The two branches and the free run are independent runs and go on the
+// machine's cores at once (verification/studies/parallel_for.h): each
+// branch's rows of pcs.csv are in its own order, the two branches' rows
+// interleaved; runs.csv is written when all three are done.
 #pragma once
 
 #include "contact/prescribed_position_sweep.h"
