@@ -70,7 +70,7 @@ namespace beamslider
       double all = 0;
       for (unsigned int c = 0; c < dim; ++c)
         all += s[c];
-      mode.energy_share = {0., 0., 0.};
+      mode.energy_share.fill(0.);
       for (unsigned int c = 0; c < dim; ++c)
         mode.energy_share[dim == 3 ? c : 2 * c] = s[c] / all; // 2D: x, z
       mode.twist_correlation = dim == 3 ? s[3] * s[3] / (s[dim - 1] * s[4]) : 0.;
