@@ -1,12 +1,18 @@
 // Runs the built `beamslider` executable as a user would, for end-to-end
 // tests: its own process (fork + exec with an argument vector), stdout and
 // stderr captured to files, an optional file-size limit, an optional signal
-// sent once a file appears, and a time limit after which the child is killed (so a
-// test that would hang fails instead).
+// sent once a file appears, and a limit on the CPU time the child may use
+// after which it is stopped (so a test that would hang fails instead).
+// The limit is on CPU time, not on the wall clock: a loaded machine stretches
+// a run's wall time (40-fold in one of 20 suite runs beside two compiler
+// processes: a 3 s run took over 120 s) but not the CPU time it needs, so
+// the check cannot fail by chance. A child that blocks without computing is
+// stopped by a wall-clock backstop of 20 times the limit.
 #pragma once
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -31,7 +37,7 @@ namespace beamslider::testing
 
   struct CliLimits
   {
-    double timeout_seconds      = 120;
+    double timeout_seconds      = 120; // CPU seconds of the child (RLIMIT_CPU); 20× that of wall time
     long file_size_limit        = -1;  // bytes (RLIMIT_FSIZE), -1 = none
     // A signal sent once `signal_after_file` exists: tied to what the run
     // has done (its first checkpoint), it arrives at the same point of the
@@ -119,6 +125,10 @@ namespace beamslider::testing
             rlimit r{static_cast<rlim_t>(limits.file_size_limit), static_cast<rlim_t>(limits.file_size_limit)};
             setrlimit(RLIMIT_FSIZE, &r);
           }
+        // SIGXCPU at the limit, SIGKILL a second later if that is ignored.
+        const rlim_t cpu_seconds = static_cast<rlim_t>(std::ceil(limits.timeout_seconds));
+        const rlimit cpu{cpu_seconds, cpu_seconds + 1};
+        setrlimit(RLIMIT_CPU, &cpu);
         execv(c_argv[0], c_argv.data());
         _exit(127);
       }
@@ -127,18 +137,26 @@ namespace beamslider::testing
     const auto start = std::chrono::steady_clock::now();
     bool signalled   = false;
     int status       = 0;
+    rusage usage{};
     while (true)
       {
-        const pid_t done = waitpid(pid, &status, WNOHANG);
+        const pid_t done = wait4(pid, &status, WNOHANG, &usage);
         if (done == pid)
-          break;
+          {
+            // Stopped by its CPU limit: SIGXCPU, or SIGKILL after it.
+            const double cpu = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+                               1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+            run.timed_out = WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU ||
+                                                    (WTERMSIG(status) == SIGKILL && cpu >= limits.timeout_seconds));
+            break;
+          }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (limits.send_signal && !signalled && std::filesystem::exists(limits.signal_after_file))
           {
             kill(pid, limits.send_signal);
             signalled = true;
           }
-        if (elapsed > limits.timeout_seconds)
+        if (elapsed > 20 * limits.timeout_seconds)
           {
             kill(-pid, SIGKILL);
             waitpid(pid, &status, 0);

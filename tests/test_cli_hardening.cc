@@ -184,6 +184,20 @@ TEST(Divergence, NegligibleRotaryInertiaIsRefusedBeforeTheRun)
   EXPECT_NE(run.err.find("'Slider/Rotary inertia' = 1e-15"), std::string::npos) << run.err;
 }
 
+// The test runner's own guard against a hanging program (tests/cli_runner.h):
+// a run that needs more CPU time than its limit is stopped and reported as
+// timed out, however loaded the machine is. A 600 s simulation needs about
+// 30 s of CPU time; its limit here is 1 s.
+TEST(CliRunner, ARunOverItsCpuLimitIsStoppedAndReportedAsTimedOut)
+{
+  const fs::path dir = fresh_folder("cpu_limit");
+  const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "600", "--output", (dir / "o").string()},
+                                      CliLimits().timeout(1));
+  EXPECT_TRUE(run.timed_out) << "exit code " << run.exit_code << ", signal " << run.signal << "\n" << run.err;
+  EXPECT_EQ(run.signal, 0);
+  fs::remove_all(dir);
+}
+
 // --- 5. The scene reader -----------------------------------------------------
 
 TEST(SceneReader, FolderEmptyFileAndFifoAreRefused)

@@ -90,7 +90,9 @@ TEST(SolidCoefficientsCommand, StepEqualsExactAndTwoRanksGiveTheCoefficientsOfOn
       const double a = std::stod(e[r][4]);
       EXPECT_NEAR(std::stod(s[r][4]), a, 1e-6 * largest) << "term " << r;
       if (std::abs(a) > 1e-6 * largest)
-        EXPECT_NEAR(std::stod(e2[r][4]) / a, 1., 1e-9) << "term " << r;
+        {
+          EXPECT_NEAR(std::stod(e2[r][4]) / a, 1., 1e-9) << "term " << r;
+        }
     }
   EXPECT_GT(std::stod(e[1][4]), 0.) << "b_111 > 0: the clamped strip hardens";
   for (const auto &d : {exact, step, exact2})
@@ -223,7 +225,9 @@ TEST(SolidCoefficientsCommand, ModesChosenByIndexIncludeTorsionWithItsSymmetries
     {
       EXPECT_NEAR(s.count(key) ? s.at(key) : 0., value, 1e-9 * largest) << "STEP against exact, term " << key;
       if (std::count(key.begin(), key.end(), '3') % 2 == 1)
-        EXPECT_LT(std::abs(value), 1e-8 * largest) << "term " << key << " is odd in the twist";
+        {
+          EXPECT_LT(std::abs(value), 1e-8 * largest) << "term " << key << " is odd in the twist";
+        }
     }
   for (const auto &[key, value] : b)
     EXPECT_NEAR(e.at(key), value, 1e-9 * std::abs(value) + 1e-12 * largest) << "bending term " << key;
