@@ -4,8 +4,8 @@
 // sent once a file appears, and a limit on the CPU time the child may use
 // after which it is stopped (so a test that would hang fails instead).
 // The limit is on CPU time, not on the wall clock: a loaded machine stretches
-// a run's wall time (40-fold in one of 20 suite runs beside two compiler
-// processes: a 3 s run took over 120 s) but not the CPU time it needs, so
+// a run's wall time (in one of five whole-suite runs beside two compiler
+// processes, 2026-11-28, a 3 s run took over 120 s) but not the CPU time it needs, so
 // the check cannot fail by chance. A child that blocks without computing is
 // stopped by a wall-clock backstop of 20 times the limit.
 #pragma once

@@ -170,7 +170,9 @@ namespace beamslider
         say("  free slider stopped early (" + to_string(study.free_run.status) + "): " + study.free_run.message);
     };
 
-    // The free run first: it is usually the longest.
+    // The free run first: with two cores the second branch then goes to
+    // whichever of the free run and the first branch ends first, which is
+    // never later than starting both branches first.
     const bool with_free_run = settings.free_time > 0.;
     const std::size_t first_branch = with_free_run ? 1 : 0;
     parallel_for(first_branch + 2, 0, [&](const std::size_t i) {
