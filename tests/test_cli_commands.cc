@@ -183,6 +183,16 @@ TEST(Commands, SweepWritesTheDocumentedColumns)
   for (const auto &r : runs)
     EXPECT_EQ(std::vector<std::string>(r.begin(), r.begin() + 4),
               (std::vector<std::string>{r[0], "completed", "3", "3"}));
+
+  // A range that is not a whole number of steps (0.30, 0.31 and the far end
+  // 0.315): the planned count is the grid's, far end included.
+  const CliRun odd = run_beamslider({"sweep", "--from", "0.30", "--to", "0.315", "--step", "0.01", "--settle-time",
+                                     "0.05", "--average-time", "0.05", "--free-time", "0", "--output",
+                                     (dir / "odd").string()});
+  ASSERT_EQ(odd.exit_code, 0) << odd.err;
+  for (const auto &r : text_rows(dir / "odd" / "runs.csv"))
+    EXPECT_EQ(std::vector<std::string>(r.begin(), r.begin() + 4),
+              (std::vector<std::string>{r[0], "completed", "3", "3"}));
   fs::remove_all(dir);
 }
 

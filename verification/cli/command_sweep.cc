@@ -58,18 +58,11 @@ namespace beamslider
       }
 
     const std::string dir = prepare_output_dir(common, scene, "sweep");
-    const double n_positions =
-      std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L + 1e-9) + 1;
-    const double branch    = n_positions * (settings.sweep.settle_time + settings.sweep.average_time);
-    const double simulated = 2 * branch + settings.free_time;
-    // The free run and the two branches go on the cores at once, in that
-    // order (run_pcs_sweep): with three cores the longest sets the wall
-    // time; with two the second branch waits for the first run to finish.
-    const unsigned int cores = std::max(1u, std::thread::hardware_concurrency());
-    const double free_run    = settings.free_time;
-    const double longest     = cores >= 3 ? std::max(branch, free_run)
-                               : cores == 2 ? std::max(free_run, std::min(branch, free_run) + branch)
-                                            : simulated;
+    const std::size_t n_positions = settings.sweep.positions(SweepDirection::up).size();
+    const double simulated =
+      2 * n_positions * (settings.sweep.settle_time + settings.sweep.average_time) + settings.free_time;
+    // The three runs go on the cores at once: the longest chain of them sets the wall time.
+    const double longest = pcs_sweep_chain_time(settings, std::max(1u, std::thread::hardware_concurrency()));
     console() << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
               << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
               << n_positions << " positions per direction), " << simulated

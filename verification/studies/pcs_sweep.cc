@@ -61,6 +61,18 @@ namespace beamslider
     }
   } // namespace
 
+  double pcs_sweep_chain_time(const PcsStudySettings &settings, const unsigned int cores)
+  {
+    const double branch =
+      settings.sweep.positions(SweepDirection::up).size() * (settings.sweep.settle_time + settings.sweep.average_time);
+    const double free_run = settings.free_time;
+    // With two cores the second branch goes to whichever of the free run and
+    // the first branch ends first (the order of the parallel_for below).
+    return cores >= 3 ? std::max(branch, free_run)
+           : cores == 2 ? std::max(free_run, std::min(branch, free_run) + branch)
+                        : 2 * branch + free_run;
+  }
+
   PcsStudy run_pcs_sweep(const Scene &scene_in, const PcsStudySettings &settings, const std::string &dir)
   {
     // The model runs at its own step (the FE at the scene's FE time step).
@@ -93,9 +105,9 @@ namespace beamslider
 
     CsvWriter pcs(dir + "/pcs.csv", {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "amplitude_std_over_h",
                                      "mean_fx_std_N", "n_periods", "t_end_s", "mean_fx_ci95_N"});
-    const long n_positions =
-      static_cast<long>(std::floor((settings.sweep.high_over_L - settings.sweep.low_over_L) / settings.sweep.step_over_L +
-                                   1e-9)) + 1;
+    // The grid's own count (the far end is a position of its own when the
+    // range is not a whole number of steps).
+    const long n_positions = static_cast<long>(settings.sweep.positions(SweepDirection::up).size());
     // Whether each run reached its end: pcs.csv holds the positions a branch
     // reached, which its rows alone cannot tell from a complete branch.
     CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"});
@@ -172,7 +184,7 @@ namespace beamslider
 
     // The free run first: with two cores the second branch then goes to
     // whichever of the free run and the first branch ends first, which is
-    // never later than starting both branches first.
+    // never later than starting both branches first (pcs_sweep_chain_time).
     const bool with_free_run = settings.free_time > 0.;
     const std::size_t first_branch = with_free_run ? 1 : 0;
     parallel_for(first_branch + 2, 0, [&](const std::size_t i) {

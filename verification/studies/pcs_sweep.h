@@ -67,6 +67,11 @@ namespace beamslider
 
   PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir);
 
+  // The simulated time [s] of run_pcs_sweep's longest chain of runs on `cores`
+  // cores (the free run and the two branches go at once, in that order): what
+  // sets its wall time.
+  double pcs_sweep_chain_time(const PcsStudySettings &settings, unsigned int cores);
+
   // A few lines of Markdown: the jumps, the zero crossings (stable/unstable),
   // where the free slider went, and the costs.
   std::string describe(const PcsStudy &study, const Scene &scene);
