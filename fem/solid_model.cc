@@ -358,15 +358,25 @@ namespace beamslider
                   Tensor<1, dim> F_row; // Fᵀ e_c: row c of F
                   for (unsigned int a = 0; a < dim; ++a)
                     F_row[a] = F[component[i]][a];
-                  const Tensor<2, dim> FtG = outer_product(F_row, g[i]);
-                  dE[i]                    = 0.5 * (FtG + transpose(FtG));
-                  trace_dE[i]              = trace(dE[i]);
-                  Sg[i]                    = S * g[i];
-                  cell_force(i) += scalar_product(S, dE[i]) * JxW;
+                  Sg[i] = S * g[i];
+                  // S : δE_i = S : (Fᵀe_c ⊗ g_i) for the symmetric S: a dot
+                  // product, not a tensor contraction (the force alone is
+                  // most of a modified-Newton solve's assemblies).
+                  cell_force(i) += (F_row * Sg[i]) * JxW;
+                  if (K_t)
+                    {
+                      const Tensor<2, dim> FtG = outer_product(F_row, g[i]);
+                      dE[i]                    = 0.5 * (FtG + transpose(FtG));
+                      trace_dE[i]              = trace(dE[i]);
+                    }
                 }
+              // K_t is the Hessian of the strain energy, so symmetric: the
+              // upper triangle here, the lower one copied after the loop
+              // over quadrature points (half the work of the costliest loop
+              // of a solid's statics and ICE; `verify --section 8`).
               if (K_t)
                 for (unsigned int i = 0; i < n; ++i)
-                  for (unsigned int j = 0; j < n; ++j)
+                  for (unsigned int j = i; j < n; ++j)
                     {
                       // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j)
                       double k_ij = lambda * trace_dE[i] * trace_dE[j] + 2 * mu * scalar_product(dE[i], dE[j]);
@@ -375,6 +385,10 @@ namespace beamslider
                       cell_matrix(i, j) += k_ij * JxW;
                     }
             }
+          if (K_t)
+            for (unsigned int i = 1; i < n; ++i)
+              for (unsigned int j = 0; j < i; ++j)
+                cell_matrix(i, j) = cell_matrix(j, i);
           cell->get_dof_indices(dofs);
           if (f && K_t)
             clamp_constraints.distribute_local_to_global(cell_matrix, cell_force, dofs, *K_t, *f);
