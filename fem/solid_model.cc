@@ -313,7 +313,12 @@ namespace beamslider
         reinit_vector(*f);
         *f = 0;
       }
-    if (K_t)
+    // A matrix of this model's size was made by reinit_matrix (a caller
+    // reuses one over Newton's iterations): zero its entries and keep its
+    // PETSc structure, instead of preallocating it anew every time.
+    if (K_t && K_t->m() == n_dofs() && K_t->n() == n_dofs())
+      *K_t = 0.;
+    else if (K_t)
       reinit_matrix(*K_t);
 
     const FESystem<dim> &fe = *this->fe;
@@ -327,12 +332,15 @@ namespace beamslider
     std::vector<Tensor<2, dim>> grad_u(quadrature.size());
     // A shape function φ_i of the vector FE_Q is e_c ⊗ N_i in one component
     // c = c_i, so ∇φ_i = e_c ⊗ ∇N_i: per i we keep c_i and g_i = ∇N_i, and
-    // δE_i = sym(Fᵀ∇φ_i) = sym((Fᵀ e_c) ⊗ g_i), ∇φ_iᵀ∇φ_j = δ_{c_i c_j} g_i ⊗ g_j.
+    // δE_i = sym(Fᵀ∇φ_i) = sym(a_i ⊗ g_i) with a_i = Fᵀ e_c (row c of F),
+    // ∇φ_iᵀ∇φ_j = δ_{c_i c_j} g_i ⊗ g_j. The tangent's double contraction
+    // needs no tensors: with F g_j (per j) and F Fᵀ (per point),
+    //   tr δE_i = (F g_i)_{c_i},  S : δE_i = a_i · S g_i,
+    //   δE_i : δE_j = ½ [(F Fᵀ)_{c_i c_j} g_i·g_j + (F g_j)_{c_i} (F g_i)_{c_j}].
     std::vector<unsigned int> component(n);
     for (unsigned int i = 0; i < n; ++i)
       component[i] = fe.system_to_component_index(i).first;
-    std::vector<Tensor<1, dim>> g(n), Sg(n);
-    std::vector<Tensor<2, dim>> dE(n);
+    std::vector<Tensor<1, dim>> g(n), Sg(n), Fg(n);
     std::vector<double> trace_dE(n);
     const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
     const double factor    = out_of_plane_thickness();
@@ -355,19 +363,15 @@ namespace beamslider
               for (unsigned int i = 0; i < n; ++i)
                 {
                   g[i] = fe_values.shape_grad_component(i, q, component[i]);
-                  Tensor<1, dim> F_row; // Fᵀ e_c: row c of F
+                  Tensor<1, dim> a_i; // Fᵀ e_c: row c of F
                   for (unsigned int a = 0; a < dim; ++a)
-                    F_row[a] = F[component[i]][a];
+                    a_i[a] = F[component[i]][a];
                   Sg[i] = S * g[i];
-                  // S : δE_i = S : (Fᵀe_c ⊗ g_i) for the symmetric S: a dot
-                  // product, not a tensor contraction (the force alone is
-                  // most of a modified-Newton solve's assemblies).
-                  cell_force(i) += (F_row * Sg[i]) * JxW;
+                  cell_force(i) += (a_i * Sg[i]) * JxW; // S : δE_i (S symmetric)
                   if (K_t)
                     {
-                      const Tensor<2, dim> FtG = outer_product(F_row, g[i]);
-                      dE[i]                    = 0.5 * (FtG + transpose(FtG));
-                      trace_dE[i]              = trace(dE[i]);
+                      Fg[i]       = F * g[i];
+                      trace_dE[i] = Fg[i][component[i]];
                     }
                 }
               // K_t is the Hessian of the strain energy, so symmetric: the
@@ -375,15 +379,23 @@ namespace beamslider
               // over quadrature points (half the work of the costliest loop
               // of a solid's statics and ICE; `verify --section 8`).
               if (K_t)
-                for (unsigned int i = 0; i < n; ++i)
-                  for (unsigned int j = i; j < n; ++j)
+                {
+                  const Tensor<2, dim> FFt = F * transpose(F);
+                  for (unsigned int i = 0; i < n; ++i)
                     {
-                      // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j)
-                      double k_ij = lambda * trace_dE[i] * trace_dE[j] + 2 * mu * scalar_product(dE[i], dE[j]);
-                      if (component[i] == component[j])
-                        k_ij += g[i] * Sg[j];
-                      cell_matrix(i, j) += k_ij * JxW;
+                      const unsigned int c_i = component[i];
+                      for (unsigned int j = i; j < n; ++j)
+                        {
+                          // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j), C = λ I⊗I + 2μ 𝕀
+                          const unsigned int c_j = component[j];
+                          double k_ij = lambda * trace_dE[i] * trace_dE[j] +
+                                        mu * (FFt[c_i][c_j] * (g[i] * g[j]) + Fg[j][c_i] * Fg[i][c_j]);
+                          if (c_i == c_j)
+                            k_ij += g[i] * Sg[j];
+                          cell_matrix(i, j) += k_ij * JxW;
+                        }
                     }
+                }
             }
           if (K_t)
             for (unsigned int i = 1; i < n; ++i)

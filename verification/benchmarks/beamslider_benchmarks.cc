@@ -12,6 +12,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_transient.h"
+#include "fem/solid_model.h"
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
@@ -291,6 +292,25 @@ static void FeImpliedCoefficient(benchmark::State &state)
     benchmark::DoNotOptimize(fe_implied_b111(fe, modes).b_111);
 }
 BENCHMARK(FeImpliedCoefficient)->Unit(benchmark::kMillisecond);
+
+// The 3D strip of report section 8 (mueller2023, 70 × 4 × 1 Q2 elements,
+// ν = 0.3): one assembly of the solid's internal force (arg 0) or of the
+// force and its tangent (arg 1), the inner loop of its statics and ICE.
+static void SolidAssembly(benchmark::State &state)
+{
+  const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm",
+                                 {"Solid/Continuum=3d", "Solid/Poisson's ratio=0.3", "Solid/Elements along length=70",
+                                  "Solid/Elements across width=4", "Solid/Elements through thickness=1",
+                                  "Solid/Degree=2"});
+  const SolidModel<3> model(scene, MPI_COMM_SELF);
+  dealii::PETScWrappers::MPI::Vector u, f;
+  dealii::PETScWrappers::MPI::SparseMatrix K;
+  model.reinit_ghosted_vector(u);
+  for (auto _ : state)
+    model.assemble_internal_force(u, &f, state.range(0) ? &K : nullptr);
+  state.counters["DoFs"] = model.n_dofs();
+}
+BENCHMARK(SolidAssembly)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char **argv)
 {
