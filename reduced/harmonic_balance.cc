@@ -11,6 +11,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace beamslider
 {
@@ -37,10 +39,16 @@ namespace beamslider
               cos_(b, i)          = std::cos(harmonics_[b] * 2. * pi * i / n_time_samples);
               weighted_cos_(b, i) = (harmonics_[b] == 0 ? 1. : 2.) / n_time_samples * cos_(b, i);
             }
-        sample_weights_.resize(n_time_samples, nb_ * nb_);
+        // ∂F_b/∂Q_c = w_b Σ_i cos(h_b τ_i) cos(h_c τ_i) T_i / N_t, and ∂F_c/∂Q_b
+        // the same sum times w_c (w = 1 for h = 0, else 2): one sum per pair b ≤ c.
         for (unsigned int b = 0; b < nb_; ++b)
-          for (unsigned int c = 0; c < nb_; ++c)
-            sample_weights_.col(b * nb_ + c) = (weighted_cos_.row(b).array() * cos_.row(c).array()).matrix().transpose();
+          for (unsigned int c = b; c < nb_; ++c)
+            pairs_.emplace_back(b, c);
+        sample_weights_.resize(n_time_samples, pairs_.size());
+        for (unsigned int p = 0; p < pairs_.size(); ++p)
+          sample_weights_.col(p) =
+            (cos_.row(pairs_[p].first).array() * cos_.row(pairs_[p].second).array()).matrix().transpose() /
+            double(n_time_samples);
       }
 
       unsigned int n_unknowns() const { return n_ * nb_; }
@@ -78,18 +86,24 @@ namespace beamslider
                 J_X->block(b * n_, b * n_, n_, n_) = system_.stiffness - hw * hw * system_.mass;
               }
             // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)), as one
-            // product: vec(∂F_b/∂Q_c) = [vec T_1 … vec T_Nt] · S(:, b·nb + c).
+            // product over the pairs b ≤ c (the constructor):
+            // [vec T_1 … vec T_Nt] · S(:, pair), then times w_b and w_c.
             Eigen::MatrixXd T_all(n_ * n_, cos_.cols());
             for (Eigen::Index i = 0; i < cos_.cols(); ++i)
               {
                 const Eigen::MatrixXd T = system_.tangent(q_t.col(i));
                 T_all.col(i)            = Eigen::Map<const Eigen::VectorXd>(T.data(), n_ * n_);
               }
-            const Eigen::MatrixXd blocks = T_all * sample_weights_; // n² × nb²
-            for (unsigned int b = 0; b < nb_; ++b)
-              for (unsigned int c = 0; c < nb_; ++c)
-                J_X->block(b * n_, c * n_, n_, n_) +=
-                  Eigen::Map<const Eigen::MatrixXd>(blocks.col(b * nb_ + c).data(), n_, n_);
+            const Eigen::MatrixXd sums = T_all * sample_weights_; // n² × pairs
+            auto weight                = [&](const unsigned int b) { return harmonics_[b] == 0 ? 1. : 2.; };
+            for (unsigned int p = 0; p < pairs_.size(); ++p)
+              {
+                const auto [b, c] = pairs_[p];
+                const Eigen::Map<const Eigen::MatrixXd> sum(sums.col(p).data(), n_, n_);
+                J_X->block(b * n_, c * n_, n_, n_) += weight(b) * sum;
+                if (c != b)
+                  J_X->block(c * n_, b * n_, n_, n_) += weight(c) * sum;
+              }
             J_omega->resize(n_unknowns());
             Eigen::Map<Eigen::MatrixXd> Jw(J_omega->data(), n_, nb_);
             for (unsigned int b = 0; b < nb_; ++b)
@@ -103,7 +117,8 @@ namespace beamslider
       std::vector<unsigned int> harmonics_;
       unsigned int n_, nb_;
       Eigen::MatrixXd cos_, weighted_cos_;
-      Eigen::MatrixXd sample_weights_; // N_t × nb²: w_b cos(h_b τ_i) cos(h_c τ_i)
+      std::vector<std::pair<unsigned int, unsigned int>> pairs_; // (b, c), b ≤ c
+      Eigen::MatrixXd sample_weights_; // N_t × pairs: cos(h_b τ_i) cos(h_c τ_i) / N_t
     };
 
     // Continuation state in scaled unknowns z = (Q / s_x, ω / s_ω).
