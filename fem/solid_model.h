@@ -119,7 +119,9 @@ namespace beamslider
     void assemble_mass_matrix(dealii::PETScWrappers::MPI::SparseMatrix &M) const;
     // f(u) and/or K_t(u) (either may be null), u ghosted. Constrained rows
     // of f are zero; those of K_t carry a diagonal entry. At u = 0, K_t is
-    // the linear stiffness.
+    // the linear stiffness. A K_t that already has this model's size must
+    // come from this model's reinit_matrix: its entries are zeroed and its
+    // PETSc structure kept (a Newton loop reuses one matrix).
     void assemble_internal_force(const dealii::PETScWrappers::MPI::Vector &u_ghosted,
                                  dealii::PETScWrappers::MPI::Vector *f,
                                  dealii::PETScWrappers::MPI::SparseMatrix *K_t) const;
