@@ -37,7 +37,7 @@ namespace beamslider
           for (unsigned int i = 0; i < n_time_samples; ++i)
             {
               cos_(b, i)          = std::cos(harmonics_[b] * 2. * pi * i / n_time_samples);
-              weighted_cos_(b, i) = (harmonics_[b] == 0 ? 1. : 2.) / n_time_samples * cos_(b, i);
+              weighted_cos_(b, i) = weight(b) / n_time_samples * cos_(b, i);
             }
         // ∂F_b/∂Q_c = w_b Σ_i cos(h_b τ_i) cos(h_c τ_i) T_i / N_t, and ∂F_c/∂Q_b
         // the same sum times w_c (w = 1 for h = 0, else 2): one sum per pair b ≤ c.
@@ -95,7 +95,6 @@ namespace beamslider
                 T_all.col(i)            = Eigen::Map<const Eigen::VectorXd>(T.data(), n_ * n_);
               }
             const Eigen::MatrixXd sums = T_all * sample_weights_; // n² × pairs
-            auto weight                = [&](const unsigned int b) { return harmonics_[b] == 0 ? 1. : 2.; };
             for (unsigned int p = 0; p < pairs_.size(); ++p)
               {
                 const auto [b, c] = pairs_[p];
@@ -113,6 +112,9 @@ namespace beamslider
       }
 
     private:
+      // w_b of the Fourier coefficient of harmonic h_b: 1 for h = 0, else 2.
+      double weight(const unsigned int b) const { return harmonics_[b] == 0 ? 1. : 2.; }
+
       const ConservativeSystem &system_;
       std::vector<unsigned int> harmonics_;
       unsigned int n_, nb_;

@@ -17,6 +17,7 @@
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/benchmarks/heap_counter.h"
+#include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
 
 #include <deal.II/base/mpi.h>
@@ -298,10 +299,7 @@ BENCHMARK(FeImpliedCoefficient)->Unit(benchmark::kMillisecond);
 // force and its tangent (arg 1), the inner loop of its statics and ICE.
 static void SolidAssembly(benchmark::State &state)
 {
-  const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm",
-                                 {"Solid/Continuum=3d", "Solid/Poisson's ratio=0.3", "Solid/Elements along length=70",
-                                  "Solid/Elements across width=4", "Solid/Elements through thickness=1",
-                                  "Solid/Degree=2"});
+  const Scene scene = read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm", solid_strip_3d_overrides());
   const SolidModel<3> model(scene, MPI_COMM_SELF);
   dealii::PETScWrappers::MPI::Vector u, f;
   dealii::PETScWrappers::MPI::SparseMatrix K;

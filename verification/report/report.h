@@ -85,4 +85,7 @@ namespace beamslider
   // backbone; with --full the adaptation end state of both ROMs
   // (report_solid.cc).
   void add_solid_section(Report &report, const Scene &scene, bool full);
+  // The scene overrides of section 8's 3D strip (ν = 0.3, 70 × 4 × 1 Q2
+  // elements), also timed by the benchmark SolidAssembly.
+  std::vector<std::string> solid_strip_3d_overrides();
 } // namespace beamslider

@@ -206,6 +206,16 @@ namespace beamslider
     }
   } // namespace
 
+  std::vector<std::string> solid_strip_3d_overrides()
+  {
+    return {"Solid/Continuum=3d",
+            "Solid/Poisson's ratio=0.3",
+            "Solid/Elements along length=70",
+            "Solid/Elements across width=4",
+            "Solid/Elements through thickness=1",
+            "Solid/Degree=2"};
+  }
+
   void add_solid_section(Report &report, const Scene &scene, const bool full)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -230,9 +240,7 @@ namespace beamslider
     const std::vector<std::string> plane = {"Solid/Continuum=plane stress", "Solid/Poisson's ratio=0",
                                             "Solid/Elements along length=140", "Solid/Elements through thickness=1",
                                             "Solid/Degree=2"};
-    const std::vector<std::string> solid3 = {"Solid/Continuum=3d", "Solid/Poisson's ratio=0.3",
-                                             "Solid/Elements along length=70", "Solid/Elements across width=4",
-                                             "Solid/Elements through thickness=1", "Solid/Degree=2"};
+    const std::vector<std::string> solid3 = solid_strip_3d_overrides();
     auto with = [&](const std::vector<std::string> &extra) {
       std::vector<std::string> o = overrides;
       o.insert(o.end(), extra.begin(), extra.end());
