@@ -5,6 +5,8 @@
 #include "reduced/backbone_tongues.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include <chrono>
 #include <limits>
@@ -18,6 +20,27 @@ namespace beamslider
 {
   namespace
   {
+    // x = A⁻¹ b for the continuation's Newton matrix. An FE system's matrix
+    // is sparse: each (harmonic, harmonic) block is the FE tangent's band
+    // (the default beam: 129 DoFs × 11 harmonics, half of them active, ~700
+    // unknowns with a few % nonzeros), and a sparse LU with a fill-reducing
+    // ordering costs a fraction of a dense one. A modal system's matrix is
+    // dense, and there the dense LU is faster. Both pivot partially
+    // (SparseLU's default threshold 1); a singular matrix gives a
+    // non-finite x, which the callers reject.
+    Eigen::VectorXd solve_newton_matrix(const Eigen::MatrixXd &A, const Eigen::VectorXd &b)
+    {
+      const double nonzero_fraction = double((A.array() != 0.).count()) / double(A.size());
+      if (nonzero_fraction > 0.25)
+        return A.partialPivLu().solve(b);
+      const Eigen::SparseMatrix<double> S = A.sparseView();
+      Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+      lu.compute(S);
+      if (lu.info() != Eigen::Success)
+        return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+      return lu.solve(b);
+    }
+
     // The HB residual R(Q, ω) of the file header, its Jacobian ∂R/∂Q and
     // ∂R/∂ω, by AFT on N_t equispaced samples of one period.
     class HarmonicBalanceResidual
@@ -88,20 +111,49 @@ namespace beamslider
             // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)), as one
             // product over the pairs b ≤ c (the constructor):
             // [vec T_1 … vec T_Nt] · S(:, pair), then times w_b and w_c.
+            // A modal tangent is dense: whole n × n blocks. An FE tangent is
+            // banded (about a tenth of its n² entries on the default beam):
+            // only the entries nonzero at some sample take part.
             Eigen::MatrixXd T_all(n_ * n_, cos_.cols());
+            Eigen::Array<bool, Eigen::Dynamic, 1> used = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(n_ * n_, false);
             for (Eigen::Index i = 0; i < cos_.cols(); ++i)
               {
                 const Eigen::MatrixXd T = system_.tangent(q_t.col(i));
                 T_all.col(i)            = Eigen::Map<const Eigen::VectorXd>(T.data(), n_ * n_);
+                used                    = used || (T_all.col(i).array() != 0.);
               }
-            const Eigen::MatrixXd sums = T_all * sample_weights_; // n² × pairs
-            for (unsigned int p = 0; p < pairs_.size(); ++p)
+            if (used.all())
               {
-                const auto [b, c] = pairs_[p];
-                const Eigen::Map<const Eigen::MatrixXd> sum(sums.col(p).data(), n_, n_);
-                J_X->block(b * n_, c * n_, n_, n_) += weight(b) * sum;
-                if (c != b)
-                  J_X->block(c * n_, b * n_, n_, n_) += weight(c) * sum;
+                const Eigen::MatrixXd sums = T_all * sample_weights_; // n² × pairs
+                for (unsigned int p = 0; p < pairs_.size(); ++p)
+                  {
+                    const auto [b, c] = pairs_[p];
+                    const Eigen::Map<const Eigen::MatrixXd> sum(sums.col(p).data(), n_, n_);
+                    J_X->block(b * n_, c * n_, n_, n_) += weight(b) * sum;
+                    if (c != b)
+                      J_X->block(c * n_, b * n_, n_, n_) += weight(c) * sum;
+                  }
+              }
+            else
+              {
+                std::vector<Eigen::Index> entries; // k = i + n j of T_ij
+                entries.reserve(used.count());
+                for (Eigen::Index k = 0; k < used.size(); ++k)
+                  if (used[k])
+                    entries.push_back(k);
+                const Eigen::MatrixXd sums = T_all(entries, Eigen::placeholders::all) * sample_weights_; // entries × pairs
+                for (unsigned int p = 0; p < pairs_.size(); ++p)
+                  {
+                    const auto [b, c] = pairs_[p];
+                    const double w_b = weight(b), w_c = weight(c);
+                    for (std::size_t e = 0; e < entries.size(); ++e)
+                      {
+                        const Eigen::Index i = entries[e] % n_, j = entries[e] / n_;
+                        (*J_X)(b * n_ + i, c * n_ + j) += w_b * sums(e, p);
+                        if (c != b)
+                          (*J_X)(c * n_ + i, b * n_ + j) += w_c * sums(e, p);
+                      }
+                  }
               }
             J_omega->resize(n_unknowns());
             Eigen::Map<Eigen::MatrixXd> Jw(J_omega->data(), n_, nb_);
@@ -243,7 +295,7 @@ namespace beamslider
             linearise(z, row, R, A);
             b.head(m_)              = -R(active_);
             b[m_]                   = rhs - row.dot(z);
-            const Eigen::VectorXd dz = A.partialPivLu().solve(b);
+            const Eigen::VectorXd dz = solve_newton_matrix(A, b);
             if (!dz.allFinite())
               return false;
             z += dz;
@@ -277,7 +329,7 @@ namespace beamslider
         linearise(z, row, R, A);
         Eigen::VectorXd rhs     = Eigen::VectorXd::Zero(m_ + 1);
         rhs[m_]                 = 1.;
-        const Eigen::VectorXd t = A.partialPivLu().solve(rhs);
+        const Eigen::VectorXd t = solve_newton_matrix(A, rhs);
         return t / t.norm();
       }
 

@@ -33,9 +33,11 @@
 // checked against exact Duffing periods and the seed's published backbone
 // numbers (tests/test_reduced_backbone.cc), not against NLvib itself.
 //
-// Cost: the Newton matrix is dense of size n|𝓗|+1; for n = 300, H = 10 (full
-// set) that is 3301² and one LU is seconds: use odd harmonics, the per-DoF
-// half-period symmetry (HarmonicBalanceSettings::even_harmonic_dofs), or fewer.
+// Cost: the Newton matrix has size n|𝓗|+1; for n = 300, H = 10 (full set)
+// that is 3301². A modal system's is dense and one LU of that size is
+// seconds: use odd harmonics, the per-DoF half-period symmetry
+// (HarmonicBalanceSettings::even_harmonic_dofs), or fewer. An FE system's
+// is sparse (every block is the tangent's band) and is factorised as such.
 //
 // Internal resonances: where kω of the backbone meets another mode's
 // frequency (k ≤ H), the branch turns into a "tongue" along which that mode's
