@@ -23,9 +23,10 @@ namespace beamslider
     // x = A⁻¹ b for the continuation's Newton matrix. An FE system's matrix
     // is sparse: each (harmonic, harmonic) block is the FE tangent's band
     // (the default beam: 129 DoFs × 11 harmonics, half of them active, ~700
-    // unknowns with a few % nonzeros), and a sparse LU with a fill-reducing
-    // ordering costs a fraction of a dense one. A modal system's matrix is
-    // dense, and there the dense LU is faster. Both pivot partially
+    // unknowns, a row coupling each DoF's band in ~6 harmonics), and a
+    // sparse LU with a fill-reducing ordering costs a fraction of a dense
+    // one. A modal system's matrix is dense, and there the dense LU is
+    // faster; the choice is by the fraction of nonzeros. Both pivot partially
     // (SparseLU's default threshold 1); a singular matrix gives a
     // non-finite x, which the callers reject.
     Eigen::VectorXd solve_newton_matrix(const Eigen::MatrixXd &A, const Eigen::VectorXd &b)
