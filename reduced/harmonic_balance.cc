@@ -112,9 +112,9 @@ namespace beamslider
             // ∂F_b/∂Q_c = Σ_i w_b cos(h_b τ_i) cos(h_c τ_i) T(q(τ_i)), as one
             // product over the pairs b ≤ c (the constructor):
             // [vec T_1 … vec T_Nt] · S(:, pair), then times w_b and w_c.
-            // A modal tangent is dense: whole n × n blocks. An FE tangent is
-            // banded (about a tenth of its n² entries on the default beam):
-            // only the entries nonzero at some sample take part.
+            // Only the entries of T that are nonzero at some sample take part:
+            // all of a modal tangent's, about a tenth of an FE tangent's
+            // (its band, on the default beam).
             Eigen::MatrixXd T_all(n_ * n_, cos_.cols());
             Eigen::Array<bool, Eigen::Dynamic, 1> used = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(n_ * n_, false);
             for (Eigen::Index i = 0; i < cos_.cols(); ++i)
@@ -123,37 +123,22 @@ namespace beamslider
                 T_all.col(i)            = Eigen::Map<const Eigen::VectorXd>(T.data(), n_ * n_);
                 used                    = used || (T_all.col(i).array() != 0.);
               }
-            if (used.all())
+            std::vector<Eigen::Index> entries; // k = i + n j of T_ij
+            entries.reserve(used.count());
+            for (Eigen::Index k = 0; k < used.size(); ++k)
+              if (used[k])
+                entries.push_back(k);
+            const Eigen::MatrixXd sums = T_all(entries, Eigen::placeholders::all) * sample_weights_; // entries × pairs
+            for (unsigned int p = 0; p < pairs_.size(); ++p)
               {
-                const Eigen::MatrixXd sums = T_all * sample_weights_; // n² × pairs
-                for (unsigned int p = 0; p < pairs_.size(); ++p)
+                const auto [b, c] = pairs_[p];
+                const double w_b = weight(b), w_c = weight(c);
+                for (std::size_t e = 0; e < entries.size(); ++e)
                   {
-                    const auto [b, c] = pairs_[p];
-                    const Eigen::Map<const Eigen::MatrixXd> sum(sums.col(p).data(), n_, n_);
-                    J_X->block(b * n_, c * n_, n_, n_) += weight(b) * sum;
+                    const Eigen::Index i = entries[e] % n_, j = entries[e] / n_;
+                    (*J_X)(b * n_ + i, c * n_ + j) += w_b * sums(e, p);
                     if (c != b)
-                      J_X->block(c * n_, b * n_, n_, n_) += weight(c) * sum;
-                  }
-              }
-            else
-              {
-                std::vector<Eigen::Index> entries; // k = i + n j of T_ij
-                entries.reserve(used.count());
-                for (Eigen::Index k = 0; k < used.size(); ++k)
-                  if (used[k])
-                    entries.push_back(k);
-                const Eigen::MatrixXd sums = T_all(entries, Eigen::placeholders::all) * sample_weights_; // entries × pairs
-                for (unsigned int p = 0; p < pairs_.size(); ++p)
-                  {
-                    const auto [b, c] = pairs_[p];
-                    const double w_b = weight(b), w_c = weight(c);
-                    for (std::size_t e = 0; e < entries.size(); ++e)
-                      {
-                        const Eigen::Index i = entries[e] % n_, j = entries[e] / n_;
-                        (*J_X)(b * n_ + i, c * n_ + j) += w_b * sums(e, p);
-                        if (c != b)
-                          (*J_X)(c * n_ + i, b * n_ + j) += w_c * sums(e, p);
-                      }
+                      (*J_X)(c * n_ + i, b * n_ + j) += w_c * sums(e, p);
                   }
               }
             J_omega->resize(n_unknowns());
