@@ -355,6 +355,45 @@ TEST(Commands, VerifySectionWritesOnlyThatSection)
   fs::remove_all(dir);
 }
 
+// A verify of one process runs section 8 (the solid strip) in a second
+// process beside the others and puts its text in place. That process must
+// see the same scene: with the beam stiffened, the 1D beam's f1 in section 8
+// (child) equals the FE f1 of section 1 (this verify) on the same mesh, and
+// neither process's record is clobbered by the other.
+TEST(Commands, VerifyRunsSectionEightBesideTheOthersOnTheSameScene)
+{
+  const fs::path dir = fresh_folder("cmd_verify_beside");
+  const CliRun run   = run_beamslider({"verify", "--section", "1", "--section", "8", "--set",
+                                       "Beam/Young's modulus=2.541e11", "--quiet", "--output", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string report = read_file(dir / "report.md");
+  const std::size_t one = report.find("\n## 1. "), eight = report.find("\n## 8. ");
+  ASSERT_NE(one, std::string::npos);
+  ASSERT_NE(eight, std::string::npos);
+  EXPECT_LT(one, eight);
+  EXPECT_EQ(report.find("\n## 8. ", eight + 1), std::string::npos) << "section 8 once";
+  EXPECT_NE(report.find("(beside 1–7)"), std::string::npos) << "the wall-time table says where section 8 ran";
+
+  // Section 8's beam f1, printed with 2 decimals.
+  const std::string key = "| f1 [Hz] | ";
+  const std::size_t at  = report.find(key, eight);
+  ASSERT_NE(at, std::string::npos);
+  const double f1_beside = std::stod(report.substr(at + key.size()));
+  double f1_here         = 0;
+  for (const auto &cells : read_csv_cells(dir / "frequency_convergence.csv"))
+    if (cells.size() > 3 && cells[0] == "elastic" && cells[1] == "32" && cells[2] == "1")
+      f1_here = std::stod(cells[3]);
+  ASSERT_GT(f1_here, 0.) << "no elastic 32-element mode 1 in frequency_convergence.csv";
+  EXPECT_NEAR(f1_beside, f1_here, 0.006) << "section 8 ran on another scene than section 1";
+
+  // The whole verify's record, not the second process's internal options.
+  EXPECT_NE(read_file(dir / "run.txt").find("--section 1 --section 8"), std::string::npos);
+  EXPECT_EQ(read_file(dir / "run.txt").find("part-file"), std::string::npos);
+  EXPECT_EQ(read_file(dir / "command.prm").find("part-file"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / ".section8.part.md")) << "the part file is removed once read";
+  fs::remove_all(dir);
+}
+
 // Every output folder holds what repeats its run: parameters.prm (the scene
 // after --set and --case) and run.txt (command line, version, revision).
 // Running simulate on the folder's parameters.prm alone gives the same trace.

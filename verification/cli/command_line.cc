@@ -31,7 +31,7 @@ void record_effective_options(const CLI::App &command)
   for (const CLI::Option *option : command.get_options())
     {
       const std::string name = option->get_single_name(); // "end-time" for --end-time
-      if (name == "help" || name.empty())
+      if (name == "help" || name.empty() || option->get_group().empty()) // hidden: internal
         continue;
       std::string value;
       if (option->count() > 0)
@@ -217,6 +217,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
     ->needs(verify_full);
   verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
     ->check(integer_in(1, 8));
+  // Not for users (hidden): how verify starts its section 8 in a second process.
+  verify_cmd->add_option("--part-file", verify.part_file, "")->group("");
 
   LadderOptions ladder;
   auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "

@@ -34,7 +34,11 @@ namespace beamslider
   {
     bool full = false; // the long studies (minutes to hours)
     bool diagnostics = false; // with full: the error ladder's diagnostic rungs too
-    std::vector<unsigned int> sections; // only these sections (1–7); empty = all
+    std::vector<unsigned int> sections; // only these sections (1–8); empty = all
+    // Internal: this verify is a part of another one writing into the same
+    // folder (section 8 run beside sections 1–7): no run record, no header,
+    // the sections' text into this file instead of report.md.
+    std::string part_file;
   };
   int run_verify(const CommonOptions &common, const VerifyOptions &options);
 

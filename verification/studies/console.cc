@@ -67,6 +67,8 @@ namespace beamslider
 
   void set_quiet(const bool quiet) { quiet_ = quiet; }
 
+  bool is_quiet() { return quiet_; }
+
   void set_console_sink(std::function<void(const std::string &)> sink)
   {
     sink_buffer().sink = std::move(sink);

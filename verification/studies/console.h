@@ -15,6 +15,7 @@ namespace beamslider
   std::ostream &console();
 
   void set_quiet(bool quiet);
+  bool is_quiet();
 
   // Sends console() to `sink`, one call per line (without its '\n'), instead
   // of standard output; an empty function restores standard output. The
