@@ -164,6 +164,8 @@ namespace beamslider
       {
         // A part of another verify: only the sections' text, flushed after
         // each; that verify writes the header, the run record and the rest.
+        if (options.sections.empty())
+          throw InputError("--part-file (internal: a part of another verify) needs the sections it runs (--section)");
         for (const unsigned int k : options.sections)
           {
             sections[k - 1]();
