@@ -12,9 +12,9 @@
 // solid instead of taking them one after the other. A thread would not do:
 // Debian's PETSc is not thread-safe.
 #include "contact/interruption.h"
-#include "verification/cli/child_process.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
+#include "verification/cli/child_process.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/member_runs.h"
 #include "verification/cli/mpi_cells.h"
@@ -28,8 +28,8 @@
 #include <functional>
 #include <fstream>
 #include <future>
-#include <memory>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace beamslider
@@ -61,12 +61,17 @@ namespace beamslider
       const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
       if (ec)
         return nullptr;
+      // Absolute paths: a relative one that starts with '-' would read as an option.
+      const std::string dir = std::filesystem::absolute(report.dir, ec).string();
+      const std::string scene_file = std::filesystem::absolute(report.scene_file, ec).string();
+      if (ec)
+        return nullptr;
       auto process       = std::make_unique<SectionProcess>();
-      process->part_file = report.dir + "/.section" + std::to_string(section) + ".part.md";
-      process->argv      = {self, "verify", report.scene_file};
+      process->part_file = dir + "/.section" + std::to_string(section) + ".part.md";
+      process->argv      = {self, "verify", scene_file};
       for (const std::string &o : report.overrides)
         process->argv.insert(process->argv.end(), {"--set", o});
-      process->argv.insert(process->argv.end(), {"--output", report.dir, "--section", std::to_string(section),
+      process->argv.insert(process->argv.end(), {"--output", dir, "--section", std::to_string(section),
                                                  "--part-file", process->part_file});
       if (options.full)
         process->argv.push_back("--full");
