@@ -1,8 +1,9 @@
 // Checkpoint encoding, see checkpoint.h.
 #include "contact/checkpoint.h"
 
+#include "contact/output_file.h"
+
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #ifndef BEAMSLIDER_VERSION
@@ -122,12 +123,15 @@ namespace beamslider
 
   std::string read_checkpoint_file(const std::string &path)
   {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-      throw CheckpointError("no checkpoint at '" + path + "'");
-    std::ostringstream all;
-    all << in.rdbuf();
-    const std::string bytes = all.str();
+    std::string bytes;
+    try
+      {
+        bytes = read_text_file(path);
+      }
+    catch (const FileReadError &e)
+      {
+        throw CheckpointError("no checkpoint at '" + path + "': " + e.what());
+      }
     if (bytes.compare(0, magic.size(), magic) != 0)
       throw CheckpointError("'" + path + "' is not a beamslider checkpoint");
     CheckpointReader header(bytes.substr(magic.size()));

@@ -8,6 +8,11 @@
 //
 // The process ignores SIGXFSZ (see interruption.h), so that a file-size limit
 // makes the write fail with EFBIG instead of killing the process.
+//
+// Reading back what a run wrote (a resumed map's settings, a checkpoint, a
+// part of the report written by a second process) is checked the same way:
+// read_text_file throws a FileReadError that names the file and the system's
+// reason, rather than returning the part it got as if it were the whole.
 #pragma once
 
 #include <fstream>
@@ -19,6 +24,15 @@ namespace beamslider
 {
   // Results could not be written. Exit status 1.
   class OutputError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // A file could not be read (not there, a folder, no permission, an I/O
+  // error). Callers rethrow it as their own kind where the file was the
+  // user's input (a scene file, a checkpoint to resume).
+  class FileReadError : public std::runtime_error
   {
   public:
     using std::runtime_error::runtime_error;
@@ -58,4 +72,12 @@ namespace beamslider
   // then renamed over `path`, so that a reader sees either the old or the new
   // file whole, never a half-written one. Throws OutputError.
   void write_file_atomically(const std::string &path, const std::string &bytes);
+
+  // The whole of `path`, byte for byte. Throws FileReadError if it cannot be
+  // opened or a read fails.
+  std::string read_text_file(const std::string &path);
+
+  // The same, or "" if nothing is at `path` (a folder a run is about to
+  // start in); a file that is there but cannot be read still throws.
+  std::string read_text_file_if_present(const std::string &path);
 } // namespace beamslider

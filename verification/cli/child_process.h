@@ -17,7 +17,10 @@ namespace beamslider
     bool started   = false; // the program could be started at all
     int exit_code  = -1;    // its exit status, when it exited normally
     int signal     = 0;     // the signal that ended it, else 0
-    std::string error;      // why it could not be started / did not succeed
+    // Why it could not be started or did not succeed ("'prog' exited with
+    // status 3", "... was ended by signal 9", "cannot start ..."): set
+    // whenever succeeded() is false, so callers quote it as it is.
+    std::string error;
 
     bool succeeded() const { return started && signal == 0 && exit_code == 0; }
   };

@@ -31,7 +31,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -43,13 +42,6 @@ namespace beamslider
 {
   namespace
   {
-    std::string read_whole(const std::string &path)
-    {
-      std::ifstream in(path, std::ios::binary);
-      std::ostringstream s;
-      s << in.rdbuf();
-      return s.str();
-    }
 
     void write_published_cases(const std::string &path)
     {
@@ -142,7 +134,7 @@ namespace beamslider
             what << "\n";
           }
         const std::string settings_path = dir + "/map_settings.txt";
-        const std::string previous      = read_whole(settings_path);
+        const std::string previous      = read_text_file_if_present(settings_path);
         std::map<std::string, std::string> finished;
         if (!previous.empty())
           {
@@ -163,7 +155,7 @@ namespace beamslider
         continued.append = true;
         map_rows.emplace(map_csv, columns, continued);
         CsvOptions timing_options;
-        timing_options.append = !read_whole(dir + "/timing.csv").empty();
+        timing_options.append = !read_text_file_if_present(dir + "/timing.csv").empty();
         timing.emplace(dir + "/timing.csv", std::vector<std::string>{"cell", "rank", "wall_s"}, timing_options);
         for (std::size_t c = 0; c < n_cells; ++c)
           if (finished.count(map_cell_key(grid, c)))

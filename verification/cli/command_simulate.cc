@@ -30,7 +30,6 @@
 #include <filesystem>
 #include <optional>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -68,10 +67,7 @@ namespace beamslider
     std::uint64_t scene_content_hash(const std::string &scene_file, const std::vector<std::string> &overrides,
                                      const std::string &case_name)
     {
-      std::ifstream in(scene_file, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      std::uint64_t hash = fnv1a(text.str());
+      std::uint64_t hash = fnv1a(read_text_file(scene_file));
       for (const auto &o : overrides)
         hash = fnv1a(o + '\n', hash);
       return fnv1a("case:" + case_name, hash);
@@ -169,7 +165,17 @@ namespace beamslider
         options.model      = saved.setting.family;
         if (!options.end_time)
           options.end_time = saved.end_time;
-        if (scene_content_hash(saved.scene_file, saved.overrides, saved.case_name) != saved.scene_hash)
+        std::uint64_t scene_hash = 0;
+        try
+          {
+            scene_hash = scene_content_hash(saved.scene_file, saved.overrides, saved.case_name);
+          }
+        catch (const FileReadError &e)
+          {
+            throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for the scene '" +
+                             saved.scene_file + "', which cannot be read now: " + e.what());
+          }
+        if (scene_hash != saved.scene_hash)
           throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for another scene: '" +
                            saved.scene_file + "' or its parameters changed since; a resumed run would not continue "
                            "the same computation");

@@ -26,7 +26,6 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
-#include <fstream>
 #include <future>
 #include <iostream>
 #include <memory>
@@ -97,18 +96,19 @@ namespace beamslider
           for (const std::string &a : process.argv)
             command += (command.empty() ? "" : " ") + a;
           throw std::runtime_error("the report's section run in a second process (" + command + ") failed: " +
-                                   (!result.error.empty()  ? result.error
-                                    : result.signal != 0 ? "signal " + std::to_string(result.signal)
-                                                         : "exit status " + std::to_string(result.exit_code)));
+                                   result.error);
         }
-      std::ifstream in(process.part_file);
-      std::ostringstream text;
-      text << in.rdbuf();
-      if (!in)
-        throw OutputError("cannot read '" + process.part_file + "', the text of a section run in a second process");
-      in.close();
+      std::string text;
+      try
+        {
+          text = read_text_file(process.part_file);
+        }
+      catch (const FileReadError &e)
+        {
+          throw OutputError(std::string(e.what()) + " (the text of a section run in a second process)");
+        }
       std::filesystem::remove(process.part_file);
-      return text.str();
+      return text;
     }
   } // namespace
 

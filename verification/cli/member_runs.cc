@@ -12,7 +12,6 @@
 #include <charconv>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -28,13 +27,6 @@ namespace beamslider
       return error == std::errc() ? std::string(buffer, end) : std::string("?");
     }
 
-    std::string read_whole(const std::string &path)
-    {
-      std::ifstream in(path, std::ios::binary);
-      std::ostringstream s;
-      s << in.rdbuf();
-      return s.str();
-    }
 
     // The records of a CSV text: lines, except that a line break inside a
     // quoted cell belongs to the cell. A last record without its '\n' (a
@@ -143,7 +135,7 @@ namespace beamslider
     if (!path.empty())
       {
         std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
-        const std::vector<std::string> previous = records(read_whole(path));
+        const std::vector<std::string> previous = records(read_text_file_if_present(path));
         if (!previous.empty() && previous.front() != "# " + key)
           {
             std::filesystem::rename(path, settings.dir + "/member_runs.other.csv");

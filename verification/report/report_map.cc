@@ -86,7 +86,7 @@ namespace beamslider
           if (!result.succeeded())
             {
               failures += " " + std::to_string(ranks) + " rank(s): " +
-                          (result.error.empty() ? "exit " + std::to_string(result.exit_code) : result.error) +
+                          result.error +
                           (ranks > 1 ? " (is Open MPI's mpirun on PATH? As root it needs "
                                        "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)"
                                      : "") +
