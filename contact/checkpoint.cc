@@ -130,7 +130,7 @@ namespace beamslider
       }
     catch (const FileReadError &e)
       {
-        throw CheckpointError("no checkpoint at '" + path + "': " + e.what());
+        throw CheckpointError(std::string("no readable checkpoint: ") + e.what());
       }
     if (bytes.compare(0, magic.size(), magic) != 0)
       throw CheckpointError("'" + path + "' is not a beamslider checkpoint");

@@ -42,7 +42,6 @@ namespace beamslider
 {
   namespace
   {
-
     void write_published_cases(const std::string &path)
     {
       CsvWriter csv(path, {"name", "frequency_hz", "acceleration_m_s2", "start_x_over_L", "expected_outcome"});

@@ -27,7 +27,6 @@ namespace beamslider
       return error == std::errc() ? std::string(buffer, end) : std::string("?");
     }
 
-
     // The records of a CSV text: lines, except that a line break inside a
     // quoted cell belongs to the cell. A last record without its '\n' (a
     // write cut short) is returned too; its checks reject it.
