@@ -10,6 +10,8 @@
 // stopped by a wall-clock backstop of 20 times the limit.
 #pragma once
 
+#include "tests/fresh_folder.h"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -82,15 +84,6 @@ namespace beamslider::testing
         rows.push_back(cells);
       }
     return rows;
-  }
-
-  // A fresh, empty folder for one test.
-  inline std::filesystem::path fresh_folder(const std::string &name)
-  {
-    const auto dir = std::filesystem::temp_directory_path() / ("beamslider_test_" + name + "_" + std::to_string(getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
   }
 
   inline CliRun run_beamslider(const std::vector<std::string> &args, const CliLimits &limits = {})
