@@ -123,6 +123,7 @@ namespace beamslider
       M_eigen_.resize(n, n);
       M_eigen_.setFromTriplets(triplets.begin(), triplets.end());
       M_eigen_.makeCompressed();
+      M_blocks_.assign(M_eigen_); // empty on a band wider than 8: M_eigen_ multiplies then
       S0_.resize(n, n);
       S0_.setFromTriplets(upper.begin(), upper.end());
       S0_.makeCompressed();
@@ -421,6 +422,8 @@ namespace beamslider
     for (Eigen::Index k = 0; k < nnz; ++k)
       L_rows_.valuePtr()[L_rows_entry_[k]] = L.valuePtr()[k];
     inverse_D_ = ldlt_.diagonal().cwiseInverse();
+    // The same factors as 8 × 8 blocks for the solves (on a band of half-width ≤ 8).
+    block_factor_.assign(L, inverse_D_);
 
     // Woodbury terms of the rank-N damping, S = S₀ + U Dg Uᵀ.
     const unsigned int rank = damping_->rank();
@@ -488,8 +491,13 @@ namespace beamslider
 
   void FETransientBeam::solve_factored(const Eigen::VectorXd &b, Eigen::VectorXd &x) const
   {
-    // S₀ = L D Lᵀ: forward row by row, scale, backward with Lᵀ (which
-    // Eigen already walks row by row).
+    if (!block_factor_.empty())
+      {
+        block_factor_.solve(b, x);
+        return;
+      }
+    // S₀ = L D Lᵀ on a wider band: forward row by row, scale, backward with
+    // Lᵀ (which Eigen already walks row by row).
     x = b;
     L_rows_.triangularView<Eigen::UnitLower>().solveInPlace(x);
     x.array() *= inverse_D_.array();
@@ -552,7 +560,10 @@ namespace beamslider
             refactor = false;
           }
         // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
-        res_.noalias() = M_eigen_ * tmp_;
+        if (!M_blocks_.empty())
+          M_blocks_.multiply(tmp_, res_);
+        else
+          res_.noalias() = M_eigen_ * tmp_;
         res_.noalias() += dt * f_;
         res_.noalias() -= (dt * a) * r_eigen_;
         if (rank > 0)
