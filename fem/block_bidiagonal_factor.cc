@@ -1,6 +1,8 @@
 // The block-bidiagonal copy of an LDLᵀ factor, see block_bidiagonal_factor.h.
 #include "fem/block_bidiagonal_factor.h"
 
+#include <algorithm>
+
 namespace beamslider
 {
   bool BlockBidiagonalFactor::assign(const Eigen::SparseMatrix<double> &L, const Eigen::VectorXd &inverse_D)

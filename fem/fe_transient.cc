@@ -399,31 +399,33 @@ namespace beamslider
     if (ldlt_.info() != Eigen::Success)
       throw std::runtime_error("FE transient: the LDL^T factorisation of S = M + dt^2/4 K_t failed (dt = " +
                                std::to_string(dt) + " s)");
-    // L row by row (see L_rows_): set up on the first factorisation, then
-    // only the values move.
     const auto &L = ldlt_.matrixL().nestedExpression();
-    const Eigen::Index nnz = L.nonZeros();
-    if (static_cast<Eigen::Index>(L_pattern_.size()) != nnz ||
-        !std::equal(L_pattern_.begin(), L_pattern_.end(), L.innerIndexPtr()))
+    inverse_D_    = ldlt_.diagonal().cwiseInverse();
+    // The factors as 8 × 8 blocks for the solves (a band of half-width ≤ 8,
+    // the beam meshes here); L row by row (see L_rows_) only on a wider band:
+    // set up on its first factorisation, then only the values move.
+    if (!block_factor_.assign(L, inverse_D_))
       {
-        L_rows_ = L;
-        L_rows_.makeCompressed();
-        L_pattern_.assign(L.innerIndexPtr(), L.innerIndexPtr() + nnz);
-        L_rows_entry_.resize(nnz);
-        for (Eigen::Index j = 0; j < L.outerSize(); ++j)
-          for (Eigen::Index k = L.outerIndexPtr()[j]; k < L.outerIndexPtr()[j + 1]; ++k)
-            {
-              const int i    = L.innerIndexPtr()[k];
-              const int *row = L_rows_.innerIndexPtr();
-              const auto at  = std::lower_bound(row + L_rows_.outerIndexPtr()[i], row + L_rows_.outerIndexPtr()[i + 1], j);
-              L_rows_entry_[k] = at - row;
-            }
+        const Eigen::Index nnz = L.nonZeros();
+        if (static_cast<Eigen::Index>(L_pattern_.size()) != nnz ||
+            !std::equal(L_pattern_.begin(), L_pattern_.end(), L.innerIndexPtr()))
+          {
+            L_rows_ = L;
+            L_rows_.makeCompressed();
+            L_pattern_.assign(L.innerIndexPtr(), L.innerIndexPtr() + nnz);
+            L_rows_entry_.resize(nnz);
+            for (Eigen::Index j = 0; j < L.outerSize(); ++j)
+              for (Eigen::Index k = L.outerIndexPtr()[j]; k < L.outerIndexPtr()[j + 1]; ++k)
+                {
+                  const int i    = L.innerIndexPtr()[k];
+                  const int *row = L_rows_.innerIndexPtr();
+                  const auto at  = std::lower_bound(row + L_rows_.outerIndexPtr()[i], row + L_rows_.outerIndexPtr()[i + 1], j);
+                  L_rows_entry_[k] = at - row;
+                }
+          }
+        for (Eigen::Index k = 0; k < nnz; ++k)
+          L_rows_.valuePtr()[L_rows_entry_[k]] = L.valuePtr()[k];
       }
-    for (Eigen::Index k = 0; k < nnz; ++k)
-      L_rows_.valuePtr()[L_rows_entry_[k]] = L.valuePtr()[k];
-    inverse_D_ = ldlt_.diagonal().cwiseInverse();
-    // The same factors as 8 × 8 blocks for the solves (on a band of half-width ≤ 8).
-    block_factor_.assign(L, inverse_D_);
 
     // Woodbury terms of the rank-N damping, S = S₀ + U Dg Uᵀ.
     const unsigned int rank = damping_->rank();
