@@ -35,13 +35,27 @@ namespace beamslider
     // small solves peak at ~1e3 of the load, from the bent strip's membrane
     // forces before the first refresh): cut it back at once.
     const double diverged = 1e8;
+    const double line_search_tolerance = 0.5, line_search_above = 1e-3;
     const double load_norm = std::max(F.l2_norm(), 1e-300);
     double lambda = 0, step = 1;
     unsigned int total = 0;
-    PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start, load;
+    PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start, load, u_trial, f_trial, r_trial;
     PETScWrappers::MPI::SparseMatrix K;
     model.reinit_ghosted_vector(u_ghosted);
     model.reinit_vector(du);
+    // The residual r(u + α du) = load − f(u + α du) and its work along the
+    // correction, g(α) = du·r: the line search below looks for g = 0, the
+    // minimum of the total potential energy along du.
+    auto work_along = [&](const double alpha) {
+      u_trial = u;
+      u_trial.add(alpha, du);
+      model.distribute(u_trial);
+      u_ghosted = u_trial;
+      model.assemble_internal_force(u_ghosted, &f_trial, nullptr);
+      r_trial = load;
+      r_trial -= f_trial;
+      return du * r_trial;
+    };
     while (lambda < 1.)
       {
         const double target = std::min(1., lambda + step);
@@ -57,14 +71,18 @@ namespace beamslider
         double relative     = 0;
         double last_correction = 0, contraction = 0;
         unsigned int factorisations = 0, attempt_iterations = 0;
+        bool have_residual = false; // residual = load − f(u) kept from the line search
         for (unsigned int it = 0; it < max_iterations; ++it)
           {
             const bool refresh = !tangent.factorised() || contraction > slow_contraction ||
                                  iterations_on_tangent >= max_iterations_per_factorisation;
-            u_ghosted = u;
-            model.assemble_internal_force(u_ghosted, &f, refresh ? &K : nullptr);
-            residual = load;
-            residual -= f;
+            if (refresh || !have_residual)
+              {
+                u_ghosted = u;
+                model.assemble_internal_force(u_ghosted, &f, refresh ? &K : nullptr);
+                residual = load;
+                residual -= f;
+              }
             relative = residual.l2_norm() / load_scale;
             // The residual of a thin strip cannot fall far below ε times the
             // stiffness ratio of its membrane and bending (~1e-4 of the load
@@ -85,13 +103,40 @@ namespace beamslider
               }
             tangent.solve(du, residual);
             model.constraints().set_zero(du);
-            u += du;
-            model.distribute(u); // an elastic end's face follows its plate
+            // Line search on the energy (see the header): the full correction
+            // when |g(1)| ≤ ½ g(0), else secant steps toward g = 0.
+            // Small corrections (converging) take the full step: there g is
+            // at the level of round-off in the strip's membrane forces.
+            const double g_0 = du * residual;
+            double alpha = 1, g = work_along(1.);
+            if (g_0 > 0 && du.l2_norm() > line_search_above * u.l2_norm())
+              {
+                // [a_low, a_high] brackets the root: g > 0 at a_low, g < 0
+                // (or not finite: overflow) at a_high.
+                double a_low = 0, g_low = g_0, a_high = 1, g_high = g;
+                for (unsigned int ls = 0; ls < 3 && !(std::abs(g) <= line_search_tolerance * g_0); ++ls)
+                  {
+                    if (g > 0) // still descending at α: accept (at α = 1 the root lies beyond the full step)
+                      break;
+                    const double width = a_high - a_low;
+                    const double secant =
+                      std::isfinite(g_high) ? a_low + width * g_low / (g_low - g_high) : a_low + 0.5 * width;
+                    alpha = std::clamp(secant, a_low + 0.1 * width, a_high - 0.1 * width);
+                    g     = work_along(alpha);
+                    if (g > 0)
+                      a_low = alpha, g_low = g;
+                    else
+                      a_high = alpha, g_high = g;
+                  }
+              }
+            u.swap(u_trial); // u + α du, distributed: an elastic end's face follows its plate
+            residual.swap(r_trial);
+            have_residual = std::isfinite(g);
             ++linear_solves;
             ++iterations_on_tangent;
             ++attempt_iterations;
             ++total;
-            const double correction = du.l2_norm();
+            const double correction = std::abs(alpha) * du.l2_norm();
             if (!std::isfinite(correction))
               break;
             // The contraction of successive corrections on one factorisation
