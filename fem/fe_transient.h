@@ -383,8 +383,20 @@ namespace beamslider
     // A cell's DoF values of q: (w0, θ0, w1, θ1) and the axial ones.
     static void gather(const CellData &cell, const Eigen::VectorXd &q, std::array<double, 4> &qw,
                        std::array<double, max_axial_dofs> &qu);
+    // The same shape data for two neighbouring cells side by side (lane 0:
+    // cell 2p, lane 1: cell 2p + 1), so that internal_force_cells evaluates
+    // both cells' quadrature points in one SIMD register: each lane does the
+    // scalar loop's operations in the scalar loop's order, so the force is
+    // the same to the last bit.
+    struct QuadraturePointPair
+    {
+      std::array<Eigen::Array2d, 4> dN, ddN;
+      std::array<Eigen::Array2d, max_axial_dofs> du;
+      Eigen::Array2d JxW;
+    };
     std::vector<CellData> cells_;        // ordered from x = 0 to L
     std::vector<QuadraturePointData> quadrature_;
+    std::vector<QuadraturePointPair> paired_quadrature_; // [pair][point], the pairs of cells_ (an odd last cell alone)
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too
