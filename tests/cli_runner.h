@@ -11,6 +11,7 @@
 #pragma once
 
 #include "tests/fresh_folder.h"
+#include "tests/read_text_file.h"
 
 #include <atomic>
 #include <chrono>
@@ -61,14 +62,6 @@ namespace beamslider::testing
     }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
   };
-
-  inline std::string read_file(const std::filesystem::path &path)
-  {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
 
   // A CSV file as rows of text cells, the header row first.
   inline std::vector<std::vector<std::string>> read_csv_cells(const std::filesystem::path &path)

@@ -6,6 +6,7 @@
 #include "verification/studies/operating_map.h"
 
 #include "tests/clean_mpi_program.h"
+#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -19,20 +20,13 @@
 #include <vector>
 
 using namespace beamslider;
+using beamslider::testing::read_file;
 
 namespace
 {
   int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {})
   {
     return beamslider::testing::run_clean_mpi_program(args, kill_when);
-  }
-
-  std::string read_file(const std::filesystem::path &p)
-  {
-    std::ifstream in(p);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
   }
 
   // The lines of a file as a sorted list (map.csv's rows come in the order

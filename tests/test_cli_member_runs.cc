@@ -5,6 +5,7 @@
 // again); a members file of other settings is not reused; two MPI ranks give
 // the members of one process.
 #include "tests/clean_mpi_program.h"
+#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -19,20 +20,13 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using beamslider::testing::read_file;
 
 namespace
 {
   int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {})
   {
     return beamslider::testing::run_clean_mpi_program(args, kill_when);
-  }
-
-  std::string read_file(const fs::path &p)
-  {
-    std::ifstream in(p);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
   }
 
   std::vector<std::string> lines(const fs::path &p)

@@ -3,6 +3,7 @@
 // (a cell with a comma, quote or line break in double quotes, quotes doubled);
 // append mode writes no second header; a row of the wrong width is refused.
 #include "contact/csv_writer.h"
+#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -12,17 +13,7 @@
 #include <stdexcept>
 
 using namespace beamslider;
-
-namespace
-{
-  std::string read_file(const std::string &path)
-  {
-    std::ifstream in(path);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-} // namespace
+using beamslider::testing::read_file;
 
 TEST(CsvWriter, CellsWithCommasAndQuotesReadBackAsOneCell)
 {
