@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -154,7 +155,9 @@ namespace beamslider
         continued.append = true;
         map_rows.emplace(map_csv, columns, continued);
         CsvOptions timing_options;
-        timing_options.append = !read_text_file_if_present(dir + "/timing.csv").empty();
+        // A resumed map appends to the timing rows it has (its header is there).
+        std::error_code no_file;
+        timing_options.append = std::filesystem::file_size(dir + "/timing.csv", no_file) > 0 && !no_file;
         timing.emplace(dir + "/timing.csv", std::vector<std::string>{"cell", "rank", "wall_s"}, timing_options);
         for (std::size_t c = 0; c < n_cells; ++c)
           if (finished.count(map_cell_key(grid, c)))
