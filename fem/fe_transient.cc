@@ -188,14 +188,15 @@ namespace beamslider
           for (unsigned int j = 0; j < n_local; ++j)
             cell.entry[i * n_local + j] = entry_of(global(i), global(j));
       }
-    for (std::size_t c = 0; c + 1 < cells_.size(); c += 2)
+    // Cells in pairs; an odd last cell fills both lanes of its pair.
+    for (std::size_t c = 0; c < cells_.size(); c += 2)
       {
-        if (cells_[c].n_qp != cells_[c + 1].n_qp)
+        const CellData &first = cells_[c], &second = cells_[std::min(c + 1, cells_.size() - 1)];
+        if (first.n_qp != second.n_qp)
           throw std::logic_error("FE transient: neighbouring cells with different quadratures");
-        for (unsigned int k = 0; k < cells_[c].n_qp; ++k)
+        for (unsigned int k = 0; k < first.n_qp; ++k)
           {
-            const QuadraturePointData &a = quadrature_[cells_[c].first_qp + k],
-                                      &b = quadrature_[cells_[c + 1].first_qp + k];
+            const QuadraturePointData &a = quadrature_[first.first_qp + k], &b = quadrature_[second.first_qp + k];
             QuadraturePointPair pair;
             for (unsigned int i = 0; i < 4; ++i)
               {
@@ -241,14 +242,16 @@ namespace beamslider
     // once per Newton iteration and was a fifth of the FE step.
     const bool nonlinear = beam_->geometric_nonlinearity();
     // Two cells at a time in the lanes of Eigen::Array2d (one SSE2 register):
-    // the same operations in the same order as the single-cell loop below,
-    // lane by lane, and the cells added into f in the same order.
-    using Pair               = Eigen::Array2d;
-    const std::size_t n_pairs = cells_.size() / 2;
+    // each lane does one cell's operations in the order of a loop over single
+    // cells, and the cells are added into f in their order, so f is the same
+    // to the last bit. An odd last cell fills both lanes; one is added.
+    using Pair                = Eigen::Array2d;
+    const std::size_t n_cells = cells_.size(), n_pairs = (n_cells + 1) / 2;
     const unsigned int n_qp   = cells_.front().n_qp;
     for (std::size_t p = 0; p < n_pairs; ++p)
       {
-        const CellData &c0 = cells_[2 * p], &c1 = cells_[2 * p + 1];
+        const unsigned int n_lanes = 2 * p + 1 < n_cells ? 2 : 1;
+        const CellData &c0 = cells_[2 * p], &c1 = cells_[2 * p + n_lanes - 1];
         const Pair EA(c0.EA, c1.EA), EI(c0.EI, c1.EI);
         Pair qw[4], qu[n_u], fw[4], fu[n_u];
         for (unsigned int a = 0; a < 4; ++a)
@@ -280,7 +283,7 @@ namespace beamslider
             for (unsigned int a = 0; a < 4; ++a)
               fw[a] += Nw * d->dN[a] + M * d->ddN[a];
           }
-        for (unsigned int lane = 0; lane < 2; ++lane)
+        for (unsigned int lane = 0; lane < n_lanes; ++lane)
           {
             const CellData &cell = lane == 0 ? c0 : c1;
             for (unsigned int a = 0; a < 4; ++a)
@@ -288,42 +291,6 @@ namespace beamslider
             for (unsigned int i = 0; i < n_u; ++i)
               f[cell.u_dofs[i]] += fu[i][lane];
           }
-      }
-    // An odd last cell alone.
-    for (std::size_t c = 2 * n_pairs; c < cells_.size(); ++c)
-      {
-        const CellData &cell = cells_[c];
-        const double EA = cell.EA, EI = cell.EI;
-        double qw[4], qu[n_u], fw[4] = {0., 0., 0., 0.}, fu[n_u];
-        for (unsigned int a = 0; a < 4; ++a)
-          qw[a] = q[cell.w_dofs[a]];
-        for (unsigned int i = 0; i < n_u; ++i)
-          {
-            qu[i] = q[cell.u_dofs[i]];
-            fu[i] = 0.;
-          }
-        const QuadraturePointData *d = &quadrature_[cell.first_qp];
-        for (unsigned int k = 0; k < cell.n_qp; ++k, ++d)
-          {
-            double du = 0, dw = 0, ddw = 0;
-            for (unsigned int i = 0; i < n_u; ++i)
-              du += d->du[i] * qu[i];
-            for (unsigned int a = 0; a < 4; ++a)
-              {
-                dw += d->dN[a] * qw[a];
-                ddw += d->ddN[a] * qw[a];
-              }
-            const double N = EA * (du + (nonlinear ? 0.5 * dw * dw : 0.)) * d->JxW;
-            const double M = EI * ddw * d->JxW, Nw = nonlinear ? N * dw : 0.;
-            for (unsigned int i = 0; i < n_u; ++i)
-              fu[i] += N * d->du[i];
-            for (unsigned int a = 0; a < 4; ++a)
-              fw[a] += Nw * d->dN[a] + M * d->ddN[a];
-          }
-        for (unsigned int a = 0; a < 4; ++a)
-          f[cell.w_dofs[a]] += fw[a];
-        for (unsigned int i = 0; i < n_u; ++i)
-          f[cell.u_dofs[i]] += fu[i];
       }
   }
 

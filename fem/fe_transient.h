@@ -385,9 +385,9 @@ namespace beamslider
                        std::array<double, max_axial_dofs> &qu);
     // The same shape data for two neighbouring cells side by side (lane 0:
     // cell 2p, lane 1: cell 2p + 1), so that internal_force_cells evaluates
-    // both cells' quadrature points in one SIMD register: each lane does the
-    // scalar loop's operations in the scalar loop's order, so the force is
-    // the same to the last bit.
+    // both cells' quadrature points in one SIMD register: each lane does a
+    // single cell's operations in their order, so the force is the same to
+    // the last bit as cell by cell.
     struct QuadraturePointPair
     {
       std::array<Eigen::Array2d, 4> dN, ddN;
@@ -396,7 +396,7 @@ namespace beamslider
     };
     std::vector<CellData> cells_;        // ordered from x = 0 to L
     std::vector<QuadraturePointData> quadrature_;
-    std::vector<QuadraturePointPair> paired_quadrature_; // [pair][point], the pairs of cells_ (an odd last cell alone)
+    std::vector<QuadraturePointPair> paired_quadrature_; // [pair][point], the pairs of cells_ (an odd last one twice)
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too

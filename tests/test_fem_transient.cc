@@ -114,7 +114,7 @@ TEST(FETransient, CachedInternalForceEqualsTheBeamAssembly)
   // FEBeam::assemble_internal_force, at a state of the size of a large
   // vibration (w ~ h, θ ~ 30 h/L, u ~ 1e-2 h), on both support types, and
   // on 33 elements: the cached force takes the cells in pairs, and an odd
-  // count leaves the last cell alone.
+  // count puts the last cell in both lanes of its pair.
   for (const std::string &file : {scene_file, std::string(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023-ideal.prm"),
                                   std::string("33 elements")})
     {
