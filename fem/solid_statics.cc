@@ -107,9 +107,9 @@ namespace beamslider
             // when |g(1)| ≤ ½ g(0), else secant steps toward g = 0.
             // Small corrections (converging) take the full step: there g is
             // at the level of round-off in the strip's membrane forces.
-            const double g_0 = du * residual;
+            const double g_0 = du * residual, du_norm = du.l2_norm();
             double alpha = 1, g = work_along(1.);
-            if (g_0 > 0 && du.l2_norm() > line_search_above * u.l2_norm())
+            if (g_0 > 0 && du_norm > line_search_above * u.l2_norm())
               {
                 // [a_low, a_high] brackets the root: g > 0 at a_low, g < 0
                 // (or not finite: overflow) at a_high.
@@ -136,7 +136,7 @@ namespace beamslider
             ++iterations_on_tangent;
             ++attempt_iterations;
             ++total;
-            const double correction = std::abs(alpha) * du.l2_norm();
+            const double correction = std::abs(alpha) * du_norm;
             if (!std::isfinite(correction))
               break;
             // The contraction of successive corrections on one factorisation
