@@ -26,6 +26,33 @@ namespace beamslider
       return m.str();
     }
 
+    // out = Wᵀ v, each entry the dot product of a column of W with v summed
+    // in the order of Eigen's row-major matrix–vector kernel with SSE2's
+    // two-lane packets (the build's; no -march): two running sums over the
+    // entry pairs, the lanes added, then the odd last entry. So `out` has
+    // the bits of `W.transpose() * v` without the call into the kernel.
+    template <typename Matrix, typename Out>
+    void transposed_product(const Matrix &W, const Eigen::VectorXd &v, Out &&out)
+    {
+      const Eigen::Index n = v.size();
+      const double *b      = v.data();
+      for (Eigen::Index k = 0; k < W.cols(); ++k)
+        {
+          const double *a = W.col(k).data();
+          double lane_0 = 0., lane_1 = 0.;
+          Eigen::Index j = 0;
+          for (; j + 2 <= n; j += 2)
+            {
+              lane_0 = a[j] * b[j] + lane_0;
+              lane_1 = a[j + 1] * b[j + 1] + lane_1;
+            }
+          double sum = lane_0 + lane_1;
+          for (; j < n; ++j)
+            sum += a[j] * b[j];
+          out[k] = 0. + sum; // the kernel adds into a zeroed result: −0 becomes +0
+        }
+    }
+
     std::string support_message(const double t, const double x_C, const double x_corner, const double L)
     {
       std::ostringstream m;
@@ -329,15 +356,20 @@ namespace beamslider
         auto c         = c_.head(m2);
         auto P         = P_.head(m2);
         auto gamma     = gamma_B_.head(m2);
+        // The products below have 2m ≤ 8 columns or rows: inlined
+        // (lazyProduct, transposed_product) rather than calls into Eigen's
+        // blocked kernels, which cost more than their arithmetic for a
+        // reduced model's few modes. Each sums in the kernel's order, so the
+        // results keep their bits.
         beam_step.solve_iteration_matrix(Wb, X);
         G.noalias() = Wb.transpose() * X;
-        G.noalias() += Ws.transpose() * inv_mass.asDiagonal() * Ws;
+        G.noalias() += (Ws.transpose() * inv_mass.asDiagonal()).lazyProduct(Ws);
 
-        gamma.noalias() = Wb.transpose() * state_.u;
-        gamma.noalias() += Ws.transpose() * v_B;
+        transposed_product(Wb, state_.u, gamma);
+        gamma.noalias() += Ws.transpose().lazyProduct(v_B);
         gamma += imp;
-        c.noalias() = Wb.transpose() * u_free_;
-        c.noalias() += Ws.transpose() * v_free;
+        transposed_product(Wb, u_free_, c);
+        c.noalias() += Ws.transpose().lazyProduct(v_free);
         c += imp;
         for (unsigned int i = 0; i < m; ++i)
           {
@@ -357,8 +389,8 @@ namespace beamslider
             throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
           }
 
-        u_E_.noalias() += X * P;
-        report_.slider_impulse.noalias() = Ws * P;
+        u_E_.noalias() += X.lazyProduct(P);
+        report_.slider_impulse.noalias() = Ws.lazyProduct(P);
         v_E = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
         for (unsigned int i = 0; i < m; ++i)
           new_warm[active[i]] = P.segment<2>(2 * i);
@@ -369,8 +401,8 @@ namespace beamslider
         u_mean_ *= 0.5;
         const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
         auto gamma_mean              = gamma_mean_.head(m2);
-        gamma_mean.noalias()         = Wb.transpose() * u_mean_;
-        gamma_mean.noalias() += Ws.transpose() * v_mean;
+        transposed_product(Wb, u_mean_, gamma_mean);
+        gamma_mean.noalias() += Ws.transpose().lazyProduct(v_mean);
         gamma_mean += imp;
         for (unsigned int i = 0; i < m; ++i)
           {
