@@ -20,15 +20,6 @@ namespace beamslider
 {
   using namespace dealii;
 
-  void hermite_shape(const double xi, const double h, std::array<double, 4> &N, std::array<double, 4> &dN,
-                     std::array<double, 4> &ddN)
-  {
-    const double xi2 = xi * xi, xi3 = xi2 * xi;
-    N   = {{1 - 3 * xi2 + 2 * xi3, h * (xi - 2 * xi2 + xi3), 3 * xi2 - 2 * xi3, h * (-xi2 + xi3)}};
-    dN  = {{(-6 * xi + 6 * xi2) / h, 1 - 4 * xi + 3 * xi2, (6 * xi - 6 * xi2) / h, -2 * xi + 3 * xi2}};
-    ddN = {{(-6 + 12 * xi) / (h * h), (-4 + 6 * xi) / h, (6 - 12 * xi) / (h * h), (-2 + 6 * xi) / h}};
-  }
-
   FEBeam::FEBeam(const Scene &scene, const unsigned int n_elements)
     : beam(scene.beam)
     , supports(scene.supports)

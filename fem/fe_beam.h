@@ -18,7 +18,7 @@
 // component 0 is u (Lagrange of degree p), components 1 and 2 are the nodal
 // values of w and of the slope θ = w' at the vertices. On each cell these four
 // vertex values are the coefficients of the cubic Hermite interpolant, whose
-// shape functions we evaluate ourselves (hermite_shape below). We chose this
+// shape functions we evaluate ourselves (fem/hermite_shape.h). We chose this
 // over a C⁰ interior-penalty method (step-47) because the Hermite cubic is
 // conforming, has no penalty parameter to tune, carries the slope as a DoF
 // (which the rotational springs and the slider's rotary inertia act on
@@ -32,6 +32,7 @@
 // Units: SI. The DoF vector holds u [m], w [m] and θ [rad].
 #pragma once
 
+#include "fem/hermite_shape.h"
 #include "meshes/scene.h"
 
 #include <deal.II/dofs/dof_handler.h>
@@ -168,8 +169,4 @@ namespace beamslider
     std::array<std::array<global_dof_index, 3>, 2> end_dofs;
   };
 
-  // Cubic Hermite shape functions on a cell of length h at ξ ∈ [0, 1], with
-  // derivatives in x: values N, N', N'' for (w0, θ0, w1, θ1).
-  void hermite_shape(double xi, double h, std::array<double, 4> &N, std::array<double, 4> &dN,
-                     std::array<double, 4> &ddN);
 } // namespace beamslider

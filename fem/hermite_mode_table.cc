@@ -1,6 +1,6 @@
 #include "fem/hermite_mode_table.h"
 
-#include "fem/fe_beam.h"
+#include "fem/hermite_shape.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -20,8 +20,8 @@ namespace beamslider
     const auto it        = std::upper_bound(vertices.begin(), vertices.end(), x);
     const unsigned int e = std::min<unsigned int>(std::max<long>(it - vertices.begin() - 1, 0), n_intervals - 1);
     const double h       = vertices[e + 1] - vertices[e];
-    std::array<double, 4> N, dN, ddN;
-    hermite_shape((x - vertices[e]) / h, h, N, dN, ddN);
+    std::array<double, 4> N, dN;
+    hermite_shape((x - vertices[e]) / h, h, N, dN);
     phi.resize(n_modes);
     dphi.resize(n_modes);
     const double *c = &coefficients[4 * n_modes * e];

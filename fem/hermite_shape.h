@@ -1,0 +1,27 @@
+// Cubic Hermite shape functions on a cell of length h at ξ ∈ [0, 1], for
+// the nodal values (w0, θ0, w1, θ1), with their derivatives in x. Inline
+// and free of deal.II: the reduced model evaluates them at the slider's
+// corners every time step (fem/hermite_mode_table.h), the FE beam in its
+// assembly (fem/fe_beam.h).
+#pragma once
+
+#include <array>
+
+namespace beamslider
+{
+  // Values N and slopes N'.
+  inline void hermite_shape(const double xi, const double h, std::array<double, 4> &N, std::array<double, 4> &dN)
+  {
+    const double xi2 = xi * xi, xi3 = xi2 * xi;
+    N  = {{1 - 3 * xi2 + 2 * xi3, h * (xi - 2 * xi2 + xi3), 3 * xi2 - 2 * xi3, h * (-xi2 + xi3)}};
+    dN = {{(-6 * xi + 6 * xi2) / h, 1 - 4 * xi + 3 * xi2, (6 * xi - 6 * xi2) / h, -2 * xi + 3 * xi2}};
+  }
+
+  // Values, slopes and curvatures N''.
+  inline void hermite_shape(const double xi, const double h, std::array<double, 4> &N, std::array<double, 4> &dN,
+                            std::array<double, 4> &ddN)
+  {
+    hermite_shape(xi, h, N, dN);
+    ddN = {{(-6 + 12 * xi) / (h * h), (-4 + 6 * xi) / h, (6 - 12 * xi) / (h * h), (-2 + 6 * xi) / h}};
+  }
+} // namespace beamslider
