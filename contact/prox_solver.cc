@@ -168,7 +168,9 @@ namespace beamslider
           }
 
         // The conditions each mode leaves to be checked.
-        xi.noalias() = G * trial.head(n); // into storage of fixed capacity: no heap
+        // Into storage of fixed capacity (no heap), inlined: a call into
+        // Eigen's matrix–vector kernel costs more than these ≤ 64 products.
+        xi.noalias() = G.lazyProduct(trial.head(n));
         xi += c;
         double scale = c_scale;
         for (Eigen::Index i = 0; i < n; ++i)
