@@ -600,7 +600,11 @@ namespace beamslider
             refactor = false;
           }
         // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
-        if (!M_blocks_.empty())
+        // Newton's first iterate is u_B itself unless extrapolated: then
+        // M(u − u_B) is zero and not worth a product (half of them).
+        if (it == 1 && tmp_.isZero(0.))
+          res_.setZero();
+        else if (!M_blocks_.empty())
           M_blocks_.multiply(tmp_, res_);
         else
           res_.noalias() = M_eigen_ * tmp_;
