@@ -6,6 +6,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -729,15 +730,25 @@ namespace beamslider
       throw std::logic_error("FE transient: more right-hand sides than the scratch holds");
     // A block whose columns each touch a few DoFs (the contact directions:
     // four) is combined from the kept columns of S⁻¹.
+    // One pass over each column finds its entries (free DoFs only).
     const unsigned int n = n_dofs();
     constexpr unsigned int max_sparse_entries = 8;
+    std::array<std::array<unsigned int, max_sparse_entries>, max_block_columns> entries;
+    std::array<unsigned int, max_block_columns> n_entries{};
     bool sparse = true;
     for (Eigen::Index j = 0; j < m && sparse; ++j)
       {
-        unsigned int count = 0;
+        const double *b = B.col(j).data();
         for (unsigned int i = 0; i < n; ++i)
-          count += (B(i, j) != 0. && !constrained_[i]);
-        sparse = count <= max_sparse_entries;
+          if (b[i] != 0. && !constrained_[i])
+            {
+              if (n_entries[j] == max_sparse_entries)
+                {
+                  sparse = false;
+                  break;
+                }
+              entries[j][n_entries[j]++] = i;
+            }
       }
     if (sparse)
       {
@@ -745,9 +756,11 @@ namespace beamslider
           {
             auto x = X.col(j);
             x.setZero();
-            for (unsigned int i = 0; i < n; ++i)
-              if (B(i, j) != 0. && !constrained_[i])
+            for (unsigned int k = 0; k < n_entries[j]; ++k)
+              {
+                const unsigned int i = entries[j][k];
                 x += B(i, j) * Eigen::Map<const Eigen::VectorXd>(inverse_column(i), n);
+              }
           }
         stats_.iteration_matrix_solves += B.cols();
         return;
