@@ -589,11 +589,13 @@ namespace beamslider
         ++it;
         // q̄ = (1 − θ) q_B + θ q_E = q_M + θ²Δt (u − u_B) + (2θ − 1)Δt u_B
         // (q_M + Δt/4 (u − u_B) for θ = 1/2).
+        // (Each a single pass over the vectors, summed left to right as the
+        // formula reads.)
         tmp_ = u_ - u_B;
-        q_bar_ = q_M;
-        q_bar_.noalias() += (theta * theta * dt) * tmp_;
         if (theta != 0.5)
-          q_bar_.noalias() += ((2. * theta - 1.) * dt) * u_B;
+          q_bar_ = q_M + (theta * theta * dt) * tmp_ + ((2. * theta - 1.) * dt) * u_B;
+        else
+          q_bar_ = q_M + (theta * theta * dt) * tmp_;
         internal_force_cached(q_bar_, f_);
         if (refactor)
           {
@@ -609,8 +611,7 @@ namespace beamslider
           M_blocks_.multiply(tmp_, res_);
         else
           res_.noalias() = M_eigen_ * tmp_;
-        res_.noalias() += dt * f_;
-        res_.noalias() -= (dt * a) * r_eigen_;
+        res_ = (res_ + dt * f_) - (dt * a) * r_eigen_;
         if (rank > 0)
           {
             // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
