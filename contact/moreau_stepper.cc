@@ -306,7 +306,7 @@ namespace beamslider
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
         geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, false);
-        const double clearance = slider_.window_height - beam_.thickness_at(corner_.x);
+        const double clearance = slider_.window_height - corner_.thickness;
         if (corner_.gap < -clearance)
           {
             std::ostringstream msg;

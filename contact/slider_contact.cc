@@ -99,8 +99,9 @@ namespace beamslider
     const double c  = 1. / std::sqrt(1. + dw * dw); // cos α
     const double dz = z_P - f.base_displacement - w;
 
-    out.x   = x_P;
-    out.gap = zeta * c * dz - 0.5 * thickness / c;
+    out.x         = x_P;
+    out.thickness = thickness;
+    out.gap       = zeta * c * dz - 0.5 * thickness / c;
     if (!directions_if_open && out.gap > 0.)
       return;
 

@@ -74,6 +74,7 @@ namespace beamslider
   {
     double x = 0;   // x_P [m]
     double gap = 0; // g_N [m]
+    double thickness = 0; // h(x_P), the beam's thickness under the corner [m]
     Eigen::VectorXd beam_normal;  // ∂γ_N/∂u (beam part of W_N)
     Eigen::VectorXd beam_tangent; // ∂γ_T/∂u (beam part of W_T)
     Eigen::Vector3d slider_normal;  // slider part of W_N
