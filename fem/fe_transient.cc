@@ -604,7 +604,8 @@ namespace beamslider
           }
         // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
         // Newton's first iterate is u_B itself unless extrapolated: then
-        // M(u − u_B) is zero and not worth a product (half of them).
+        // M(u − u_B) is zero, and the first of a step's two products is
+        // skipped.
         if (it == 1 && tmp_.isZero(0.))
           res_.setZero();
         else if (!M_blocks_.empty())
