@@ -6,14 +6,14 @@
 // failure.
 #include "contact/interruption.h"
 #include "verification/cli/child_process.h"
+#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 using namespace beamslider;
+using beamslider::testing::read_file;
 namespace fs = std::filesystem;
 
 namespace
@@ -23,14 +23,6 @@ namespace
     const fs::path dir = fs::temp_directory_path() / ("beamslider_child_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return dir / name;
-  }
-
-  std::string contents(const fs::path &file)
-  {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
   }
 } // namespace
 
@@ -46,7 +38,7 @@ TEST(EarlyChild, ArgumentsArriveByteForByte)
   std::string expected;
   for (const auto &a : arguments)
     expected += a + '\0';
-  EXPECT_EQ(contents(out), expected);
+  EXPECT_EQ(read_file(out), expected);
 }
 
 TEST(EarlyChild, WithoutFinishTheChildSeesAnEmptyInput)
@@ -55,7 +47,7 @@ TEST(EarlyChild, WithoutFinishTheChildSeesAnEmptyInput)
   {
     EarlyChild child({"/bin/sh", "-c", "wc -c > \"$0\"", out.string()});
   } // destroyed: input closed unread, child waited for
-  EXPECT_EQ(std::stoi(contents(out)), 0);
+  EXPECT_EQ(std::stoi(read_file(out)), 0);
 }
 
 TEST(EarlyChild, AChildThatDiedFirstIsAReportedFailureNotASignal)

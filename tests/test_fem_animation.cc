@@ -12,6 +12,7 @@
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
+#include "tests/read_text_file.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
@@ -31,6 +32,7 @@
 #include <sstream>
 
 using namespace beamslider;
+using beamslider::testing::read_file;
 namespace fs = std::filesystem;
 
 namespace
@@ -46,10 +48,7 @@ namespace
 
   std::vector<PvdEntry> read_pvd(const std::string &path)
   {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string s = text.str();
+    const std::string s = read_file(path);
     EXPECT_NE(s.find("<VTKFile type=\"Collection\""), std::string::npos);
     std::vector<PvdEntry> entries;
     const std::regex dataset(R"re(<DataSet timestep="([^"]+)"(?: group="[^"]*")? part="(\d+)" file="([^"]+)"/>)re");

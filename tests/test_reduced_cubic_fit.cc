@@ -16,17 +16,17 @@
 #include "reduced/cubic_fit.h"
 #include "reduced/rom_operator.h"
 #include "tests/test_reduced_clamped_beam.h"
+#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 using namespace beamslider;
 using beamslider_test::ClampedBeam;
 using beamslider_test::relative_error;
+using beamslider::testing::read_file;
 
 namespace
 {
@@ -259,15 +259,10 @@ TEST(CoefficientFiles, CsvHasOneBasedModeNumbersAndFullPrecision)
 {
   const std::vector<CubicTerm> terms = {{0, 0, 0, 0, 1.2345678901234567e12}, {2, 0, 1, 2, -3.5}};
   const std::string dir = ::testing::TempDir();
-  auto text             = [](const std::string &path) {
-    std::ostringstream s;
-    s << std::ifstream(path).rdbuf();
-    return s.str();
-  };
   write_coefficients_csv(dir + "coefficients.csv", terms);
-  EXPECT_EQ(text(dir + "coefficients.csv"), "n,j,k,l,value\n1,1,1,1,1234567890123.4568\n3,1,2,3,-3.5\n");
+  EXPECT_EQ(read_file(dir + "coefficients.csv"), "n,j,k,l,value\n1,1,1,1,1234567890123.4568\n3,1,2,3,-3.5\n");
   write_quadratic_coefficients_csv(dir + "quadratic.csv", {{1, 0, 1, 0.25}});
-  EXPECT_EQ(text(dir + "quadratic.csv"), "n,j,k,value\n2,1,2,0.25\n");
+  EXPECT_EQ(read_file(dir + "quadratic.csv"), "n,j,k,value\n2,1,2,0.25\n");
   EXPECT_THROW(write_coefficients_csv("/nonexistent-dir/coefficients.csv", terms), OutputError);
 }
 
