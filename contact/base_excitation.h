@@ -43,6 +43,21 @@ namespace beamslider
         return 0.;
       return -acceleration_amplitude * std::cos(angular_frequency * t);
     }
+    // w0 and ẇ0 at one time, with one shared evaluation of the phase's
+    // sine and cosine (the compiler's sincos; the same bits as displacement()
+    // and velocity(), which the contact step asks for together).
+    void displacement_and_velocity(const double t, double &w0, double &dw0) const
+    {
+      if (angular_frequency == 0.)
+        {
+          w0 = dw0 = 0.;
+          return;
+        }
+      const double phase = angular_frequency * t;
+      const double c = std::cos(phase), s = std::sin(phase);
+      w0  = acceleration_amplitude / (angular_frequency * angular_frequency) * c;
+      dw0 = -acceleration_amplitude / angular_frequency * s;
+    }
     // One excitation period [s] (infinite without excitation).
     double period() const
     {

@@ -53,8 +53,7 @@ namespace beamslider
     f.beta              = beta;
     f.cos_beta          = std::cos(beta);
     f.sin_beta          = std::sin(beta);
-    f.base_displacement = base.displacement(t);
-    f.base_velocity     = base.velocity(t);
+    base.displacement_and_velocity(t, f.base_displacement, f.base_velocity);
     return f;
   }
 
