@@ -30,6 +30,7 @@ namespace beamslider
       }
     if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
       throw std::invalid_argument("reduced model: ω must be positive and γ must have one entry per mode");
+    omega_max_ = basis.omega.maxCoeff();
     for (Eigen::VectorXd *v : {&h_, &scratch_, &last_u_B_, &last_damping_force_, &last_excitation_force_, &u_mean_,
                                &energy_force_, &energy_scratch_})
       v->resize(rom_.n_modes());
@@ -57,7 +58,7 @@ namespace beamslider
     out.dw = out.grad_dw.dot(q);
   }
 
-  double RomBeamSystem::max_stable_time_step() const { return 2. / rom_.basis().omega.maxCoeff(); }
+  double RomBeamSystem::max_stable_time_step() const { return 2. / omega_max_; }
 
   void RomBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                     const double dt, Eigen::VectorXd &u_free)
@@ -68,7 +69,7 @@ namespace beamslider
         std::ostringstream m;
         m << "reduced model: time step Delta t = " << dt << " s is outside the allowed range (0, " << limit
           << "] s; the explicit midpoint step is stable only for Delta t <= 2/omega_max with omega_max = "
-          << rom_.basis().omega.maxCoeff() << " rad/s of the highest kept mode";
+          << omega_max_ << " rad/s of the highest kept mode";
         throw std::invalid_argument(m.str());
       }
     // In place, into storage sized once: the step allocates nothing. The

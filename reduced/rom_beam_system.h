@@ -70,6 +70,7 @@ namespace beamslider
     ReducedOrderModel rom_;
     ThicknessProfile thickness_; // h(x), piecewise constant [m]
     BaseExcitation excitation_;
+    double omega_max_ = 0; // ω of the highest kept mode [rad/s], for the stability limit each step checks
 
     // Kept from the last free_velocity call, for step_work.
     double last_dt_ = 0;
