@@ -381,3 +381,28 @@ TEST(PrescribedPosition, HorizontalContactForceHoldsSliderOnFrictionlessIncline)
   for (std::size_t i = 1; i < periods.size(); ++i) // the first period includes the settling step
     EXPECT_NEAR(periods[i].mean_horizontal_contact_force / expected, 1., 1e-6) << "period " << i;
 }
+
+// The contact step asks for w0 and ẇ0 together (one shared sine–cosine of
+// the phase); they must be the separate formulas' values to the bit, over
+// many periods and without excitation.
+TEST(BaseExcitation, DisplacementAndVelocityTogetherAreTheSeparateValuesExactly)
+{
+  const BaseExcitation base{14., 2. * M_PI * 124.};
+  for (unsigned int i = 0; i <= 100000; ++i)
+    {
+      const double t = 20. * i / 100000. + 1e-7 * (i % 7); // 0 to 20 s, off the grid too
+      double w0 = NAN, dw0 = NAN;
+      base.displacement_and_velocity(t, w0, dw0);
+      ASSERT_EQ(w0, base.displacement(t)) << "t = " << t;
+      ASSERT_EQ(dw0, base.velocity(t)) << "t = " << t;
+    }
+  // w0 = (â/Ω²) cos Ωt: at t = 0 the amplitude, a quarter period later zero rate.
+  double w0 = NAN, dw0 = NAN;
+  base.displacement_and_velocity(0., w0, dw0);
+  EXPECT_DOUBLE_EQ(w0, 14. / std::pow(2. * M_PI * 124., 2));
+  EXPECT_EQ(dw0, 0.);
+  const BaseExcitation still{};
+  still.displacement_and_velocity(3., w0, dw0);
+  EXPECT_EQ(w0, 0.);
+  EXPECT_EQ(dw0, 0.);
+}

@@ -3,10 +3,12 @@
 // converge to an exact transfer-matrix solution written here, the generalised
 // analytic b_111 agrees with condensed STEP and ICE on the stepped beam, and a
 // point mass lowers the first frequency as the Rayleigh quotient of seed
-// Eq. 5 predicts.
+// Eq. 5 predicts. The mode table a graded mesh's modes live in finds the
+// right interval everywhere.
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "fem/hermite_mode_table.h"
 #include "meshes/scene.h"
 #include "verification/studies/coefficient_methods.h"
 
@@ -212,4 +214,37 @@ TEST(MeshBeam, PointMassLowersTheFrequencyAsSeedEquationFivePredicts)
     }
   for (std::size_t i = 0; i + 1 < eq5_errors.size(); ++i)
     EXPECT_NEAR(std::log2(eq5_errors[i] / eq5_errors[i + 1]), 2., 0.25) << "second order in the mass";
+}
+
+// A mesh's intervals need not be equal; the table guesses the interval of x
+// as if they were and walks to the right one. With values that jump at each
+// vertex (no mode does, but the jump shows which interval answered), x at a
+// vertex takes the interval to its right, x just below it the one to its
+// left, and x = L the last one, on a strongly graded table.
+TEST(ModeTable, GradedIntervalsAnswerFromTheIntervalHoldingX)
+{
+  HermiteModeTable table;
+  table.vertices    = {0., 0.001, 0.002, 0.05, 0.051, 0.3, 0.31};
+  table.length      = table.vertices.back();
+  table.n_intervals = table.vertices.size() - 1;
+  table.n_modes     = 1;
+  // Interval e: w = 10 e at its left end, 10 e + 1 at its right end, slopes 0.
+  for (unsigned int e = 0; e < table.n_intervals; ++e)
+    table.coefficients.insert(table.coefficients.end(), {10. * e, 0., 10. * e + 1., 0.});
+  Eigen::VectorXd phi, dphi;
+  for (unsigned int e = 0; e < table.n_intervals; ++e)
+    {
+      const double left = table.vertices[e], right = table.vertices[e + 1];
+      table.evaluate(left, phi, dphi);
+      EXPECT_EQ(phi[0], 10. * e) << "x = " << left;
+      table.evaluate(std::nextafter(right, 0.), phi, dphi);
+      EXPECT_NEAR(phi[0], 10. * e + 1., 1e-9) << "just below x = " << right;
+      // The cubic's midpoint value (w0 + w1)/2 for zero end slopes.
+      table.evaluate(0.5 * (left + right), phi, dphi);
+      EXPECT_NEAR(phi[0], 10. * e + 0.5, 1e-12) << "interval " << e;
+    }
+  table.evaluate(table.length, phi, dphi);
+  EXPECT_EQ(phi[0], 10. * (table.n_intervals - 1) + 1.);
+  EXPECT_THROW(table.evaluate(std::nextafter(table.length, 1.), phi, dphi), std::out_of_range);
+  EXPECT_THROW(table.evaluate(-1e-12, phi, dphi), std::out_of_range);
 }
