@@ -16,16 +16,9 @@ namespace beamslider
     if (!(x >= 0 && x <= length))
       throw std::out_of_range("modal basis evaluated at x = " + std::to_string(x) + " m, outside [0, " +
                               std::to_string(length) + "] m");
-    // The interval whose left end is the last one at or before x (the last
-    // interval for x = L). Guessed as if the intervals were equal, then
-    // walked to the right one: on the meshes here the guess is the answer,
-    // and the reduced model asks this four times a step, where a binary
-    // search's unpredictable branches cost more than the rest of the lookup.
-    unsigned int e = std::min<unsigned int>(static_cast<unsigned int>(x / length * n_intervals), n_intervals - 1);
-    while (e > 0 && vertices[e] > x)
-      --e;
-    while (e + 1 < n_intervals && vertices[e + 1] <= x)
-      ++e;
+    // The interval whose left end is the last one at or before x.
+    const auto it        = std::upper_bound(vertices.begin(), vertices.end(), x);
+    const unsigned int e = std::min<unsigned int>(std::max<long>(it - vertices.begin() - 1, 0), n_intervals - 1);
     const double h       = vertices[e + 1] - vertices[e];
     std::array<double, 4> N, dN;
     hermite_shape((x - vertices[e]) / h, h, N, dN);
