@@ -155,8 +155,23 @@ namespace beamslider
                       A(r, j) += slope[j] * G(equation[r], unknown[j] + 1);
                   }
               }
-            const Eigen::FullPivLU<Small> lu(A);
-            z = lu.solve(b);
+            if (k == 1)
+              {
+                // One equation a z = b, the commonest mode set (a single
+                // sliding corner; over half of the solves on the signature
+                // move), where the LU's set-up costs more than the solve:
+                // what Eigen's full-pivoting LU returns, to the bit: rank
+                // 0 (z = 0) unless a is finite and nonzero, and a zero
+                // right-hand side left as it is (its sign kept).
+                const double a = A(0, 0);
+                z.resize(1);
+                z[0] = std::isfinite(a) && a != 0. ? (b[0] != 0. ? b[0] / a : b[0]) : 0.;
+              }
+            else
+              {
+                const Eigen::FullPivLU<Small> lu(A);
+                z = lu.solve(b);
+              }
             if (!z.allFinite() || (A * z - b).cwiseAbs().maxCoeff() > 1e-9 * std::max(c_scale, 1e-300))
               return false; // inconsistent equations: no solution in this mode set
             for (Eigen::Index j = 0; j < k; ++j)

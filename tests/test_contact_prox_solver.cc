@@ -55,6 +55,28 @@ TEST(ProxSolver, OneContactSticksOrSlidesAsTheClosedFormSays)
     }
 }
 
+// The same sliding contact warm-started in its sliding mode: the mode guess
+// has one unknown, P_N, and one equation, ξ_N = 0 with P_T = −μ P_N, so
+// P_N = −c_N/(G_NN − μ G_NT) exactly, found without a sweep.
+TEST(ProxSolver, ModeGuessSolvesASlidingContactsSingleEquationExactly)
+{
+  Eigen::MatrixXd G(2, 2);
+  G << 2., 0.5, 0.5, 1.;
+  const Eigen::VectorXd mu = Eigen::VectorXd::Constant(1, 0.2);
+  for (const double c_N : {-1., -3e-7, -4e5})
+    {
+      Eigen::VectorXd c(2), P(2);
+      c << c_N, 2.;
+      P << 0.5, -0.1; // on the cone's edge, toward −T: the sliding mode
+      const ProxSolverResult r = ProxSolver().solve(G, c, mu, P);
+      ASSERT_TRUE(r.converged);
+      EXPECT_TRUE(r.by_modes) << "c_N = " << c_N;
+      EXPECT_EQ(r.iterations, 0u);
+      EXPECT_DOUBLE_EQ(P[0], -c_N / (2. - 0.2 * 0.5)) << "c_N = " << c_N;
+      EXPECT_DOUBLE_EQ(P[1], -0.2 * P[0]);
+    }
+}
+
 TEST(ProxSolver, BothMethodsReachTheSameSolutionOnRandomProblems)
 {
   std::mt19937 random(7);
