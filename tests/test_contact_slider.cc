@@ -396,7 +396,7 @@ TEST(BaseExcitation, DisplacementAndVelocityTogetherAreTheSeparateValuesExactly)
       ASSERT_EQ(w0, base.displacement(t)) << "t = " << t;
       ASSERT_EQ(dw0, base.velocity(t)) << "t = " << t;
     }
-  // w0 = (â/Ω²) cos Ωt: at t = 0 the amplitude, a quarter period later zero rate.
+  // w0 = (â/Ω²) cos Ωt, ẇ0 = −(â/Ω) sin Ωt: at t = 0 the amplitude and zero rate.
   double w0 = NAN, dw0 = NAN;
   base.displacement_and_velocity(0., w0, dw0);
   EXPECT_DOUBLE_EQ(w0, 14. / std::pow(2. * M_PI * 124., 2));

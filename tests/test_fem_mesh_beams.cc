@@ -216,8 +216,8 @@ TEST(MeshBeam, PointMassLowersTheFrequencyAsSeedEquationFivePredicts)
     EXPECT_NEAR(std::log2(eq5_errors[i] / eq5_errors[i + 1]), 2., 0.25) << "second order in the mass";
 }
 
-// A mesh's intervals need not be equal; the table guesses the interval of x
-// as if they were and walks to the right one. With values that jump at each
+// A mesh's intervals need not be equal, and the table must find the one
+// holding x by its vertices. With values that jump at each
 // vertex (no mode does, but the jump shows which interval answered), x at a
 // vertex takes the interval to its right, x just below it the one to its
 // left, and x = L the last one, on a strongly graded table.
