@@ -78,6 +78,11 @@ namespace beamslider
 
     double time_step() const { return dt_; } // Δt [s]
 
+    // True when the iteration matrix is the identity (the explicit reduced
+    // model: unit modal masses), so that S⁻¹ W is W itself and the caller
+    // may skip the solve and its copy.
+    bool iteration_matrix_is_identity() const;
+
   private:
     friend class BeamSystem;
     BeamStep(const BeamSystem &beam, unsigned long serial, double dt)
@@ -131,6 +136,10 @@ namespace beamslider
     // for every model but an FE beam set to damp its unresolved modes
     // (FETransientSettings::theta); the stepper moves the slider with it too.
     virtual double theta() const { return 0.5; }
+
+    // True for a model whose iteration matrix S is the identity in every
+    // step (BeamStep::iteration_matrix_is_identity).
+    virtual bool iteration_matrix_is_identity() const { return false; }
 
     // Largest time step the scheme can take (infinity for unconditionally
     // stable schemes). The stepper refuses larger steps with a clear message.
@@ -209,6 +218,12 @@ namespace beamslider
   {
     check_current();
     beam_->apply_inverse_iteration_matrix(B, X);
+  }
+
+  inline bool BeamStep::iteration_matrix_is_identity() const
+  {
+    check_current();
+    return beam_->iteration_matrix_is_identity();
   }
 
   inline void BeamStep::work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const

@@ -26,19 +26,23 @@ namespace beamslider
       return m.str();
     }
 
-    // out = Wᵀ v, each entry the dot product of a column of W with v summed
-    // in the order of Eigen's row-major matrix–vector kernel with SSE2's
-    // two-lane packets (the build's; no -march): two running sums over the
-    // entry pairs, the lanes added, then the odd last entry. So `out` has
-    // the bits of `W.transpose() * v` without the call into the kernel.
-    template <typename Matrix, typename Out>
-    void transposed_product(const Matrix &W, const Eigen::VectorXd &v, Out &&out)
+    // The relative velocities of the contact directions,
+    //   out = W_bᵀ u + W_sᵀ v + imposed,
+    // each entry summed as the three Eigen expressions W_bᵀu (its row-major
+    // matrix–vector kernel with SSE2's two-lane packets, the build's; no
+    // -march: two running sums over the entry pairs, the lanes added, then
+    // the odd last entry, added into a zeroed result), += W_sᵀv (a lazy
+    // product, left to right) and += imposed would sum it, so `out` has
+    // their bits without the calls.
+    template <typename BeamBlock, typename SliderBlock, typename Imposed, typename Out>
+    void relative_velocities(const BeamBlock &W_b, const SliderBlock &W_s, const Imposed &imposed,
+                             const Eigen::VectorXd &u, const Eigen::Vector3d &v, Out &&out)
     {
-      const Eigen::Index n = v.size();
-      const double *b      = v.data();
-      for (Eigen::Index k = 0; k < W.cols(); ++k)
+      const Eigen::Index n = u.size();
+      const double *b      = u.data();
+      for (Eigen::Index k = 0; k < W_b.cols(); ++k)
         {
-          const double *a = W.col(k).data();
+          const double *a = W_b.col(k).data();
           double lane_0 = 0., lane_1 = 0.;
           Eigen::Index j = 0;
           for (; j + 2 <= n; j += 2)
@@ -49,7 +53,24 @@ namespace beamslider
           double sum = lane_0 + lane_1;
           for (; j < n; ++j)
             sum += a[j] * b[j];
-          out[k] = 0. + sum; // the kernel adds into a zeroed result: −0 becomes +0
+          double entry = 0. + sum; // the kernel adds into a zeroed result: −0 becomes +0
+          entry += (W_s(0, k) * v[0] + W_s(1, k) * v[1]) + W_s(2, k) * v[2];
+          out[k] = entry + imposed[k];
+        }
+    }
+
+    // out += X P, each row's sum left to right and then added, as Eigen's
+    // lazy product sums it.
+    template <typename Matrix, typename Vector>
+    void add_product(const Matrix &X, const Vector &P, Eigen::VectorXd &out)
+    {
+      const Eigen::Index cols = P.size();
+      for (Eigen::Index r = 0; r < out.size(); ++r)
+        {
+          double sum = X(r, 0) * P[0];
+          for (Eigen::Index k = 1; k < cols; ++k)
+            sum += X(r, k) * P[k];
+          out[r] += sum;
         }
     }
 
@@ -356,21 +377,36 @@ namespace beamslider
         auto c         = c_.head(m2);
         auto P         = P_.head(m2);
         auto gamma     = gamma_B_.head(m2);
-        // The products below have 2m ≤ 8 columns or rows: inlined
-        // (lazyProduct, transposed_product) rather than calls into Eigen's
-        // blocked kernels, which cost more than their arithmetic for a
-        // reduced model's few modes. Each sums in the kernel's order, so the
-        // results keep their bits.
-        beam_step.solve_iteration_matrix(Wb, X);
-        G.noalias() = Wb.transpose() * X;
-        G.noalias() += (Ws.transpose() * inv_mass.asDiagonal()).lazyProduct(Ws);
+        // The products below have 2m ≤ 8 columns or rows: written out
+        // rather than calls into Eigen's product kernels, which cost more
+        // than their arithmetic for a reduced model's few modes. Each sums
+        // in the order Eigen's own product would (checked to the bit), so
+        // the results keep their bits.
+        //
+        // S⁻¹ W_b: for a unit iteration matrix (the explicit reduced model)
+        // that is W_b itself, neither solved for nor copied.
+        const bool unit_S = beam_step.iteration_matrix_is_identity();
+        if (!unit_S)
+          beam_step.solve_iteration_matrix(Wb, X);
+        const auto &SinvWb = unit_S ? Wb : X;
 
-        transposed_product(Wb, state_.u, gamma);
-        gamma.noalias() += Ws.transpose().lazyProduct(v_B);
-        gamma += imp;
-        transposed_product(Wb, u_free_, c);
-        c.noalias() += Ws.transpose().lazyProduct(v_free);
-        c += imp;
+        // G = W_bᵀ S⁻¹ W_b + W_sᵀ M_s⁻¹ W_s. Below Eigen's threshold for
+        // its blocked kernel, its product takes each entry as a dot
+        // product; with S = I these are symmetric to the bit (the same
+        // products, summed in the same order), so half of them suffice.
+        if (unit_S && n + 2 * m2 < EIGEN_GEMM_TO_COEFFBASED_THRESHOLD)
+          for (Eigen::Index j = 0; j < m2; ++j)
+            for (Eigen::Index i = 0; i <= j; ++i)
+              G(i, j) = G(j, i) = Wb.col(i).dot(Wb.col(j));
+        else
+          G.noalias() = Wb.transpose() * SinvWb;
+        for (Eigen::Index j = 0; j < m2; ++j)
+          for (Eigen::Index i = 0; i < m2; ++i)
+            G(i, j) += (Ws(0, i) * inv_mass[0]) * Ws(0, j) + (Ws(1, i) * inv_mass[1]) * Ws(1, j) +
+                       (Ws(2, i) * inv_mass[2]) * Ws(2, j);
+
+        relative_velocities(Wb, Ws, imp, state_.u, v_B, gamma);
+        relative_velocities(Wb, Ws, imp, u_free_, v_free, c);
         for (unsigned int i = 0; i < m; ++i)
           {
             c[2 * i] += law_.restitution * gamma[2 * i];
@@ -389,7 +425,7 @@ namespace beamslider
             throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
           }
 
-        u_E_.noalias() += X.lazyProduct(P);
+        add_product(SinvWb, P, u_E_);
         report_.slider_impulse.noalias() = Ws.lazyProduct(P);
         v_E = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
         for (unsigned int i = 0; i < m; ++i)
@@ -401,9 +437,7 @@ namespace beamslider
         u_mean_ *= 0.5;
         const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
         auto gamma_mean              = gamma_mean_.head(m2);
-        transposed_product(Wb, u_mean_, gamma_mean);
-        gamma_mean.noalias() += Ws.transpose().lazyProduct(v_mean);
-        gamma_mean += imp;
+        relative_velocities(Wb, Ws, imp, u_mean_, v_mean, gamma_mean);
         for (unsigned int i = 0; i < m; ++i)
           {
             report_.work_impact += P[2 * i] * gamma_mean[2 * i];

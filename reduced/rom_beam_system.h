@@ -44,6 +44,11 @@ namespace beamslider
     // 2/ω_max [s].
     double max_stable_time_step() const override;
 
+    // S = I: unit modal masses, and the explicit scheme adds nothing to them.
+    // A model derived from this one with another iteration matrix (the
+    // implicit ROM) must say false here too.
+    bool iteration_matrix_is_identity() const override { return true; }
+
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
 
     // w, w' at 129 points, w'' by differences and the uniform axial force of

@@ -48,6 +48,8 @@ namespace beamslider
     static RomImplicitBeamSystem from_scene(const Scene &scene, ModalBasis basis);
 
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
+    // S = I + θΔt C + θ²Δt² K_t: not the explicit model's identity.
+    bool iteration_matrix_is_identity() const override { return false; }
 
     // Newton iterations over all steps so far (for the benchmark note).
     unsigned long newton_iterations() const { return newton_iterations_; }

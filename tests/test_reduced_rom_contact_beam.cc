@@ -277,12 +277,70 @@ TEST(BeamStep, AStepObjectOfAnEarlierStepIsRefused)
   EXPECT_THROW(first.solve_iteration_matrix(B, X), std::logic_error);
   EXPECT_THROW(first.work(u, damping, excitation), std::logic_error);
   EXPECT_THROW(first.finish(q, q, u), std::logic_error);
+  EXPECT_THROW(first.iteration_matrix_is_identity(), std::logic_error);
+  EXPECT_FALSE(second.iteration_matrix_is_identity()) << "the implicit ROM's S holds damping and stiffness";
   EXPECT_NO_THROW(second.solve_iteration_matrix(B, X));
   EXPECT_NEAR(X(0, 0), 1. / (1. + 0.5 * dt * 2 * scene.damping_ratio * rom.model().basis().omega[0] +
                               0.25 * dt * dt * std::pow(rom.model().basis().omega[0], 2)),
               1e-6)
     << "S⁻¹ of the second step (the membrane tangent is negligible at this amplitude)";
   EXPECT_DOUBLE_EQ(second.time_step(), dt);
+}
+
+namespace
+{
+  // The explicit ROM, but declaring a general iteration matrix: the stepper
+  // then solves S X = W_b (for S = I, a copy) and forms G with Eigen's
+  // product, the path an FE beam takes.
+  class RomThroughTheGeneralPath : public RomBeamSystem
+  {
+  public:
+    using RomBeamSystem::RomBeamSystem;
+    bool iteration_matrix_is_identity() const override { return false; }
+  };
+} // namespace
+
+// The explicit ROM's S = I lets the Moreau step use W_b for S⁻¹W_b and form
+// G's beam part from half its dot products (moreau_stepper.cc). That must
+// not change a result in any bit: over 0.3 s of the signature move, the
+// slider rattling on the beam, the shortcut and the general path give the
+// same state after every step. N = 5 keeps G below Eigen's threshold for its
+// blocked product; N = 12 crosses it when two corners touch.
+TEST(MoreauStep, TheUnitIterationMatrixShortcutKeepsTheGeneralPathsBits)
+{
+  const Scene scene = mueller_scene();
+  for (const unsigned int N : {5u, 12u})
+    {
+      const ModalBasis basis = clamped_clamped_basis(scene.beam, N);
+      const ReducedOrderModel model(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+      const BaseExcitation base = BaseExcitation::from_scene(scene.excitation);
+      RomBeamSystem shortcut(model, scene.beam.thickness_profile(), base);
+      RomThroughTheGeneralPath general(model, scene.beam.thickness_profile(), base);
+      double dt = scene.time_stepping.time_step;
+      while (dt > shortcut.max_stable_time_step())
+        dt /= 2;
+      const SliderParameters slider = SliderParameters::from_scene(scene);
+      const ContactLaw law          = ContactLaw::from_scene(scene);
+      MoreauStepper fast(shortcut, slider, law, base, dt), slow(general, slider, law, base, dt);
+      const double x_C = scene.initial.slider_position_over_L * scene.beam.length;
+      fast.set_state(fast.resting_state(x_C));
+      slow.set_state(slow.resting_state(x_C));
+
+      const unsigned long n_steps = std::lround(0.3 / dt);
+      unsigned long contact_steps = 0, two_corner_steps = 0;
+      for (unsigned long k = 0; k < n_steps; ++k)
+        {
+          const StepReport &r = fast.step();
+          slow.step();
+          contact_steps += r.n_active > 0;
+          two_corner_steps += r.n_active > 1;
+          const SystemState &a = fast.state(), &b = slow.state();
+          ASSERT_TRUE(a.q == b.q && a.u == b.u && a.s == b.s && a.v == b.v)
+            << "N = " << N << ": the paths differ after step " << k << " (t = " << a.t << " s)";
+        }
+      EXPECT_GT(contact_steps, n_steps / 2) << "N = " << N << ": the slider must rattle for the check to mean anything";
+      EXPECT_GT(two_corner_steps, 0u) << "N = " << N;
+    }
 }
 
 // The damped set: a ROM damping only its first mode (as the FE damps only
