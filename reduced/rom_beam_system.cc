@@ -75,15 +75,47 @@ namespace beamslider
     // In place, into storage sized once: the step allocates nothing. The
     // operations and their order are those of the plain formula
     //   h = (−c∘u_B − ω²∘q_M) − f_nl(q_M) + γ ẅ0,   c_n = 2 D ω_n (or 0),
-    // so that the results stay the same to the bit.
-    const auto w = rom_.basis().omega.array(); // an expression, not a copy
-    last_damping_force_.array() = -(rom_.damping_coefficients().array() * u_B.array());
-    last_excitation_force_      = rom_.basis().gamma * excitation_.acceleration(t_M);
-    h_.array()                  = last_damping_force_.array() - w * w * q_M.array();
-    rom_.add_nonlinear_force(q_M, -1., h_, scratch_);
-    h_ += last_excitation_force_;
-    u_free = u_B;
-    u_free.noalias() += dt * h_;
+    //   u_free = u_B + Δt h,
+    // so that the results stay the same to the bit; the membrane force
+    // f_nl = N K'q with N = ½ k_ax qᵀK'q is formed in the same pass.
+    const double a = excitation_.acceleration(t_M);
+    if (rom_.is_nonlinear() && !rom_.has_membrane_form())
+      {
+        // Explicit cubic terms: their own loop (ReducedOrderModel).
+        const auto w = rom_.basis().omega.array(); // an expression, not a copy
+        last_damping_force_.array() = -(rom_.damping_coefficients().array() * u_B.array());
+        last_excitation_force_      = rom_.basis().gamma * a;
+        h_.array()                  = last_damping_force_.array() - w * w * q_M.array();
+        rom_.add_nonlinear_force(q_M, -1., h_, scratch_);
+        h_ += last_excitation_force_;
+        u_free = u_B;
+        u_free.noalias() += dt * h_;
+      }
+    else
+      {
+        const bool membrane = rom_.is_nonlinear();
+        double minus_N      = 0.; // −N, the factor of K'q in −f_nl
+        if (membrane)
+          {
+            scratch_.noalias() = rom_.basis().stretch * q_M; // K'q
+            minus_N            = -1. * 0.5 * rom_.basis().membrane_stiffness * q_M.dot(scratch_);
+          }
+        const Eigen::VectorXd &omega = rom_.basis().omega, &gamma = rom_.basis().gamma,
+                              &damping = rom_.damping_coefficients();
+        u_free.resize(u_B.size()); // a no-op at the right size
+        for (Eigen::Index n = 0; n < u_B.size(); ++n)
+          {
+            const double damping_force    = -(damping[n] * u_B[n]);
+            const double excitation_force = gamma[n] * a;
+            double h                      = damping_force - omega[n] * omega[n] * q_M[n];
+            if (membrane)
+              h += minus_N * scratch_[n];
+            h += excitation_force;
+            u_free[n]                 = u_B[n] + dt * h;
+            last_damping_force_[n]    = damping_force;
+            last_excitation_force_[n] = excitation_force;
+          }
+      }
     last_dt_  = dt;
     last_u_B_ = u_B;
   }
