@@ -1,6 +1,8 @@
 // Moreau midpoint step for beam + slider, see moreau_stepper.h.
 #include "contact/moreau_stepper.h"
 
+#include "contact/contact_products.h"
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -24,54 +26,6 @@ namespace beamslider
         << "), relative residual " << residual << " after " << iterations
         << " Gauss-Seidel sweeps (the iteration cap); the step is not accepted";
       return m.str();
-    }
-
-    // The relative velocities of the contact directions,
-    //   out = W_bᵀ u + W_sᵀ v + imposed,
-    // each entry summed as the three Eigen expressions W_bᵀu (its row-major
-    // matrix–vector kernel with SSE2's two-lane packets, the build's; no
-    // -march: two running sums over the entry pairs, the lanes added, then
-    // the odd last entry, added into a zeroed result), += W_sᵀv (a lazy
-    // product, left to right) and += imposed would sum it, so `out` has
-    // their bits without the calls.
-    template <typename BeamBlock, typename SliderBlock, typename Imposed, typename Out>
-    void relative_velocities(const BeamBlock &W_b, const SliderBlock &W_s, const Imposed &imposed,
-                             const Eigen::VectorXd &u, const Eigen::Vector3d &v, Out &&out)
-    {
-      const Eigen::Index n = u.size();
-      const double *b      = u.data();
-      for (Eigen::Index k = 0; k < W_b.cols(); ++k)
-        {
-          const double *a = W_b.col(k).data();
-          double lane_0 = 0., lane_1 = 0.;
-          Eigen::Index j = 0;
-          for (; j + 2 <= n; j += 2)
-            {
-              lane_0 = a[j] * b[j] + lane_0;
-              lane_1 = a[j + 1] * b[j + 1] + lane_1;
-            }
-          double sum = lane_0 + lane_1;
-          for (; j < n; ++j)
-            sum += a[j] * b[j];
-          double entry = 0. + sum; // the kernel adds into a zeroed result: −0 becomes +0
-          entry += (W_s(0, k) * v[0] + W_s(1, k) * v[1]) + W_s(2, k) * v[2];
-          out[k] = entry + imposed[k];
-        }
-    }
-
-    // out += X P, each row's sum left to right and then added, as Eigen's
-    // lazy product sums it.
-    template <typename Matrix, typename Vector>
-    void add_product(const Matrix &X, const Vector &P, Eigen::VectorXd &out)
-    {
-      const Eigen::Index cols = P.size();
-      for (Eigen::Index r = 0; r < out.size(); ++r)
-        {
-          double sum = X(r, 0) * P[0];
-          for (Eigen::Index k = 1; k < cols; ++k)
-            sum += X(r, k) * P[k];
-          out[r] += sum;
-        }
     }
 
     std::string support_message(const double t, const double x_C, const double x_corner, const double L)
@@ -378,10 +332,10 @@ namespace beamslider
         auto P         = P_.head(m2);
         auto gamma     = gamma_B_.head(m2);
         // The products below have 2m ≤ 8 columns or rows: written out
-        // rather than calls into Eigen's product kernels, which cost more
-        // than their arithmetic for a reduced model's few modes. Each sums
-        // in the order Eigen's own product would (checked to the bit), so
-        // the results keep their bits.
+        // (contact/contact_products.h) rather than calls into Eigen's
+        // product kernels, which cost more than their arithmetic for a
+        // reduced model's few modes. Each sums in the order of the Eigen
+        // expression it stands for, so the results keep their bits.
         //
         // S⁻¹ W_b: for a unit iteration matrix (the explicit reduced model)
         // that is W_b itself, neither solved for nor copied.
@@ -400,10 +354,7 @@ namespace beamslider
               G(i, j) = G(j, i) = Wb.col(i).dot(Wb.col(j));
         else
           G.noalias() = Wb.transpose() * SinvWb;
-        for (Eigen::Index j = 0; j < m2; ++j)
-          for (Eigen::Index i = 0; i < m2; ++i)
-            G(i, j) += (Ws(0, i) * inv_mass[0]) * Ws(0, j) + (Ws(1, i) * inv_mass[1]) * Ws(1, j) +
-                       (Ws(2, i) * inv_mass[2]) * Ws(2, j);
+        add_slider_part(Ws, inv_mass, G);
 
         relative_velocities(Wb, Ws, imp, state_.u, v_B, gamma);
         relative_velocities(Wb, Ws, imp, u_free_, v_free, c);

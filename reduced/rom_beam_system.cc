@@ -98,7 +98,9 @@ namespace beamslider
         if (membrane)
           {
             scratch_.noalias() = rom_.basis().stretch * q_M; // K'q
-            minus_N            = -1. * 0.5 * rom_.basis().membrane_stiffness * q_M.dot(scratch_);
+            // as ReducedOrderModel::add_nonlinear_force forms scale · ½ k_ax (q·K'q)
+            // with scale = −1, for the same bits
+            minus_N = -1. * 0.5 * rom_.basis().membrane_stiffness * q_M.dot(scratch_);
           }
         const Eigen::VectorXd &omega = rom_.basis().omega, &gamma = rom_.basis().gamma,
                               &damping = rom_.damping_coefficients();

@@ -6,6 +6,7 @@
 // The rigid beam is a BeamSystem with no coordinates: w(x) = x tan α relative
 // to a base that does not move, so the Delassus matrix is the slider's alone.
 #include "contact/adaptation_run.h"
+#include "contact/contact_products.h"
 #include "contact/moreau_stepper.h"
 #include "contact/prox_solver.h"
 
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <random>
 
 using namespace beamslider;
 
@@ -405,4 +407,73 @@ TEST(BaseExcitation, DisplacementAndVelocityTogetherAreTheSeparateValuesExactly)
   still.displacement_and_velocity(3., w0, dw0);
   EXPECT_EQ(w0, 0.);
   EXPECT_EQ(dw0, 0.);
+}
+
+// The Moreau step's written-out products of the contact block
+// (contact/contact_products.h) must return what the Eigen expressions they
+// replace return, to the bit, for every size a step meets: beam coordinates
+// from one to the FE's 131, one to four active corners. Random entries over
+// six decades, so that every rounding shows.
+TEST(ContactProducts, SumInTheOrderOfTheEigenExpressionsTheyReplace)
+{
+  std::mt19937_64 random(20261129);
+  std::uniform_real_distribution<double> unit(-1., 1.);
+  auto draw = [&]() { return unit(random) * std::pow(10., 3. * unit(random)); };
+  for (const Eigen::Index n : {1, 2, 3, 5, 7, 10, 16, 131})
+    for (const Eigen::Index m2 : {2, 4, 6, 8})
+      for (int trial = 0; trial < 200; ++trial)
+        {
+          // The stepper's storage: blocks of n × 8 and 3 × 8 matrices.
+          Eigen::MatrixXd W_b_store(n, 8), X_store(n, 8);
+          Eigen::Matrix<double, 3, 8> W_s_store;
+          Eigen::Matrix<double, 8, 1> imposed_store, P_store, out_store, expected_store;
+          Eigen::Matrix<double, 8, 8> G_store, G_expected_store;
+          for (double *x : {W_b_store.data(), X_store.data()})
+            for (Eigen::Index i = 0; i < n * 8; ++i)
+              x[i] = draw();
+          for (Eigen::Index i = 0; i < 24; ++i)
+            W_s_store.data()[i] = draw();
+          for (Eigen::Index i = 0; i < 8; ++i)
+            {
+              imposed_store[i] = draw();
+              P_store[i]       = draw();
+            }
+          for (Eigen::Index i = 0; i < 64; ++i)
+            G_store.data()[i] = G_expected_store.data()[i] = draw();
+          Eigen::VectorXd u(n), u_E(n);
+          for (Eigen::Index i = 0; i < n; ++i)
+            u[i] = u_E[i] = draw();
+          const Eigen::Vector3d v(draw(), draw(), draw()), inv_mass(std::abs(draw()), std::abs(draw()), std::abs(draw()));
+
+          const auto W_b = W_b_store.leftCols(m2);
+          const auto X   = X_store.leftCols(m2);
+          const auto W_s = W_s_store.leftCols(m2);
+          const auto imp = imposed_store.head(m2);
+          const auto P   = P_store.head(m2);
+
+          // W_bᵀu + W_sᵀv + imposed, as the step wrote it before.
+          auto expected = expected_store.head(m2);
+          expected.noalias() = W_b.transpose() * u;
+          expected.noalias() += W_s.transpose().lazyProduct(v);
+          expected += imp;
+          auto out = out_store.head(m2);
+          relative_velocities(W_b, W_s, imp, u, v, out);
+          for (Eigen::Index k = 0; k < m2; ++k)
+            ASSERT_EQ(out[k], expected[k]) << "W_bᵀu + W_sᵀv + imposed, n = " << n << ", 2m = " << m2;
+
+          // G += W_sᵀ M_s⁻¹ W_s.
+          auto G_expected = G_expected_store.topLeftCorner(m2, m2);
+          G_expected.noalias() += (W_s.transpose() * inv_mass.asDiagonal()).lazyProduct(W_s);
+          add_slider_part(W_s, inv_mass, G_store.topLeftCorner(m2, m2));
+          for (Eigen::Index j = 0; j < m2; ++j)
+            for (Eigen::Index i = 0; i < m2; ++i)
+              ASSERT_EQ(G_store(i, j), G_expected(i, j)) << "G's slider part, 2m = " << m2;
+
+          // u_E += X P.
+          Eigen::VectorXd u_E_expected = u_E;
+          u_E_expected.noalias() += X.lazyProduct(P);
+          add_product(X, P, u_E);
+          for (Eigen::Index r = 0; r < n; ++r)
+            ASSERT_EQ(u_E[r], u_E_expected[r]) << "X P, n = " << n << ", 2m = " << m2;
+        }
 }
