@@ -94,14 +94,8 @@ namespace beamslider
     else
       {
         const bool membrane = rom_.is_nonlinear();
-        double minus_N      = 0.; // −N, the factor of K'q in −f_nl
-        if (membrane)
-          {
-            scratch_.noalias() = rom_.basis().stretch * q_M; // K'q
-            // as ReducedOrderModel::add_nonlinear_force forms scale · ½ k_ax (q·K'q)
-            // with scale = −1, for the same bits
-            minus_N = -1. * 0.5 * rom_.basis().membrane_stiffness * q_M.dot(scratch_);
-          }
+        // −N, the factor of K'q (in scratch_) in −f_nl
+        const double minus_N = membrane ? -rom_.membrane_axial_force(q_M, scratch_) : 0.;
         const Eigen::VectorXd &omega = rom_.basis().omega, &gamma = rom_.basis().gamma,
                               &damping = rom_.damping_coefficients();
         u_free.resize(u_B.size()); // a no-op at the right size

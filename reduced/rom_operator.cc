@@ -43,9 +43,15 @@ namespace beamslider
           f[t.n] += scale * t.value * q[t.j] * q[t.k] * q[t.l];
         return;
       }
-    // Uniform membrane force: N = k_ax · ½ qᵀK'q, then f = N K'q.
-    scratch.noalias() = basis_.stretch * q;
-    f += (scale * 0.5 * basis_.membrane_stiffness * q.dot(scratch)) * scratch;
+    // Uniform membrane force: f = N K'q.
+    const double N = membrane_axial_force(q, scratch);
+    f += (scale * N) * scratch;
+  }
+
+  double ReducedOrderModel::membrane_axial_force(const Eigen::VectorXd &q, Eigen::VectorXd &stretch_q) const
+  {
+    stretch_q.noalias() = basis_.stretch * q;
+    return 0.5 * basis_.membrane_stiffness * q.dot(stretch_q);
   }
 
   Eigen::MatrixXd ReducedOrderModel::nonlinear_tangent(const Eigen::VectorXd &q) const

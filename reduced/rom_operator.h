@@ -57,6 +57,9 @@ namespace beamslider
 
     // Nonlinear part f(q) of the modal restoring force [N kg^-1/2 = m kg^1/2/s²].
     Eigen::VectorXd nonlinear_force(const Eigen::VectorXd &q) const;
+    // The membrane form's axial force N = ½ k_ax qᵀK'q [N], with K'q written
+    // into stretch_q (a vector of N entries): f(q) = N K'q.
+    double membrane_axial_force(const Eigen::VectorXd &q, Eigen::VectorXd &stretch_q) const;
     // f += scale · f(q) without allocating (scratch: a vector of N entries).
     void add_nonlinear_force(const Eigen::VectorXd &q, double scale, Eigen::VectorXd &f,
                              Eigen::VectorXd &scratch) const;
