@@ -29,6 +29,29 @@ namespace beamslider
     return g;
   }
 
+  void BeamSystem::evaluate_displacement(const double x, const Eigen::VectorXd &q, double &w, double &dw) const
+  {
+    evaluate(x, q, displacement_scratch_);
+    w  = displacement_scratch_.w;
+    dw = displacement_scratch_.dw;
+  }
+
+  void BeamSystem::evaluate_local(double, const Eigen::VectorXd &, LocalPointKinematics &) const
+  {
+    throw std::logic_error("BeamSystem::evaluate_local called on a model without local kinematics");
+  }
+
+  void BeamSystem::inverse_iteration_matrix_block(const unsigned int *, unsigned int, Eigen::Ref<Eigen::MatrixXd>) const
+  {
+    throw std::logic_error("BeamStep::inverse_iteration_matrix_block called on a model without local kinematics");
+  }
+
+  void BeamSystem::add_inverse_iteration_matrix_times(const unsigned int *, unsigned int, const double *,
+                                                      Eigen::VectorXd &) const
+  {
+    throw std::logic_error("BeamStep::add_inverse_iteration_matrix_times called on a model without local kinematics");
+  }
+
   BeamFieldSamples BeamSystem::sample_fields(const Eigen::VectorXd &q) const
   {
     return sample_by_evaluation(*this, q, 129);

@@ -20,6 +20,7 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,22 @@ namespace beamslider
     double dw = 0;           // w' [-]
     Eigen::VectorXd grad_w;  // ∂w/∂q
     Eigen::VectorXd grad_dw; // ∂w'/∂q
+  };
+
+  // w, w' at one x with their gradients on the few coordinates they depend
+  // on, for a model whose point kinematics are local (the FE beam: the four
+  // Hermite DoFs of the cell under x; BeamSystem::has_local_kinematics). The
+  // Moreau step then works on those coordinates alone instead of on dense
+  // gradients of length n: the dense products were a fifth of an FE step.
+  struct LocalPointKinematics
+  {
+    static constexpr unsigned int capacity = 4;
+    double w  = 0;   // [m]
+    double dw = 0;   // w' [-]
+    unsigned int n = 0;                          // coordinates touched (≤ capacity)
+    std::array<unsigned int, capacity> index{};  // which ones
+    std::array<double, capacity> grad_w{};       // ∂w/∂q there
+    std::array<double, capacity> grad_dw{};      // ∂w'/∂q there
   };
 
   class CheckpointWriter;
@@ -83,6 +100,14 @@ namespace beamslider
     // may skip the solve and its copy.
     bool iteration_matrix_is_identity() const;
 
+    // For a model with local kinematics (BeamSystem::has_local_kinematics):
+    // out(a, b) = (S⁻¹)_{i_a i_b} for the k coordinates i = index[0..k), the
+    // block of S⁻¹ that the contact directions on those coordinates see.
+    void inverse_iteration_matrix_block(const unsigned int *index, unsigned int k, Eigen::Ref<Eigen::MatrixXd> out) const;
+    // u += S⁻¹ y for y zero but on the k coordinates index[0..k) (values y[0..k)).
+    void add_inverse_iteration_matrix_times(const unsigned int *index, unsigned int k, const double *y,
+                                            Eigen::VectorXd &u) const;
+
   private:
     friend class BeamSystem;
     BeamStep(const BeamSystem &beam, unsigned long serial, double dt)
@@ -115,6 +140,22 @@ namespace beamslider
     // linear in q (w = grad_w · q): AdaptationRun takes the gradient at the
     // centre once and forms w(L/2) by a dot product every step.
     virtual void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const = 0;
+
+    // w and w' at x without their gradients: what the contact detection
+    // asks of a corner before it knows whether the corner touches (in most
+    // steps most corners are open). The default takes them from evaluate();
+    // a model overrides it with the few operations it needs.
+    virtual void evaluate_displacement(double x, const Eigen::VectorXd &q, double &w, double &dw) const;
+
+    // True for a model whose w and w' at a point depend on at most
+    // LocalPointKinematics::capacity coordinates (the FE beam), which then
+    // gives them by evaluate_local and the blocks of S⁻¹ on them by its
+    // steps (BeamStep::inverse_iteration_matrix_block,
+    // add_inverse_iteration_matrix_times). False: dense gradients
+    // (evaluate) and dense solves (BeamStep::solve_iteration_matrix).
+    virtual bool has_local_kinematics() const { return false; }
+    // Throws std::logic_error unless has_local_kinematics().
+    virtual void evaluate_local(double x, const Eigen::VectorXd &q, LocalPointKinematics &out) const;
 
     // Begins a step of size dt: the end velocity u_free without contact
     // impulses, given the time t_M = t_B + (1 − θ) Δt of the detection
@@ -172,6 +213,12 @@ namespace beamslider
     // X = S⁻¹ B for the iteration matrix of the last compute_free_velocity.
     virtual void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
                                                 Eigen::Ref<Eigen::MatrixXd> X) const = 0;
+    // The local forms of the same (BeamStep); a model with local kinematics
+    // overrides both, the defaults throw std::logic_error.
+    virtual void inverse_iteration_matrix_block(const unsigned int *index, unsigned int k,
+                                                Eigen::Ref<Eigen::MatrixXd> out) const;
+    virtual void add_inverse_iteration_matrix_times(const unsigned int *index, unsigned int k, const double *y,
+                                                    Eigen::VectorXd &u) const;
 
     // Work [J] done on the beam during the last step by its damping forces
     // and by the base-excitation load, given that step's end velocity u_E. A
@@ -199,6 +246,7 @@ namespace beamslider
   private:
     friend class BeamStep;
     unsigned long step_serial_ = 0;
+    mutable BeamPointKinematics displacement_scratch_; // evaluate_displacement's default, allocation-free after its first call
   };
 
   // w, w' from evaluate at n_samples equidistant points (n_samples ≥ 3), w''
@@ -224,6 +272,20 @@ namespace beamslider
   {
     check_current();
     return beam_->iteration_matrix_is_identity();
+  }
+
+  inline void BeamStep::inverse_iteration_matrix_block(const unsigned int *index, const unsigned int k,
+                                                       Eigen::Ref<Eigen::MatrixXd> out) const
+  {
+    check_current();
+    beam_->inverse_iteration_matrix_block(index, k, out);
+  }
+
+  inline void BeamStep::add_inverse_iteration_matrix_times(const unsigned int *index, const unsigned int k,
+                                                           const double *y, Eigen::VectorXd &u) const
+  {
+    check_current();
+    beam_->add_inverse_iteration_matrix_times(index, k, y, u);
   }
 
   inline void BeamStep::work(const Eigen::VectorXd &u_E, double &damping_work, double &excitation_work) const

@@ -275,12 +275,17 @@ namespace beamslider
 
     // Active set and force directions at the midpoint. All storage below is
     // sized once for the four corners (constructor); a step works on its
-    // leading blocks and allocates nothing.
+    // leading blocks and allocates nothing. A model with local kinematics
+    // (the FE beam) gives the directions' beam parts on the few coordinates
+    // they touch (contact/local_directions.h); the others dense, as columns
+    // of W_b.
+    const bool local = beam_.has_local_kinematics();
+    local_directions_.clear();
     std::array<unsigned int, n_slider_corners> active{};
     unsigned int m = 0;
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
-        geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, false);
+        geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, CornerDetail::for_step);
         const double clearance = slider_.window_height - corner_.thickness;
         if (corner_.gap < -clearance)
           {
@@ -302,8 +307,13 @@ namespace beamslider
               }
             continue;
           }
-        W_b_.col(2 * m)     = corner_.beam_normal;
-        W_b_.col(2 * m + 1) = corner_.beam_tangent;
+        if (local)
+          local_directions_.set_corner(2 * m, corner_);
+        else
+          {
+            W_b_.col(2 * m)     = corner_.beam_normal;
+            W_b_.col(2 * m + 1) = corner_.beam_tangent;
+          }
         W_s_.col(2 * m)     = corner_.slider_normal;
         W_s_.col(2 * m + 1) = corner_.slider_tangent;
         imposed_[2 * m]     = corner_.imposed_normal;
@@ -331,24 +341,43 @@ namespace beamslider
         auto c         = c_.head(m2);
         auto P         = P_.head(m2);
         auto gamma     = gamma_B_.head(m2);
-        // The products below have 2m ≤ 8 columns or rows: written out
-        // (contact/contact_products.h) rather than calls into Eigen's
+        // The dense form's products have 2m ≤ 8 columns or rows: written
+        // out (contact/contact_products.h) rather than calls into Eigen's
         // product kernels, which cost more than their arithmetic for a
-        // reduced model's few modes. Each sums in the order of the Eigen
-        // expression it stands for, so the results keep their bits.
+        // reduced model's few modes.
         //
-        // S⁻¹ W_b: for a unit iteration matrix (the explicit reduced model)
-        // that is W_b itself, neither solved for nor copied.
-        const bool unit_S = beam_step.iteration_matrix_is_identity();
-        if (!unit_S)
+        // W_bᵀ u + W_sᵀ v + imposed, in the form of the directions' beam parts.
+        auto relative = [&](const Eigen::VectorXd &u, const Eigen::Vector3d &v, auto &&out) {
+          if (local)
+            local_directions_.relative_velocities(m2, Ws, imp, u, v, out);
+          else
+            relative_velocities(Wb, Ws, imp, u, v, out);
+        };
+        // S⁻¹ W_b for the dense form (the local one never forms it): for a
+        // unit iteration matrix (the explicit reduced model) that is W_b
+        // itself, neither solved for nor copied.
+        const bool unit_S = !local && beam_step.iteration_matrix_is_identity();
+        if (!local && !unit_S)
           beam_step.solve_iteration_matrix(Wb, X);
         const auto &SinvWb = unit_S ? Wb : X;
 
-        // G = W_bᵀ S⁻¹ W_b + W_sᵀ M_s⁻¹ W_s. Below Eigen's threshold for
-        // its blocked kernel, its product takes each entry as a dot
-        // product; with S = I these are symmetric to the bit (the same
-        // products, summed in the same order), so half of them suffice.
-        if (unit_S && n + 2 * m2 < EIGEN_GEMM_TO_COEFFBASED_THRESHOLD)
+        // G = W_bᵀ S⁻¹ W_b + W_sᵀ M_s⁻¹ W_s.
+        if (local)
+          {
+            // Wᵀ (Eᵀ S⁻¹ E) W on the K coordinates.
+            const unsigned int K = local_directions_.n_coordinates();
+            const auto W         = local_directions_.directions(m2);
+            auto S_block         = S_block_.topLeftCorner(K, K);
+            beam_step.inverse_iteration_matrix_block(local_directions_.index(), K, S_block);
+            auto SW         = SW_.topLeftCorner(K, m2);
+            SW.noalias()    = S_block.lazyProduct(W);
+            G.noalias()     = W.transpose().lazyProduct(SW);
+          }
+        else if (unit_S && n + 2 * m2 < EIGEN_GEMM_TO_COEFFBASED_THRESHOLD)
+          // Below Eigen's threshold for its blocked kernel, its product takes
+          // each entry as a dot product; with S = I these are symmetric to
+          // the bit (the same products, summed in the same order), so half of
+          // them suffice.
           for (Eigen::Index j = 0; j < m2; ++j)
             for (Eigen::Index i = 0; i <= j; ++i)
               G(i, j) = G(j, i) = Wb.col(i).dot(Wb.col(j));
@@ -356,8 +385,8 @@ namespace beamslider
           G.noalias() = Wb.transpose() * SinvWb;
         add_slider_part(Ws, inv_mass, G);
 
-        relative_velocities(Wb, Ws, imp, state_.u, v_B, gamma);
-        relative_velocities(Wb, Ws, imp, u_free_, v_free, c);
+        relative(state_.u, v_B, gamma);
+        relative(u_free_, v_free, c);
         for (unsigned int i = 0; i < m; ++i)
           {
             c[2 * i] += law_.restitution * gamma[2 * i];
@@ -376,7 +405,16 @@ namespace beamslider
             throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
           }
 
-        add_product(SinvWb, P, u_E_);
+        // u_E = u_free + S⁻¹ W_b P.
+        if (local)
+          {
+            const unsigned int K = local_directions_.n_coordinates();
+            auto y               = y_.head(K);
+            y.noalias()          = local_directions_.directions(m2).lazyProduct(P);
+            beam_step.add_inverse_iteration_matrix_times(local_directions_.index(), K, y.data(), u_E_);
+          }
+        else
+          add_product(SinvWb, P, u_E_);
         report_.slider_impulse.noalias() = Ws.lazyProduct(P);
         v_E = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
         for (unsigned int i = 0; i < m; ++i)
@@ -388,7 +426,7 @@ namespace beamslider
         u_mean_ *= 0.5;
         const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
         auto gamma_mean              = gamma_mean_.head(m2);
-        relative_velocities(Wb, Ws, imp, u_mean_, v_mean, gamma_mean);
+        relative(u_mean_, v_mean, gamma_mean);
         for (unsigned int i = 0; i < m; ++i)
           {
             report_.work_impact += P[2 * i] * gamma_mean[2 * i];

@@ -36,6 +36,7 @@
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
 #include "contact/checkpoint.h"
+#include "contact/local_directions.h"
 #include "contact/prox_solver.h"
 #include "contact/slider_contact.h"
 
@@ -201,5 +202,12 @@ namespace beamslider
     Eigen::Matrix<double, max_unknowns, 1> c_, P_, gamma_B_, gamma_mean_, imposed_;
     Eigen::Matrix<double, n_slider_corners, 1> mu_;
     CornerKinematics corner_;
+    // The local form of the directions (a model with local kinematics), the
+    // block of S⁻¹ on their coordinates, S⁻¹ block times W, and W P.
+    static constexpr int max_local = LocalDirections::max_coordinates;
+    LocalDirections local_directions_;
+    Eigen::Matrix<double, max_local, max_local> S_block_;
+    Eigen::Matrix<double, max_local, max_unknowns> SW_;
+    Eigen::Matrix<double, max_local, 1> y_;
   };
 } // namespace beamslider

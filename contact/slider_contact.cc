@@ -83,25 +83,37 @@ namespace beamslider
 
   void SliderGeometry::evaluate(const unsigned int k, const SliderFrame &f, const BeamSystem &beam,
                                 const Eigen::VectorXd &q, const Eigen::Vector3d &s, CornerKinematics &out,
-                                const bool directions_if_open) const
+                                const CornerDetail detail) const
   {
     const double zeta        = corner_zeta(k);
     const Eigen::Vector2d r  = corner_offset(k, f);
     const double x_P         = s[0] + r[0];
     const double z_P         = s[1] + r[1];
-    beam.evaluate(x_P, q, point_);
+    // w and w' first: an open corner needs no gradients. A model with local
+    // kinematics gives them with their few gradient entries at once.
+    const bool local = beam.has_local_kinematics();
+    double w = 0, dw = 0;
+    if (local)
+      {
+        beam.evaluate_local(x_P, q, local_point_);
+        w  = local_point_.w;
+        dw = local_point_.dw;
+      }
+    else
+      beam.evaluate_displacement(x_P, q, w, dw);
     // The surface the corner meets is at ±h(x_P)/2; h is constant on each
     // element, so its slope does not enter the force directions.
     const double thickness = beam.thickness_at(x_P);
 
-    const double w = point_.w, dw = point_.dw;
-    const double c  = 1. / std::sqrt(1. + dw * dw); // cos α
-    const double dz = z_P - f.base_displacement - w;
+    const double secant = std::sqrt(1. + dw * dw); // 1/cos α
+    const double c      = 1. / secant;               // cos α
+    const double dz     = z_P - f.base_displacement - w;
 
     out.x         = x_P;
     out.thickness = thickness;
-    out.gap       = zeta * c * dz - 0.5 * thickness / c;
-    if (!directions_if_open && out.gap > 0.)
+    out.gap       = zeta * c * dz - 0.5 * thickness * secant;
+    out.n_local   = 0;
+    if (detail == CornerDetail::for_step && out.gap > 0.)
       return;
 
     // n = ζ c (−w', 1), t = ζ c (−1, −w')
@@ -109,11 +121,38 @@ namespace beamslider
     const double t_x = -zeta * c, t_z = -zeta * c * dw;
 
     // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
-    const double dg_dw  = -zeta * c;
-    const double dg_ddw = -dw * c * (zeta * dz * c * c + 0.5 * thickness);
-    out.beam_normal     = dg_dw * point_.grad_w + dg_ddw * point_.grad_dw;
     // Beam part of W_T = −t·v_B with v_B = (−ζ(h/2) ẇ', ẇ) (+ the base part).
-    out.beam_tangent = (zeta * 0.5 * thickness * t_x) * point_.grad_dw - t_z * point_.grad_w;
+    const double dg_dw     = -zeta * c;
+    const double dg_ddw    = -dw * c * (zeta * dz * c * c + 0.5 * thickness);
+    const double dt_dw     = -t_z;
+    const double dt_ddw    = zeta * 0.5 * thickness * t_x;
+    if (local)
+      {
+        out.n_local = local_point_.n;
+        for (unsigned int a = 0; a < local_point_.n; ++a)
+          {
+            out.local_index[a]   = local_point_.index[a];
+            out.local_normal[a]  = dg_dw * local_point_.grad_w[a] + dg_ddw * local_point_.grad_dw[a];
+            out.local_tangent[a] = dt_ddw * local_point_.grad_dw[a] + dt_dw * local_point_.grad_w[a];
+          }
+        if (detail == CornerDetail::full)
+          {
+            out.beam_normal.setZero(beam.n_dofs());
+            out.beam_tangent.setZero(beam.n_dofs());
+            for (unsigned int a = 0; a < out.n_local; ++a)
+              {
+                out.beam_normal[out.local_index[a]] += out.local_normal[a];
+                out.beam_tangent[out.local_index[a]] += out.local_tangent[a];
+              }
+          }
+      }
+    else
+      {
+        // The gradients (the w and w' above are the ones the gap used).
+        beam.evaluate(x_P, q, point_);
+        out.beam_normal  = dg_dw * point_.grad_w + dg_ddw * point_.grad_dw;
+        out.beam_tangent = dt_ddw * point_.grad_dw + dt_dw * point_.grad_w;
+      }
 
     // Slider part: v_P = (ẋ_C − β̇ r_z, ż_C + β̇ r_x).
     out.slider_normal  = Eigen::Vector3d(n_x, n_z, -r[1] * n_x + r[0] * n_z);

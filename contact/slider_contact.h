@@ -81,6 +81,25 @@ namespace beamslider
     Eigen::Vector3d slider_tangent; // slider part of W_T
     double imposed_normal  = 0; // ∂g_N/∂t through ẇ0 [m/s]
     double imposed_tangent = 0; // tangential relative velocity due to ẇ0 [m/s]
+    // The beam parts on the coordinates they touch, for a model with local
+    // kinematics (BeamSystem::has_local_kinematics; n_local = 0 otherwise):
+    // beam_normal = Σ_a local_normal[a] e_{local_index[a]}, likewise the tangent.
+    unsigned int n_local = 0;
+    std::array<unsigned int, LocalPointKinematics::capacity> local_index{};
+    std::array<double, LocalPointKinematics::capacity> local_normal{}, local_tangent{};
+  };
+
+  // What SliderGeometry::evaluate fills in.
+  enum class CornerDetail
+  {
+    // Every corner everything, the beam parts dense (and local too, for a
+    // model with local kinematics).
+    full,
+    // What the Moreau step needs: an open corner (g_N > 0) only x, thickness
+    // and gap; a closed one its directions, their beam parts local for a
+    // model with local kinematics (beam_normal, beam_tangent untouched) and
+    // dense otherwise.
+    for_step
   };
 
   // What the four corners share at one configuration and time: the
@@ -113,11 +132,10 @@ namespace beamslider
     // and slider coordinates s. The caller guarantees x_P ∈ [0, L].
     void evaluate(unsigned int k, double t, const BeamSystem &beam, const BaseExcitation &base,
                   const Eigen::VectorXd &q, const Eigen::Vector3d &s, CornerKinematics &out) const;
-    // The same with the frame of (t, s[2]) computed by the caller; with
-    // directions_if_open = false an open corner (g_N > 0) gets only x and
-    // gap, which is all the Moreau step asks of it.
+    // The same with the frame of (t, s[2]) computed by the caller, filled
+    // in as `detail` says.
     void evaluate(unsigned int k, const SliderFrame &frame, const BeamSystem &beam, const Eigen::VectorXd &q,
-                  const Eigen::Vector3d &s, CornerKinematics &out, bool directions_if_open = true) const;
+                  const Eigen::Vector3d &s, CornerKinematics &out, CornerDetail detail = CornerDetail::full) const;
 
     // Slider coordinates with the window's upper edge resting on the beam at
     // x_C (β from the local slope, both upper gaps ≥ 0 and the smaller one 0).
@@ -127,5 +145,6 @@ namespace beamslider
   private:
     SliderParameters slider_;
     mutable BeamPointKinematics point_; // scratch, avoids allocations per step
+    mutable LocalPointKinematics local_point_;
   };
 } // namespace beamslider

@@ -398,7 +398,7 @@ namespace beamslider
     std::copy(a.begin(), a.end(), b.data());
   }
 
-  void FETransientBeam::evaluate(const double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const
+  const FETransientBeam::CellData &FETransientBeam::cell_at(const double x, double &xi) const
   {
     const double L = length();
     if (!(x >= 0. && x <= L))
@@ -407,28 +407,60 @@ namespace beamslider
         m << "FE beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
         throw std::out_of_range(m.str());
       }
-    // The cell whose left vertex is the last one at or before x, and the
-    // Hermite shape functions there (the same numbers as FEBeam::point_shape,
-    // without its axial part and its allocations: this runs several times a step).
+    // The cell whose left vertex is the last one at or before x.
     const auto it = std::upper_bound(cells_.begin(), cells_.end(), x,
                                      [](const double x, const CellData &c) { return x < c.x0; });
     const CellData &cell = it == cells_.begin() ? *it : *std::prev(it);
-    const double xi      = std::clamp((x - cell.x0) / cell.h, 0., 1.);
-    std::array<double, 4> N, dN, ddN;
-    hermite_shape(xi, cell.h, N, dN, ddN);
+    xi                   = std::clamp((x - cell.x0) * (1. / cell.h), 0., 1.);
+    return cell;
+  }
+
+  void FETransientBeam::evaluate(const double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const
+  {
+    // The Hermite shape functions of the cell under x (the same numbers as
+    // FEBeam::point_shape, without its axial part and its allocations).
+    LocalPointKinematics local;
+    evaluate_local(x, q, local);
     const unsigned int n = n_dofs();
     out.grad_w.setZero(n);
     out.grad_dw.setZero(n);
+    for (unsigned int a = 0; a < local.n; ++a)
+      {
+        out.grad_w[local.index[a]] += local.grad_w[a];
+        out.grad_dw[local.index[a]] += local.grad_dw[a];
+      }
+    out.w  = local.w;
+    out.dw = local.dw;
+  }
+
+  void FETransientBeam::evaluate_local(const double x, const Eigen::VectorXd &q, LocalPointKinematics &out) const
+  {
+    double xi            = 0;
+    const CellData &cell = cell_at(x, xi);
+    std::array<double, 4> N, dN;
+    hermite_shape(xi, cell.h, 1. / cell.h, N, dN);
+    out.n = 0;
+    out.w = out.dw = 0.;
     for (unsigned int a = 0; a < 4; ++a)
       {
         const auto dof = cell.w_dofs[a];
         if (constrained_[dof])
           continue;
-        out.grad_w[dof] += N[a];
-        out.grad_dw[dof] += dN[a];
+        out.index[out.n]   = dof;
+        out.grad_w[out.n]  = N[a];
+        out.grad_dw[out.n] = dN[a];
+        out.w += N[a] * q[dof];
+        out.dw += dN[a] * q[dof];
+        ++out.n;
       }
-    out.w  = out.grad_w.dot(q);
-    out.dw = out.grad_dw.dot(q);
+  }
+
+  void FETransientBeam::evaluate_displacement(const double x, const Eigen::VectorXd &q, double &w, double &dw) const
+  {
+    LocalPointKinematics local;
+    evaluate_local(x, q, local);
+    w  = local.w;
+    dw = local.dw;
   }
 
   void FETransientBeam::factorise(const Eigen::VectorXd &q_bar, const double dt)
@@ -617,9 +649,11 @@ namespace beamslider
           {
             // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
             tmp_ = theta * u_ + (1. - theta) * u_B;
-            woodbury_rhs_.noalias() = U_.transpose() * tmp_;
-            woodbury_rhs_.array() *= dt * modal_c_.array();
-            res_.noalias() += U_ * woodbury_rhs_;
+            // Column by column (rank N, a handful): dot products and axpys
+            // over the DoFs cost less than two calls into Eigen's
+            // matrix–vector kernel with their set-up.
+            for (unsigned int k = 0; k < rank; ++k)
+              res_ += (dt * modal_c_[k] * U_.col(k).dot(tmp_)) * U_.col(k);
           }
         if (!massless_axial_.empty())
           {
@@ -794,6 +828,34 @@ namespace beamslider
         X.noalias() -= Z_ * w;
       }
     stats_.iteration_matrix_solves += B.cols();
+  }
+
+  void FETransientBeam::inverse_iteration_matrix_block(const unsigned int *index, const unsigned int k,
+                                                     Eigen::Ref<Eigen::MatrixXd> out) const
+  {
+    if (!factorised_)
+      throw std::logic_error("FE transient: iteration matrix used before its first factorisation");
+    // Column b of the block is S⁻¹ e_{index[b]} read at the k coordinates;
+    // each column is read before the next is asked for (a kept column may
+    // be replaced by the next one solved).
+    for (unsigned int b = 0; b < k; ++b)
+      {
+        const double *column = inverse_column(index[b]);
+        for (unsigned int a = 0; a < k; ++a)
+          out(a, b) = column[index[a]];
+      }
+    ++stats_.contact_blocks;
+  }
+
+  void FETransientBeam::add_inverse_iteration_matrix_times(const unsigned int *index, const unsigned int k,
+                                                         const double *y, Eigen::VectorXd &u) const
+  {
+    if (!factorised_)
+      throw std::logic_error("FE transient: iteration matrix used before its first factorisation");
+    const unsigned int n = n_dofs();
+    for (unsigned int a = 0; a < k; ++a)
+      if (y[a] != 0.)
+        u += y[a] * Eigen::Map<const Eigen::VectorXd>(inverse_column(index[a]), n);
   }
 
   Eigen::VectorXd FETransientBeam::internal_force(const Eigen::VectorXd &q) const

@@ -176,7 +176,12 @@ namespace beamslider
   // Counters for the benchmark note.
   struct FETransientStatistics
   {
-    unsigned long steps = 0, newton_iterations = 0, factorisations = 0, iteration_matrix_solves = 0;
+    unsigned long steps = 0, newton_iterations = 0, factorisations = 0;
+    // Dense solves with S (columns of S⁻¹B through apply_inverse_iteration_matrix).
+    unsigned long iteration_matrix_solves = 0;
+    // Blocks of S⁻¹ on the contact directions' coordinates (one per step with
+    // contact: the Moreau step's local form).
+    unsigned long contact_blocks = 0;
     // Columns of S⁻¹ solved for the contact directions (the rest come from
     // those kept since the last factorisation).
     unsigned long inverse_column_solves = 0;
@@ -198,6 +203,11 @@ namespace beamslider
     // Throws std::out_of_range outside [0, L]. Gradients are dense, zero on
     // constrained DoFs.
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
+    // w and w' at x depend on the four Hermite DoFs of the cell under x
+    // (fewer next to a support): the contact code works on those alone.
+    bool has_local_kinematics() const override { return true; }
+    void evaluate_local(double x, const Eigen::VectorXd &q, LocalPointKinematics &out) const override;
+    void evaluate_displacement(double x, const Eigen::VectorXd &q, double &w, double &dw) const override;
 
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
     double theta() const override { return settings_.theta; }
@@ -242,6 +252,11 @@ namespace beamslider
                                Eigen::VectorXd &u_free) override;
     void apply_inverse_iteration_matrix(const Eigen::Ref<const Eigen::MatrixXd> &B,
                                         Eigen::Ref<Eigen::MatrixXd> X) const override;
+    // From the kept columns of S⁻¹ (inverse_column).
+    void inverse_iteration_matrix_block(const unsigned int *index, unsigned int k,
+                                        Eigen::Ref<Eigen::MatrixXd> out) const override;
+    void add_inverse_iteration_matrix_times(const unsigned int *index, unsigned int k, const double *y,
+                                            Eigen::VectorXd &u) const override;
     // Without axial inertia: the massless axial DoFs get the step's mean velocity.
     void finish_step(const Eigen::VectorXd &q_B, const Eigen::VectorXd &q_E, double dt,
                      Eigen::VectorXd &u_E) const override;
@@ -395,6 +410,8 @@ namespace beamslider
       Eigen::Array2d JxW;
     };
     std::vector<CellData> cells_;        // ordered from x = 0 to L
+    // The cell under x ∈ [0, L] (throws std::out_of_range outside) and ξ ∈ [0, 1] there.
+    const CellData &cell_at(double x, double &xi) const;
     std::vector<QuadraturePointData> quadrature_;
     std::vector<QuadraturePointPair> paired_quadrature_; // [pair][point], the pairs of cells_ (an odd last one twice)
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)

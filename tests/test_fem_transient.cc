@@ -644,3 +644,114 @@ TEST(FETransientSlider, EnergyBalanceClosesOverAContactRun)
             << (E1 - E0 - work) << " J (gross work " << scale << " J)\n";
   EXPECT_LT(std::abs(E1 - E0 - work), 1e-3 * scale);
 }
+
+namespace
+{
+  // The FE beam with its local kinematics hidden: the Moreau step then takes
+  // the dense form (directions of length n, S⁻¹ W by dense solves), the one
+  // every model without local kinematics uses.
+  class DenseContactFEBeam : public FETransientBeam
+  {
+  public:
+    using FETransientBeam::FETransientBeam;
+    bool has_local_kinematics() const override { return false; }
+  };
+} // namespace
+
+TEST(FETransientLocalKinematics, PointKinematicsAndInverseBlocksEqualTheDenseForms)
+{
+  // evaluate_local against evaluate at points in the clamped end cell, at a
+  // vertex and inside; the block of S⁻¹ and S⁻¹ E y against dense solves
+  // with S (Woodbury damping included) of the same step.
+  Scene s = read_scene(scene_file);
+  FETransientBeam sys(s, BaseExcitation::from_scene(s.excitation));
+  const unsigned int n = sys.n_dofs();
+  Eigen::VectorXd q    = Eigen::VectorXd::Random(n) * 1e-4, u = Eigen::VectorXd::Zero(n), u_free(n);
+  const double L       = sys.length();
+  BeamPointKinematics dense;
+  LocalPointKinematics local;
+  for (const double x : {0., 1e-3 * L, 0.25 * L, 0.3 * L + 1e-9, 0.5 * L, L})
+    {
+      sys.evaluate(x, q, dense);
+      sys.evaluate_local(x, q, local);
+      ASSERT_LE(local.n, LocalPointKinematics::capacity);
+      Eigen::VectorXd grad_w = Eigen::VectorXd::Zero(n), grad_dw = Eigen::VectorXd::Zero(n);
+      for (unsigned int a = 0; a < local.n; ++a)
+        {
+          grad_w[local.index[a]] += local.grad_w[a];
+          grad_dw[local.index[a]] += local.grad_dw[a];
+        }
+      EXPECT_EQ((grad_w - dense.grad_w).cwiseAbs().maxCoeff(), 0.) << "x = " << x;
+      EXPECT_EQ((grad_dw - dense.grad_dw).cwiseAbs().maxCoeff(), 0.) << "x = " << x;
+      // w = ∇w · q, summed in another order.
+      EXPECT_NEAR(local.w, dense.grad_w.dot(q), 1e-15 * q.cwiseAbs().sum()) << "x = " << x;
+      EXPECT_NEAR(local.dw, dense.grad_dw.dot(q), 1e-15 * q.cwiseAbs().sum() / (L / 32)) << "x = " << x;
+      double w = 0, dw = 0;
+      sys.evaluate_displacement(x, q, w, dw);
+      EXPECT_EQ(w, local.w);
+      EXPECT_EQ(dw, local.dw);
+    }
+
+  const BeamStep step = sys.free_velocity(0., q, u, s.time_stepping.fe_time_step, u_free);
+  const std::array<unsigned int, 6> index{{7, 8, 9, 10, 40, 41}};
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(n, index.size()), X(n, index.size());
+  for (unsigned int a = 0; a < index.size(); ++a)
+    E(index[a], a) = 1.;
+  step.solve_iteration_matrix(E, X);
+  Eigen::MatrixXd block(index.size(), index.size());
+  step.inverse_iteration_matrix_block(index.data(), index.size(), block);
+  const double scale = X.cwiseAbs().maxCoeff();
+  for (unsigned int a = 0; a < index.size(); ++a)
+    for (unsigned int b = 0; b < index.size(); ++b)
+      EXPECT_NEAR(block(a, b), X(index[a], b), 1e-12 * scale) << a << ", " << b;
+  // S is symmetric: so is its inverse's block, to round-off.
+  EXPECT_LT((block - block.transpose()).cwiseAbs().maxCoeff(), 1e-12 * scale);
+
+  const std::array<double, 6> y{{1., -2., 0.5, 0., 3., -1.}};
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  step.add_inverse_iteration_matrix_times(index.data(), index.size(), y.data(), v);
+  const Eigen::VectorXd expected = X * Eigen::Map<const Eigen::VectorXd>(y.data(), y.size());
+  EXPECT_LT((v - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff());
+}
+
+TEST(FETransientLocalKinematics, TheLocalContactStepFollowsTheDenseOneToRoundOff)
+{
+  // The signature move's first 0.1 s (12 excitation periods, the slider
+  // rattling from its first impacts on) with the contact directions on their
+  // few coordinates and with dense directions: the same step in two forms
+  // whose round-off differs. Within a dozen periods two trajectories that
+  // differ by round-off stay together (the rattling parts them only after a
+  // few dozen), so the states must agree to far below any physical scale.
+  Scene s = read_scene(scene_file);
+  const BaseExcitation base = BaseExcitation::from_scene(s.excitation);
+  FETransientSettings settings;
+  settings.theta = s.time_stepping.fe_theta;
+  FETransientBeam local(s, base, 0, settings);
+  DenseContactFEBeam dense(s, base, 0, settings);
+  ASSERT_TRUE(local.has_local_kinematics());
+  ASSERT_FALSE(dense.has_local_kinematics());
+  const double dt = s.time_stepping.fe_time_step;
+  MoreauStepper a(local, SliderParameters::from_scene(s), ContactLaw::from_scene(s), base, dt);
+  MoreauStepper b(dense, SliderParameters::from_scene(s), ContactLaw::from_scene(s), base, dt);
+  const double x_C = s.initial.slider_position_over_L * s.beam.length;
+  a.set_state(a.resting_state(x_C));
+  b.set_state(b.resting_state(x_C));
+  double max_dq = 0, max_q = 0, max_dx = 0;
+  unsigned long contact_steps = 0;
+  const unsigned long n_steps = std::lround(0.1 / dt);
+  for (unsigned long k = 0; k < n_steps; ++k)
+    {
+      const StepReport &ra = a.step();
+      const StepReport &rb = b.step();
+      ASSERT_EQ(ra.n_active, rb.n_active) << "step " << k;
+      contact_steps += ra.n_active > 0;
+      max_dq = std::max(max_dq, (a.state().q - b.state().q).cwiseAbs().maxCoeff());
+      max_q  = std::max(max_q, a.state().q.cwiseAbs().maxCoeff());
+      max_dx = std::max(max_dx, (a.state().s - b.state().s).cwiseAbs().maxCoeff());
+    }
+  std::cout << contact_steps << " of " << n_steps << " steps with contact; max |Δq| = " << max_dq
+            << " (max |q| = " << max_q << "), max |Δs| = " << max_dx << "\n";
+  EXPECT_GT(contact_steps, n_steps / 4);
+  EXPECT_LT(max_dq, 1e-8 * max_q);
+  EXPECT_LT(max_dx, 1e-9 * s.beam.thickness);
+}
