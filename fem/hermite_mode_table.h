@@ -23,6 +23,13 @@ namespace beamslider
 
     // φ_n(x), φ_n'(x) of every mode; throws std::out_of_range outside [0, L].
     void evaluate(double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) const;
+    // w(x) = Σ φ_n(x) q_n and w'(x): the interval's nodal values of w and θ
+    // for these coordinates, then the Hermite shape functions once.
+    void displacement(double x, const Eigen::VectorXd &q, double &w, double &dw) const;
+
+  private:
+    // The interval holding x; throws std::out_of_range outside [0, L].
+    unsigned int interval(double x) const;
   };
 
   // The reduced model's basis on the table: ω, γ as given, K'_jk = ∫ φ_j' φ_k' dx

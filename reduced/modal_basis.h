@@ -23,6 +23,10 @@ namespace beamslider
 
     // φ_n(x) and φ_n'(x) for all n at one x in [0, L].
     std::function<void(double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi)> evaluate;
+    // Optional: w(x) = Σ φ_n(x) q_n and w'(x) for coordinates q without
+    // forming the φ_n (a mode table sums the interval's nodal values of q
+    // first: 4N products instead of 10N). Empty: evaluate and two dot products.
+    std::function<void(double x, const Eigen::VectorXd &q, double &w, double &dw)> displacement;
 
     unsigned int n_modes() const { return omega.size(); }
   };

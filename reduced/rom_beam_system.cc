@@ -58,6 +58,23 @@ namespace beamslider
     out.dw = out.grad_dw.dot(q);
   }
 
+  void RomBeamSystem::evaluate_displacement(const double x, const Eigen::VectorXd &q, double &w, double &dw) const
+  {
+    if (!rom_.basis().displacement)
+      {
+        BeamSystem::evaluate_displacement(x, q, w, dw);
+        return;
+      }
+    const double L = length();
+    if (!(x >= 0. && x <= L))
+      {
+        std::ostringstream m;
+        m << "reduced model: beam evaluated at x = " << x << " m, outside the beam [0, " << L << "] m";
+        throw std::out_of_range(m.str());
+      }
+    rom_.basis().displacement(x, q, w, dw);
+  }
+
   double RomBeamSystem::max_stable_time_step() const { return 2. / omega_max_; }
 
   void RomBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,

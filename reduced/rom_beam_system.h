@@ -40,6 +40,8 @@ namespace beamslider
 
     // Throws std::out_of_range for x outside [0, L]: modes are not defined there.
     void evaluate(double x, const Eigen::VectorXd &q, BeamPointKinematics &out) const override;
+    // From the basis's displacement function where it has one (ModalBasis).
+    void evaluate_displacement(double x, const Eigen::VectorXd &q, double &w, double &dw) const override;
 
     // 2/ω_max [s].
     double max_stable_time_step() const override;

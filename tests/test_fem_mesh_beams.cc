@@ -9,6 +9,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/hermite_mode_table.h"
+#include "fem/hermite_shape.h"
 #include "meshes/scene.h"
 #include "verification/studies/coefficient_methods.h"
 
@@ -16,6 +17,7 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <iomanip>
@@ -247,4 +249,49 @@ TEST(ModeTable, GradedIntervalsAnswerFromTheIntervalHoldingX)
   EXPECT_EQ(phi[0], 10. * (table.n_intervals - 1) + 1.);
   EXPECT_THROW(table.evaluate(std::nextafter(table.length, 1.), phi, dphi), std::out_of_range);
   EXPECT_THROW(table.evaluate(-1e-12, phi, dphi), std::out_of_range);
+}
+
+// The deflection of coordinates q from the interval's nodal values,
+// Σ_n q_n φ_n(x) summed before the shape functions (what the reduced model's
+// contact detection takes, HermiteModeTable::displacement), equals φ(x)·q and
+// φ'(x)·q to round-off, on random mode coefficients over a graded table.
+TEST(ModeTable, DisplacementFromNodalValuesEqualsTheModalSum)
+{
+  HermiteModeTable table;
+  table.vertices    = {0., 0.001, 0.002, 0.05, 0.051, 0.3, 0.31};
+  table.length      = table.vertices.back();
+  table.n_intervals = table.vertices.size() - 1;
+  table.n_modes     = 7;
+  std::srand(3);
+  const Eigen::VectorXd c = Eigen::VectorXd::Random(4 * table.n_modes * table.n_intervals);
+  table.coefficients.assign(c.data(), c.data() + c.size());
+  const Eigen::VectorXd q = Eigen::VectorXd::Random(table.n_modes);
+  Eigen::VectorXd phi, dphi;
+  for (unsigned int i = 0; i <= 62; ++i)
+    {
+      const double x = table.length * i / 62.;
+      table.evaluate(x, phi, dphi);
+      double w = 0, dw = 0;
+      table.displacement(x, q, w, dw);
+      // The round-off scale: Σ_n Σ_a |N_a c_na q_n| (and with N_a'), on the
+      // interval that holds x.
+      unsigned int e = 0;
+      while (e + 1 < table.n_intervals && table.vertices[e + 1] <= x)
+        ++e;
+      const double h = table.vertices[e + 1] - table.vertices[e];
+      std::array<double, 4> N, dN;
+      hermite_shape(std::min((x - table.vertices[e]) / h, 1.), h, N, dN);
+      double w_scale = 0, dw_scale = 0;
+      for (unsigned int n = 0; n < table.n_modes; ++n)
+        for (unsigned int a = 0; a < 4; ++a)
+          {
+            const double cq = std::abs(table.coefficients[4 * (table.n_modes * e + n) + a] * q[n]);
+            w_scale += std::abs(N[a]) * cq;
+            dw_scale += std::abs(dN[a]) * cq;
+          }
+      EXPECT_NEAR(w, phi.dot(q), 1e-14 * w_scale) << "x = " << x;
+      EXPECT_NEAR(dw, dphi.dot(q), 1e-14 * dw_scale) << "x = " << x;
+    }
+  double w = 0, dw = 0;
+  EXPECT_THROW(table.displacement(std::nextafter(table.length, 1.), q, w, dw), std::out_of_range);
 }
