@@ -78,6 +78,18 @@ namespace beamslider
     return false;
   }
 
+  namespace
+  {
+    // z = A⁻¹ b by a full-pivoting LU of the K × K matrix A (one solution
+    // with the free unknowns zero if A is singular), into fixed-size storage.
+    template <int K, typename Matrix, typename Vector>
+    void solve_fixed_size(const Matrix &A, const Vector &b, Vector &z)
+    {
+      const Eigen::FullPivLU<Eigen::Matrix<double, K, K>> lu(A.template topLeftCorner<K, K>());
+      z = lu.solve(b.template head<K>());
+    }
+  } // namespace
+
   // Each contact's conditions in a given mode are linear:
   //   open:    P = 0                       (check: ξ_N ≥ 0)
   //   stick:   ξ_N = 0, ξ_T = 0            (check: P_N ≥ 0, |P_T| ≤ μ P_N)
@@ -168,10 +180,26 @@ namespace beamslider
                 z[0] = std::isfinite(a) && a != 0. ? (b[0] != 0. ? b[0] / a : b[0]) : 0.;
               }
             else
-              {
-                const Eigen::FullPivLU<Small> lu(A);
-                z = lu.solve(b);
-              }
+              switch (k)
+                {
+                  // Two to four unknowns (two corners on one face, or a
+                  // sticking one): Eigen's LU at the size it has, whose
+                  // loops unroll, rather than at the capacity's run-time size.
+                  case 2:
+                    solve_fixed_size<2>(A, b, z);
+                    break;
+                  case 3:
+                    solve_fixed_size<3>(A, b, z);
+                    break;
+                  case 4:
+                    solve_fixed_size<4>(A, b, z);
+                    break;
+                  default:
+                    {
+                      const Eigen::FullPivLU<Small> lu(A);
+                      z = lu.solve(b);
+                    }
+                }
             // The residual inlined (≤ 64 products): it only decides
             // acceptance against a tolerance seven orders above round-off.
             if (!z.allFinite() || (A.lazyProduct(z) - b).cwiseAbs().maxCoeff() > 1e-9 * std::max(c_scale, 1e-300))

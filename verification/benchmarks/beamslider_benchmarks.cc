@@ -24,7 +24,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include <fcntl.h>
@@ -41,6 +43,36 @@ namespace
     return scene;
   }
 
+  // Runs `run` to t_end in chunks of `chunk` simulated seconds and returns
+  // the fastest chunk's wall time per step [µs]: this sandbox's timings
+  // come in bursts of ±40 % (other machines' load), and the fastest tenth of
+  // a window is what the code costs when it has the core. The whole
+  // window's mean stays beside it as us/step.
+  double run_in_chunks(AdaptationRun &run, const double t_end, const double chunk, const double dt,
+                       RunResult &result)
+  {
+    double fastest = std::numeric_limits<double>::infinity();
+    result         = RunResult();
+    result.status  = RunStatus::completed;
+    for (double t = run.stepper().state().t; t + 0.5 * dt < t_end && result.status == RunStatus::completed;)
+      {
+        const double next = std::min(t + chunk, t_end);
+        const auto start  = std::chrono::steady_clock::now();
+        const RunResult r = run.run_until(next);
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (r.n_steps > 0)
+          fastest = std::min(fastest, 1e6 * wall / r.n_steps);
+        result.status = r.status;
+        result.message = r.message;
+        result.n_steps += r.n_steps;
+        result.n_contact_steps += r.n_contact_steps;
+        result.solver_iterations += r.solver_iterations;
+        result.slider_x_over_L = r.slider_x_over_L;
+        t = run.stepper().state().t;
+      }
+    return fastest;
+  }
+
   // The signature-move run (124 Hz, 14 m/s², x_C/L = 0.3) for `seconds` of
   // simulated time on `beam` at the scene's Δt, counting steps, contact
   // solves and the heap allocations of the stepping after the first 0.5 s
@@ -52,7 +84,7 @@ namespace
     options.output_rate       = 1000.;
     options.progress_interval = 1e300;
     unsigned long steps = 0, contact_steps = 0, iterations = 0, allocations = 0, counted_steps = 0;
-    double wall = 0;
+    double wall = 0, fastest = 0;
     for (auto _ : state)
       {
         const auto start = std::chrono::steady_clock::now();
@@ -60,10 +92,11 @@ namespace
         run.on_trace_row      = [](const TraceRow &row) { benchmark::DoNotOptimize(row.w_center); };
         const RunResult first = run.run_until(0.5);
         heap_counter::start();
-        const RunResult rest = run.run_until(seconds);
+        RunResult rest;
+        fastest = run_in_chunks(run, seconds, 0.1, scene.time_stepping.time_step, rest);
         allocations += heap_counter::stop();
         wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        for (const RunResult *r : {&first, &rest})
+        for (const RunResult *r : {&first, static_cast<const RunResult *>(&rest)})
           {
             if (r->status != RunStatus::completed)
               state.SkipWithError(r->message.c_str());
@@ -74,6 +107,7 @@ namespace
         counted_steps += rest.n_steps;
       }
     state.counters["us/step"]             = 1e6 * wall / std::max<unsigned long>(steps, 1);
+    state.counters["us/step fastest"]     = fastest;
     state.counters["simulated s/s"]       = steps * scene.time_stepping.time_step / std::max(wall, 1e-300);
     state.counters["contact solves/step"] = double(contact_steps) / std::max<unsigned long>(steps, 1);
     state.counters["sweeps/solve"]        = double(iterations) / std::max<unsigned long>(contact_steps, 1);
@@ -152,7 +186,7 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
   RunOptions options                  = RunOptions::from_scene(scene);
   options.progress_interval           = 1e300;
   unsigned long steps = 0, allocations = 0, counted_steps = 0;
-  double wall                         = 0;
+  double wall = 0, fastest = 0;
   FETransientStatistics before, after;
   for (auto _ : state)
     {
@@ -167,7 +201,7 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
       RunResult result       = run.run_until(from + 0.05);
       const unsigned long settle_steps = result.n_steps;
       heap_counter::start();
-      result = run.run_until(from + 0.2);
+      fastest = run_in_chunks(run, from + 0.2, 0.01, scene.time_stepping.time_step, result);
       allocations += heap_counter::stop();
       counted_steps += result.n_steps;
       result.n_steps += settle_steps;
@@ -180,10 +214,11 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
     }
   const double per_step = 1. / std::max<unsigned long>(after.steps - before.steps, 1);
   state.counters["us/step"]             = 1e6 * wall / std::max<unsigned long>(steps, 1);
+  state.counters["us/step fastest"]     = fastest;
   state.counters["simulated s/s"]       = steps * scene.time_stepping.time_step / std::max(wall, 1e-300);
   state.counters["newton/step"]         = (after.newton_iterations - before.newton_iterations) * per_step;
   state.counters["factorisations/step"] = (after.factorisations - before.factorisations) * per_step;
-  state.counters["contact solves/step"] = (after.iteration_matrix_solves - before.iteration_matrix_solves) * per_step;
+  state.counters["contact blocks/step"] = (after.contact_blocks - before.contact_blocks) * per_step;
   state.counters["S^-1 columns/step"]   = (after.inverse_column_solves - before.inverse_column_solves) * per_step;
   state.counters["allocations/step"]    = double(allocations) / std::max<unsigned long>(counted_steps, 1);
 }
