@@ -218,6 +218,20 @@ TEST(MeshBeam, PointMassLowersTheFrequencyAsSeedEquationFivePredicts)
     EXPECT_NEAR(std::log2(eq5_errors[i] / eq5_errors[i + 1]), 2., 0.25) << "second order in the mass";
 }
 
+namespace
+{
+  // A table of strongly graded intervals (1 mm next to 25 cm) without coefficients.
+  HermiteModeTable graded_table(const unsigned int n_modes)
+  {
+    HermiteModeTable table;
+    table.vertices    = {0., 0.001, 0.002, 0.05, 0.051, 0.3, 0.31};
+    table.length      = table.vertices.back();
+    table.n_intervals = table.vertices.size() - 1;
+    table.n_modes     = n_modes;
+    return table;
+  }
+} // namespace
+
 // A mesh's intervals need not be equal, and the table must find the one
 // holding x by its vertices. With values that jump at each
 // vertex (no mode does, but the jump shows which interval answered), x at a
@@ -225,11 +239,7 @@ TEST(MeshBeam, PointMassLowersTheFrequencyAsSeedEquationFivePredicts)
 // left, and x = L the last one, on a strongly graded table.
 TEST(ModeTable, GradedIntervalsAnswerFromTheIntervalHoldingX)
 {
-  HermiteModeTable table;
-  table.vertices    = {0., 0.001, 0.002, 0.05, 0.051, 0.3, 0.31};
-  table.length      = table.vertices.back();
-  table.n_intervals = table.vertices.size() - 1;
-  table.n_modes     = 1;
+  HermiteModeTable table = graded_table(1);
   // Interval e: w = 10 e at its left end, 10 e + 1 at its right end, slopes 0.
   for (unsigned int e = 0; e < table.n_intervals; ++e)
     table.coefficients.insert(table.coefficients.end(), {10. * e, 0., 10. * e + 1., 0.});
@@ -257,11 +267,7 @@ TEST(ModeTable, GradedIntervalsAnswerFromTheIntervalHoldingX)
 // φ'(x)·q to round-off, on random mode coefficients over a graded table.
 TEST(ModeTable, DisplacementFromNodalValuesEqualsTheModalSum)
 {
-  HermiteModeTable table;
-  table.vertices    = {0., 0.001, 0.002, 0.05, 0.051, 0.3, 0.31};
-  table.length      = table.vertices.back();
-  table.n_intervals = table.vertices.size() - 1;
-  table.n_modes     = 7;
+  HermiteModeTable table = graded_table(7);
   std::srand(3);
   const Eigen::VectorXd c = Eigen::VectorXd::Random(4 * table.n_modes * table.n_intervals);
   table.coefficients.assign(c.data(), c.data() + c.size());
