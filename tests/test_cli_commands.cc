@@ -395,7 +395,7 @@ TEST(Commands, VerifyRunsSectionEightBesideTheOthersOnTheSameScene)
 }
 
 // Every output folder holds what repeats its run: parameters.prm (the scene
-// after --set and --case) and run.txt (command line, version, revision).
+// after --set and --case) and run.txt (command line, version, revision, instruction set).
 // Running simulate on the folder's parameters.prm alone gives the same trace.
 TEST(Commands, ARunRepeatsFromItsOutputFolderAlone)
 {
@@ -408,6 +408,7 @@ TEST(Commands, ARunRepeatsFromItsOutputFolderAlone)
             std::string::npos)
     << record;
   EXPECT_NE(record.find("revision:  "), std::string::npos) << record;
+  EXPECT_NE(record.find("built for: "), std::string::npos) << record;
   const std::string parameters = read_file(dir / "first" / "parameters.prm");
   const auto restitution       = parameters.find("set Restitution");
   ASSERT_NE(restitution, std::string::npos);

@@ -83,6 +83,8 @@ namespace beamslider
       run << "\nworking directory: " << fs::current_path(ec).string() << "\nstarted:   " << when
           << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
           << " (git describe of the source tree when the build was configured)\n"
+          << "built for: " << BEAMSLIDER_BUILT_FOR
+          << " (results depend on the instruction set in their last bits; CMake option BEAMSLIDER_NATIVE)\n"
           << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
       if (!command.name.empty())
         run << "options:   command.prm (every option of the command, given or default)\n";
