@@ -162,18 +162,26 @@ TEST(SolidModes, PlaneStressStripWithoutPoissonConvergesToTheTimoshenkoBeam)
       correction.push_back(f_T.back() / f_EB - 1);
     }
 
-  // h-refinement of Q2, halving the element size in both directions.
-  std::vector<std::vector<double>> errors;
+  // h-refinement of Q2, halving the element size in both directions: the
+  // observed order from three meshes, log2 |f_h − f_h/2| / |f_h/2 − f_h/4|
+  // (→ 4). Measured against the continuum's own limit, not against the
+  // Timoshenko beam: the two differ by the O((h/L)⁴) remainder above, which
+  // on the finest mesh is no longer small beside the discretisation error of
+  // mode 1 and bent its rate against f_T to 3.48–3.5 (round-off decided on
+  // which side). That the limit is the Timoshenko beam is the p = 3 check below.
+  std::vector<std::vector<double>> frequencies;
   for (const unsigned int r : {1u, 2u, 4u})
-    {
-      const auto f = bending_frequencies<2>(solid_scene("plane stress", 0, 70 * r, 1, r, 2), 5);
-      errors.emplace_back();
-      for (unsigned int k = 0; k < 5; ++k)
-        errors.back().push_back(std::abs(f[k] / f_T[k] - 1));
-    }
+    frequencies.push_back(bending_frequencies<2>(solid_scene("plane stress", 0, 70 * r, 1, r, 2), 5));
   for (unsigned int k = 0; k < 5; ++k)
-    for (unsigned int r = 1; r < 3; ++r)
-      EXPECT_GT(std::log2(errors[r - 1][k] / errors[r][k]), 3.5) << "mode " << k + 1 << ", refinement " << r;
+    {
+      const double coarse = std::abs(frequencies[0][k] - frequencies[1][k]);
+      const double fine   = std::abs(frequencies[1][k] - frequencies[2][k]);
+      const double order  = std::log2(coarse / fine);
+      EXPECT_GT(order, 3.5) << "mode " << k + 1;
+      EXPECT_LT(order, 4.5) << "mode " << k + 1;
+      // and the error against the Timoshenko beam falls with the mesh
+      EXPECT_LT(std::abs(frequencies[2][k] / f_T[k] - 1), std::abs(frequencies[1][k] / f_T[k] - 1)) << "mode " << k + 1;
+    }
 
   // p = 3: converged to the Timoshenko beam.
   const auto f = bending_frequencies<2>(solid_scene("plane stress", 0, 140, 1, 1, 3), 5);
