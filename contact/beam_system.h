@@ -65,6 +65,7 @@ namespace beamslider
     std::array<double, capacity> grad_dw{};      // ∂w'/∂q there
   };
 
+  struct ExplicitModalForm;
   class CheckpointWriter;
   class CheckpointReader;
   class BeamSystem;
@@ -181,6 +182,12 @@ namespace beamslider
     // True for a model whose iteration matrix S is the identity in every
     // step (BeamStep::iteration_matrix_is_identity).
     virtual bool iteration_matrix_is_identity() const { return false; }
+    // The explicit reduced model's data, for a model whose step the Moreau
+    // stepper may take itself (contact/explicit_modal_form.h); null for any
+    // other model, which the stepper then steps through this interface. A
+    // model that hands it out promises that free_velocity, the iteration
+    // matrix (S = I) and step_work are exactly what the form says.
+    virtual const ExplicitModalForm *explicit_modal_form() const { return nullptr; }
 
     // Largest time step the scheme can take (infinity for unconditionally
     // stable schemes). The stepper refuses larger steps with a clear message.

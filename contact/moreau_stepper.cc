@@ -96,6 +96,14 @@ namespace beamslider
     X_b_.setZero(n, max_unknowns);
     corner_.beam_normal.setZero(n);
     corner_.beam_tangent.setZero(n);
+    stretch_q_.setZero(n);
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      corner_position_[k] = {corner_side(k) * 0.5 * slider_.window_width,
+                             corner_zeta(k) * 0.5 * slider_.window_height + slider_.com_offset};
+    // The explicit modal step takes the midpoint rule of the form's model.
+    modal_ = beam_.explicit_modal_form();
+    if (modal_ && (modal_->n_modes != n || beam_.theta() != 0.5))
+      throw std::logic_error("explicit modal form: its mode count or the model's theta disagrees with the model");
     set_state(resting_state(0.5 * beam_.length()));
   }
 
@@ -225,29 +233,15 @@ namespace beamslider
     return 0.5 * slider_.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * slider_.inertia * v[2] * v[2];
   }
 
-  const StepReport &MoreauStepper::step()
+  void MoreauStepper::check_corners_on_beam(const double t_B, const Eigen::Vector3d &s_M,
+                                            const SliderFrame &frame) const
   {
-    const unsigned int n = beam_.n_dofs();
-    const double L       = beam_.length();
-    const double t_B     = state_.t;
-    // The θ-scheme's weights (beam_system.h); θ = 1/2, the midpoint rule,
-    // gives 0.5 and 0.5 exactly.
-    const double theta   = beam_.theta();
-    const double dt_B    = (1. - theta) * dt_; // from the start to the detection configuration
-    const double dt_E    = theta * dt_;        // from there to the end
-    const double t_M     = t_B + dt_B;
-    report_              = StepReport();
-
-    // Midpoint configuration; no beam evaluation before the corners are known
-    // to lie on the beam.
-    Eigen::Vector3d v_B = state_.v;
-    if (prescribed_x_)
-      v_B[0] = 0.;
-    const Eigen::Vector3d s_M = state_.s + dt_B * v_B;
-    const SliderFrame frame   = SliderGeometry::frame(t_M, base_, s_M[2]);
+    const double L = beam_.length();
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
-        const double x = s_M[0] + geometry_.corner_offset(k, frame)[0];
+        // x of the corner: SliderGeometry::corner_offset's, from the
+        // positions kept at construction (no call per corner).
+        const double x = s_M[0] + (frame.cos_beta * corner_position_[k][0] - frame.sin_beta * corner_position_[k][1]);
         if (!(x >= 0. && x <= L))
           {
             // A physical arrival overshoots by |v_x| Δt/2, micrometres; a
@@ -266,6 +260,85 @@ namespace beamslider
             throw SliderAtSupport(t_B, state_.s[0], x, L);
           }
       }
+  }
+
+  bool MoreauStepper::corner_is_closed_or_throw(const unsigned int k, const double gap, const double thickness,
+                                                const double t_B) const
+  {
+    const double clearance = slider_.window_height - thickness;
+    if (gap < -clearance)
+      {
+        std::ostringstream msg;
+        msg << "unphysical state at t = " << t_B << " s: the " << corner_name(k)
+            << " corner penetrates the beam by " << -gap << " m, more than the whole clearance R - h = "
+            << clearance << " m (the slider would be through the beam; x_C = " << state_.s[0]
+            << " m): the integration diverges or the time step cannot resolve the contact; the step is not "
+               "accepted";
+        throw UnphysicalState(msg.str());
+      }
+    if (gap <= 0.)
+      return true;
+    if (!std::isfinite(gap))
+      {
+        std::ostringstream msg;
+        msg << "non-finite gap at corner " << corner_name(k) << " at t = " << t_B << " s";
+        throw NonFiniteState(msg.str());
+      }
+    return false;
+  }
+
+  void MoreauStepper::throw_solver_failure(const double t_B, const std::array<unsigned int, n_slider_corners> &active,
+                                           const unsigned int m, const ProxSolverResult &result)
+  {
+    std::string names;
+    for (unsigned int i = 0; i < m; ++i)
+      names += std::string(i ? ", " : "") + corner_name(active[i]);
+    throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
+  }
+
+  void MoreauStepper::throw_non_finite_end(const double t_B) const
+  {
+    std::ostringstream msg;
+    msg << "non-finite state after the step from t = " << t_B << " s (x_C = " << state_.s[0]
+        << " m); the step is not accepted";
+    throw NonFiniteState(msg.str());
+  }
+
+  void MoreauStepper::accept_step(const Eigen::Vector3d &s_E, const Eigen::Vector3d &v_E,
+                                  const std::array<Eigen::Vector2d, n_slider_corners> &new_warm)
+  {
+    // Swapping hands the buffers over without copying or allocating.
+    state_.t = t_origin_ + (steps_taken_ + 1) * dt_;
+    state_.q.swap(q_next_);
+    state_.u.swap(u_E_);
+    state_.s = s_E;
+    state_.v = v_E;
+    warm_    = new_warm;
+    ++steps_taken_;
+  }
+
+  const StepReport &MoreauStepper::step()
+  {
+    if (modal_)
+      return step_explicit_modal();
+    const unsigned int n = beam_.n_dofs();
+    const double t_B     = state_.t;
+    // The θ-scheme's weights (beam_system.h); θ = 1/2, the midpoint rule,
+    // gives 0.5 and 0.5 exactly.
+    const double theta   = beam_.theta();
+    const double dt_B    = (1. - theta) * dt_; // from the start to the detection configuration
+    const double dt_E    = theta * dt_;        // from there to the end
+    const double t_M     = t_B + dt_B;
+    report_              = StepReport();
+
+    // Midpoint configuration; no beam evaluation before the corners are known
+    // to lie on the beam.
+    Eigen::Vector3d v_B = state_.v;
+    if (prescribed_x_)
+      v_B[0] = 0.;
+    const Eigen::Vector3d s_M = state_.s + dt_B * v_B;
+    const SliderFrame frame   = SliderGeometry::frame(t_M, base_, s_M[2]);
+    check_corners_on_beam(t_B, s_M, frame);
     q_M_ = state_.q + dt_B * state_.u;
 
     // Free motion.
@@ -286,27 +359,8 @@ namespace beamslider
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
         geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, CornerDetail::for_step);
-        const double clearance = slider_.window_height - corner_.thickness;
-        if (corner_.gap < -clearance)
-          {
-            std::ostringstream msg;
-            msg << "unphysical state at t = " << t_B << " s: the " << corner_name(k)
-                << " corner penetrates the beam by " << -corner_.gap << " m, more than the whole clearance R - h = "
-                << clearance << " m (the slider would be through the beam; x_C = " << state_.s[0]
-                << " m): the integration diverges or the time step cannot resolve the contact; the step is not "
-                   "accepted";
-            throw UnphysicalState(msg.str());
-          }
-        if (!(corner_.gap <= 0.))
-          {
-            if (!std::isfinite(corner_.gap))
-              {
-                std::ostringstream msg;
-                msg << "non-finite gap at corner " << corner_name(k) << " at t = " << t_B << " s";
-                throw NonFiniteState(msg.str());
-              }
-            continue;
-          }
+        if (!corner_is_closed(k, corner_.gap, corner_.thickness, t_B))
+          continue;
         if (local)
           local_directions_.set_corner(2 * m, corner_);
         else
@@ -398,12 +452,7 @@ namespace beamslider
         report_.iterations            = result.iterations;
         report_.residual              = result.residual;
         if (!result.converged)
-          {
-            std::string names;
-            for (unsigned int i = 0; i < m; ++i)
-              names += std::string(i ? ", " : "") + corner_name(active[i]);
-            throw ContactSolverFailure(t_B, m, names, result.residual, result.iterations);
-          }
+          throw_solver_failure(t_B, active, m, result);
 
         // u_E = u_free + S⁻¹ W_b P.
         if (local)
@@ -440,25 +489,13 @@ namespace beamslider
     q_next_.noalias() += dt_E * u_E_;
     const Eigen::Vector3d s_E = s_M + dt_E * v_E;
     if (!q_next_.allFinite() || !u_E_.allFinite() || !s_E.allFinite() || !v_E.allFinite())
-      {
-        std::ostringstream msg;
-        msg << "non-finite state after the step from t = " << t_B << " s (x_C = " << state_.s[0]
-            << " m); the step is not accepted";
-        throw NonFiniteState(msg.str());
-      }
+      throw_non_finite_end(t_B);
 
     report_.work_gravity = -slider_.mass * slider_.gravity * (s_E[1] - state_.s[1]);
     beam_step.work(u_E_, report_.work_damping, report_.work_excitation);
     beam_step.finish(state_.q, q_next_, u_E_);
 
-    // Swapping hands the buffers over without copying or allocating.
-    state_.t = t_origin_ + (steps_taken_ + 1) * dt_;
-    state_.q.swap(q_next_);
-    state_.u.swap(u_E_);
-    state_.s = s_E;
-    state_.v = v_E;
-    warm_    = new_warm;
-    ++steps_taken_;
+    accept_step(s_E, v_E, new_warm);
     return report_;
   }
 } // namespace beamslider

@@ -36,6 +36,7 @@
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
 #include "contact/checkpoint.h"
+#include "contact/explicit_modal_form.h"
 #include "contact/local_directions.h"
 #include "contact/prox_solver.h"
 #include "contact/slider_contact.h"
@@ -43,6 +44,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -152,7 +154,17 @@ namespace beamslider
 
     // One step of size time_step(). Throws SliderAtSupport, ContactSolverFailure,
     // NonFiniteState or UnphysicalState; on a throw the state is unchanged.
+    // For a beam that hands out its explicit modal form (the explicit
+    // reduced model on a mode table, BeamSystem::explicit_modal_form) the
+    // step is taken by step_explicit_modal (explicit_modal_step.cc): the same
+    // scheme on the form's data, equal to the general step to round-off.
     const StepReport &step();
+
+    // Whether step() takes the explicit modal step; use_general_step() makes
+    // it step through the BeamSystem interface instead (the comparison of
+    // the two in the tests, and a way to tell them apart in a study).
+    bool takes_explicit_modal_step() const { return modal_ != nullptr; }
+    void use_general_step() { modal_ = nullptr; }
 
     double time_step() const { return dt_; }
     const BeamSystem &beam() const { return beam_; }
@@ -174,6 +186,29 @@ namespace beamslider
     const std::array<Eigen::Vector2d, n_slider_corners> &corner_impulses() const { return warm_; }
 
   private:
+    const StepReport &step_explicit_modal();
+    // What both steps share: the support check of the corners at the
+    // detection configuration; the check of one corner's gap (throws for a
+    // corner through the beam or a non-finite gap; true if it is closed);
+    // the reports of a failed contact solve and of a non-finite end state;
+    // and taking the end state over.
+    void check_corners_on_beam(double t_B, const Eigen::Vector3d &s_M, const SliderFrame &frame) const;
+    bool corner_is_closed(const unsigned int k, const double gap, const double thickness, const double t_B) const
+    {
+      // The common cases inline; the rare ones (through the beam, NaN) throw.
+      if (gap > 0. && gap <= std::numeric_limits<double>::max())
+        return false;
+      if (gap >= thickness - slider_.window_height)
+        return true;
+      return corner_is_closed_or_throw(k, gap, thickness, t_B);
+    }
+    bool corner_is_closed_or_throw(unsigned int k, double gap, double thickness, double t_B) const;
+    [[noreturn]] static void throw_solver_failure(double t_B, const std::array<unsigned int, n_slider_corners> &active,
+                                                  unsigned int m, const ProxSolverResult &result);
+    [[noreturn]] void throw_non_finite_end(double t_B) const;
+    void accept_step(const Eigen::Vector3d &s_E, const Eigen::Vector3d &v_E,
+                     const std::array<Eigen::Vector2d, n_slider_corners> &new_warm);
+
     BeamSystem &beam_;
     SliderParameters slider_;
     SliderGeometry geometry_;
@@ -209,5 +244,11 @@ namespace beamslider
     Eigen::Matrix<double, max_local, max_local> S_block_;
     Eigen::Matrix<double, max_local, max_unknowns> SW_;
     Eigen::Matrix<double, max_local, 1> y_;
+    // The explicit modal step's data (null: the general step) and its
+    // K'q_M; the corners' positions in the slider frame, from the centre of
+    // mass, (±B/2, ζR/2 + d).
+    const ExplicitModalForm *modal_ = nullptr;
+    Eigen::VectorXd stretch_q_;
+    std::array<Eigen::Vector2d, n_slider_corners> corner_position_;
   };
 } // namespace beamslider

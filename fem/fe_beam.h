@@ -18,7 +18,7 @@
 // component 0 is u (Lagrange of degree p), components 1 and 2 are the nodal
 // values of w and of the slope θ = w' at the vertices. On each cell these four
 // vertex values are the coefficients of the cubic Hermite interpolant, whose
-// shape functions we evaluate ourselves (fem/hermite_shape.h). We chose this
+// shape functions we evaluate ourselves (contact/hermite_shape.h). We chose this
 // over a C⁰ interior-penalty method (step-47) because the Hermite cubic is
 // conforming, has no penalty parameter to tune, carries the slope as a DoF
 // (which the rotational springs and the slider's rotary inertia act on
@@ -32,7 +32,7 @@
 // Units: SI. The DoF vector holds u [m], w [m] and θ [rad].
 #pragma once
 
-#include "fem/hermite_shape.h"
+#include "contact/hermite_shape.h"
 #include "meshes/scene.h"
 
 #include <deal.II/dofs/dof_handler.h>

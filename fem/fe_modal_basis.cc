@@ -1,6 +1,6 @@
 #include "fem/fe_modal_basis.h"
 
-#include "fem/hermite_mode_table.h"
+#include "fem/mode_table_basis.h"
 
 #include <deal.II/base/quadrature_lib.h>
 

@@ -1,6 +1,6 @@
 #include "fem/solid_modal_basis.h"
 
-#include "fem/hermite_mode_table.h"
+#include "fem/mode_table_basis.h"
 #include "fem/solid_point_values.h"
 
 #include <deal.II/base/mpi.h>

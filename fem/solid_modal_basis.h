@@ -3,7 +3,7 @@
 // slope φ_n'(x), taken from the solid as u_z on the mid-surface z = 0
 // averaged over the width (3D; in plane stress its value on z = 0) and
 // ∂u_z/∂x averaged likewise, at the ends of n_intervals equal intervals
-// along x, joined by cubic Hermite polynomials (fem/hermite_mode_table.h);
+// along x, joined by cubic Hermite polynomials (reduced/hermite_mode_table.h);
 // 141 intervals keep the sample points off the element ends of the
 // generated strips, where the C0 field has two slopes.
 // The modes keep the solid's normalisation, ∫ ρ |φ|² dV = 1 (axial and

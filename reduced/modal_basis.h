@@ -10,9 +10,12 @@
 #include <Eigen/Dense>
 
 #include <functional>
+#include <memory>
 
 namespace beamslider
 {
+  struct HermiteModeTable;
+
   struct ModalBasis
   {
     double length = 0;            // L [m]
@@ -27,6 +30,11 @@ namespace beamslider
     // forming the φ_n (a mode table sums the interval's nodal values of q
     // first: 4N products instead of 10N). Empty: evaluate and two dot products.
     std::function<void(double x, const Eigen::VectorXd &q, double &w, double &dw)> displacement;
+    // Optional: the table behind evaluate and displacement when the modes
+    // are cubic Hermite polynomials per interval (reduced/hermite_mode_table.h;
+    // every basis built from an FE beam or a solid). The explicit reduced
+    // model's contact step reads it directly (RomBeamSystem::explicit_modal_form).
+    std::shared_ptr<const HermiteModeTable> table;
 
     unsigned int n_modes() const { return omega.size(); }
   };

@@ -1,7 +1,10 @@
 // The reduced-order model as a BeamSystem, see rom_beam_system.h.
 #include "reduced/rom_beam_system.h"
 
+#include "reduced/hermite_mode_table.h"
+
 #include <sstream>
+#include <typeinfo>
 #include <stdexcept>
 
 namespace beamslider
@@ -30,7 +33,8 @@ namespace beamslider
       }
     if (basis.gamma.size() != basis.omega.size() || (basis.omega.array() <= 0.).any())
       throw std::invalid_argument("reduced model: ω must be positive and γ must have one entry per mode");
-    omega_max_ = basis.omega.maxCoeff();
+    omega_max_     = basis.omega.maxCoeff();
+    omega_squared_ = basis.omega.array().square();
     for (Eigen::VectorXd *v : {&h_, &scratch_, &last_u_B_, &last_damping_force_, &last_excitation_force_, &u_mean_,
                                &energy_force_, &energy_scratch_})
       v->resize(rom_.n_modes());
@@ -73,6 +77,27 @@ namespace beamslider
         throw std::out_of_range(m.str());
       }
     rom_.basis().displacement(x, q, w, dw);
+  }
+
+  const ExplicitModalForm *RomBeamSystem::explicit_modal_form() const
+  {
+    const ModalBasis &basis = rom_.basis();
+    if (typeid(*this) != typeid(RomBeamSystem) || !basis.table || basis.table->n_modes != rom_.n_modes() || (rom_.is_nonlinear() && !rom_.has_membrane_form()))
+      return nullptr;
+    // Filled on each call from this object's own members, so that a copied
+    // or moved model never hands out pointers into another one.
+    form_.n_modes            = rom_.n_modes();
+    form_.omega_squared      = omega_squared_.data();
+    form_.damping            = rom_.damping_coefficients().data();
+    form_.gamma              = basis.gamma.data();
+    form_.stretch            = basis.stretch.data();
+    form_.membrane_stiffness = rom_.is_nonlinear() ? basis.membrane_stiffness : 0.;
+    form_.excitation         = excitation_;
+    form_.thickness          = &thickness_;
+    form_.n_intervals        = basis.table->n_intervals;
+    form_.vertices           = basis.table->vertices.data();
+    form_.coefficients       = basis.table->coefficients.data();
+    return &form_;
   }
 
   double RomBeamSystem::max_stable_time_step() const { return 2. / omega_max_; }

@@ -18,6 +18,7 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
+#include "contact/explicit_modal_form.h"
 #include "meshes/scene.h"
 #include "reduced/rom_operator.h"
 
@@ -50,6 +51,16 @@ namespace beamslider
     // A model derived from this one with another iteration matrix (the
     // implicit ROM) must say false here too.
     bool iteration_matrix_is_identity() const override { return true; }
+
+    // The data of the explicit step (contact/explicit_modal_form.h), for a
+    // basis on a Hermite mode table (every basis from an FE beam or a solid)
+    // and the membrane form of the cubic force or none; null otherwise (an
+    // analytic basis, STEP or ICE cubic terms), and the stepper then steps
+    // this model through the BeamSystem interface. Valid while this model
+    // lives. Null as well for any class derived from this one (the implicit
+    // ROM, a test's model with a failing solver): a derived model may step
+    // otherwise, and the form would bypass its overrides.
+    const ExplicitModalForm *explicit_modal_form() const override;
 
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
 
@@ -85,5 +96,7 @@ namespace beamslider
     Eigen::VectorXd h_, scratch_; // smooth force and K'q of free_velocity
     mutable Eigen::VectorXd u_mean_; // (u_B + u_E)/2 of step_work
     mutable Eigen::VectorXd energy_force_, energy_scratch_; // f(q) and K'q of energy()
+    Eigen::VectorXd omega_squared_;       // ω_n², for the explicit modal form
+    mutable ExplicitModalForm form_;      // filled by explicit_modal_form()
   };
 } // namespace beamslider

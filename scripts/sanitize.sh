@@ -15,6 +15,8 @@
 #       solver, Moreau stepper, ROM, harmonic balance): most of our own
 #       arithmetic and indexing, cheap to build
 #   test_scene, test_simulation_cases    the scene reader and the cases
+#   test_rom_explicit_modal_step         the ROM's own Moreau step against
+#       the general one
 #   test_parallel_for                    threads, and exceptions across them
 #   test_cli_*                           the built program end to end
 #       (hardening, checkpoint/resume, fuzzing of scene files and --set),
@@ -33,7 +35,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-targets=(beamslider test_scene test_simulation_cases test_parallel_for)
+targets=(beamslider test_scene test_simulation_cases test_parallel_for test_rom_explicit_modal_step)
 for source in tests/test_contact_*.cc tests/test_reduced_*.cc tests/test_cli_*.cc; do
   name=$(basename "$source" .cc)
   [ "$name" = test_reduced_backbone_timing ] || targets+=("$name")

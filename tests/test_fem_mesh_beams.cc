@@ -8,8 +8,8 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
-#include "fem/hermite_mode_table.h"
-#include "fem/hermite_shape.h"
+#include "fem/mode_table_basis.h"
+#include "contact/hermite_shape.h"
 #include "meshes/scene.h"
 #include "verification/studies/coefficient_methods.h"
 

@@ -1,7 +1,8 @@
 // Cubic Hermite shape functions on a cell of length h at ξ ∈ [0, 1], for
 // the nodal values (w0, θ0, w1, θ1), with their derivatives in x. Inline
 // and free of deal.II: the reduced model evaluates them at the slider's
-// corners every time step (fem/hermite_mode_table.h), the FE beam in its
+// corners every time step (reduced/hermite_mode_table.h, and the explicit
+// modal step, contact/explicit_modal_step.cc), the FE beam in its
 // assembly (fem/fe_beam.h).
 #pragma once
 

@@ -1,8 +1,7 @@
-#include "fem/hermite_mode_table.h"
+// Hermite mode table, see hermite_mode_table.h.
+#include "reduced/hermite_mode_table.h"
 
-#include "fem/hermite_shape.h"
-
-#include <deal.II/base/quadrature_lib.h>
+#include "contact/hermite_shape.h"
 
 #include <algorithm>
 #include <array>
@@ -51,33 +50,5 @@ namespace beamslider
     hermite_shape(xi, h, inv_h, N, dN);
     w  = N[0] * nodal[0] + N[1] * nodal[1] + N[2] * nodal[2] + N[3] * nodal[3];
     dw = dN[0] * nodal[0] + dN[1] * nodal[1] + dN[2] * nodal[2] + dN[3] * nodal[3];
-  }
-
-  ModalBasis modal_basis_from_table(std::shared_ptr<const HermiteModeTable> table, const Eigen::VectorXd &omega,
-                                    const Eigen::VectorXd &gamma, const double membrane_stiffness)
-  {
-    ModalBasis basis;
-    basis.length             = table->length;
-    basis.omega              = omega;
-    basis.gamma              = gamma;
-    basis.membrane_stiffness = membrane_stiffness;
-    const unsigned int n_modes = table->n_modes;
-    basis.stretch              = Eigen::MatrixXd::Zero(n_modes, n_modes);
-    const dealii::QGauss<1> gauss(3);
-    Eigen::VectorXd phi, dphi;
-    for (unsigned int e = 0; e < table->n_intervals; ++e)
-      {
-        const double x_0 = table->vertices[e], h = table->vertices[e + 1] - x_0;
-        for (unsigned int q = 0; q < gauss.size(); ++q)
-          {
-            table->evaluate(x_0 + gauss.point(q)[0] * h, phi, dphi);
-            basis.stretch += gauss.weight(q) * h * dphi * dphi.transpose();
-          }
-      }
-    basis.evaluate = [table](double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) { table->evaluate(x, phi, dphi); };
-    basis.displacement = [table](double x, const Eigen::VectorXd &q, double &w, double &dw) {
-      table->displacement(x, q, w, dw);
-    };
-    return basis;
   }
 } // namespace beamslider
