@@ -280,8 +280,26 @@ namespace beamslider
         return result;
       }
 
-    // Step sizes from the diagonal of G. A zero diagonal would mean a contact
-    // that no mass can move; refuse it rather than divide by zero.
+    // A zero diagonal would mean a contact that no mass can move; refuse it
+    // rather than divide by zero.
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!(G(i, i) > 0.))
+        {
+          std::ostringstream m;
+          m << "prox solver: Delassus diagonal G(" << i << "," << i << ") = " << G(i, i)
+            << " is not positive (a contact direction no mass can move)";
+          throw std::runtime_error(m.str());
+        }
+
+    if (settings_.guess_modes && solve_by_modes(G, c, mu, P))
+      {
+        result.converged = true;
+        result.by_modes  = true;
+        return result;
+      }
+
+    // Step sizes from the diagonal of G, for the sweeps only (a mode guess
+    // that holds needs none: most solves end above).
     if (r_.size() < n)
       {
         r_.resize(n);
@@ -290,23 +308,7 @@ namespace beamslider
       }
     auto r = r_.head(n), P_old = P_old_.head(n), dxi = dxi_.head(n);
     for (Eigen::Index i = 0; i < n; ++i)
-      {
-        if (!(G(i, i) > 0.))
-          {
-            std::ostringstream m;
-            m << "prox solver: Delassus diagonal G(" << i << "," << i << ") = " << G(i, i)
-              << " is not positive (a contact direction no mass can move)";
-            throw std::runtime_error(m.str());
-          }
-        r[i] = settings_.relaxation / G(i, i);
-      }
-
-    if (settings_.guess_modes && solve_by_modes(G, c, mu, P))
-      {
-        result.converged = true;
-        result.by_modes  = true;
-        return result;
-      }
+      r[i] = settings_.relaxation / G(i, i);
 
     // Convergence is judged on the relative velocities, G ΔP over one sweep,
     // not on P itself: with redundant contacts (two corners on a rigid beam
