@@ -120,7 +120,6 @@ namespace beamslider
     unsigned int m = 0;
     for (unsigned int k = 0; k < n_slider_corners; ++k)
       {
-        const double zeta = corner_zeta(k);
         const double px = corner_position_[k][0], pz = corner_position_[k][1];
         const double r_x = frame.cos_beta * px - frame.sin_beta * pz;
         const double r_z = frame.sin_beta * px + frame.cos_beta * pz;
@@ -139,23 +138,16 @@ namespace beamslider
         const double dw = dN[0] * nodal[0] + dN[1] * nodal[1] + dN[2] * nodal[2] + dN[3] * nodal[3];
 
         const double thickness = f.thickness->at(x_P);
-        const double secant    = std::sqrt(1. + dw * dw); // 1/cos α
-        const double c         = 1. / secant;
-        const double dz        = z_P - frame.base_displacement - w;
-        const double gap       = zeta * c * dz - 0.5 * thickness * secant;
-        if (!corner_is_closed(k, gap, thickness, t_B))
+        const CornerContactGeometry g(corner_zeta(k), z_P, frame.base_displacement, w, dw, thickness);
+        if (!corner_is_closed(k, g.gap(), thickness, t_B))
           continue;
 
-        const double n_x = -zeta * c * dw, n_z = zeta * c;
-        const double t_x = -zeta * c, t_z = -zeta * c * dw;
-        const double dg_dw  = -zeta * c;
-        const double dg_ddw = -dw * c * (zeta * dz * c * c + 0.5 * thickness);
-        const double dt_dw  = -t_z;
-        const double dt_ddw = zeta * 0.5 * thickness * t_x;
+        const double n_x = g.normal_x(), n_z = g.normal_z();
+        const double t_x = g.tangent_x(), t_z = g.tangent_z();
         // W_b's columns: Σ_a coefficient_a (∂g/∂w N_a + ∂g/∂w' N'_a) per mode.
         const Eigen::Map<const Eigen::Vector4d> N_(N.data()), dN_(dN.data());
-        const Eigen::Vector4d shape_normal  = dg_dw * N_ + dg_ddw * dN_;
-        const Eigen::Vector4d shape_tangent = dt_dw * N_ + dt_ddw * dN_;
+        const Eigen::Vector4d shape_normal  = g.dgap_dw() * N_ + g.dgap_ddw() * dN_;
+        const Eigen::Vector4d shape_tangent = g.dtangent_dw() * N_ + g.dtangent_ddw() * dN_;
         double *W_normal = W_b_.col(2 * m).data(), *W_tangent = W_b_.col(2 * m + 1).data();
         for (unsigned int i = 0; i < n; ++i)
           {
@@ -196,21 +188,9 @@ namespace beamslider
             gamma_B_[j] = dot(W_j, u, n) + W_s_.col(j).dot(v_B) + imposed_[j];
             c_free[j]   = dot(W_j, u_free, n) + W_s_.col(j).dot(v_free) + imposed_[j];
           }
-        auto c = c_.head(m2);
-        auto P = P_.head(m2);
-        c      = c_free.head(m2);
-        for (unsigned int i = 0; i < m; ++i)
-          {
-            c[2 * i] += law_.restitution * gamma_B_[2 * i];
-            P.segment<2>(2 * i) = warm_[active[i]];
-            mu_[i]              = law_.friction_coefficient;
-          }
-
-        const ProxSolverResult result = solver_.solve(G, c, mu_.head(m), P);
-        report_.iterations            = result.iterations;
-        report_.residual              = result.residual;
-        if (!result.converged)
-          throw_solver_failure(t_B, active, m, result);
+        c_.head(m2) = c_free.head(m2);
+        solve_contact_impulses(t_B, active, m, gamma_B_);
+        const auto P = P_.head(m2);
 
         // u_E = u_free + W_b P, v_E = v_free + M_s⁻¹ W_s P.
         for (unsigned int j = 0; j < m2; ++j)

@@ -287,6 +287,26 @@ namespace beamslider
     return false;
   }
 
+  void MoreauStepper::solve_contact_impulses(const double t_B, const std::array<unsigned int, n_slider_corners> &active,
+                                             const unsigned int m,
+                                             const Eigen::Matrix<double, max_unknowns, 1> &gamma_B)
+  {
+    const Eigen::Index m2 = 2 * m;
+    auto c                = c_.head(m2);
+    auto P                = P_.head(m2);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        c[2 * i] += law_.restitution * gamma_B[2 * i];
+        P.segment<2>(2 * i) = warm_[active[i]];
+        mu_[i]              = law_.friction_coefficient;
+      }
+    const ProxSolverResult result = solver_.solve(G_.topLeftCorner(m2, m2), c, mu_.head(m), P);
+    report_.iterations            = result.iterations;
+    report_.residual              = result.residual;
+    if (!result.converged)
+      throw_solver_failure(t_B, active, m, result);
+  }
+
   void MoreauStepper::throw_solver_failure(const double t_B, const std::array<unsigned int, n_slider_corners> &active,
                                            const unsigned int m, const ProxSolverResult &result)
   {
@@ -441,18 +461,7 @@ namespace beamslider
 
         relative(state_.u, v_B, gamma);
         relative(u_free_, v_free, c);
-        for (unsigned int i = 0; i < m; ++i)
-          {
-            c[2 * i] += law_.restitution * gamma[2 * i];
-            P.segment<2>(2 * i) = warm_[active[i]];
-            mu_[i]              = law_.friction_coefficient;
-          }
-
-        const ProxSolverResult result = solver_.solve(G, c, mu_.head(m), P);
-        report_.iterations            = result.iterations;
-        report_.residual              = result.residual;
-        if (!result.converged)
-          throw_solver_failure(t_B, active, m, result);
+        solve_contact_impulses(t_B, active, m, gamma_B_);
 
         // u_E = u_free + S⁻¹ W_b P.
         if (local)

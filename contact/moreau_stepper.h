@@ -190,8 +190,8 @@ namespace beamslider
     // What both steps share: the support check of the corners at the
     // detection configuration; the check of one corner's gap (throws for a
     // corner through the beam or a non-finite gap; true if it is closed);
-    // the reports of a failed contact solve and of a non-finite end state;
-    // and taking the end state over.
+    // the contact solve; the reports of a failed contact solve and of a
+    // non-finite end state; and taking the end state over.
     void check_corners_on_beam(double t_B, const Eigen::Vector3d &s_M, const SliderFrame &frame) const;
     bool corner_is_closed(const unsigned int k, const double gap, const double thickness, const double t_B) const
     {
@@ -203,6 +203,11 @@ namespace beamslider
       return corner_is_closed_or_throw(k, gap, thickness, t_B);
     }
     bool corner_is_closed_or_throw(unsigned int k, double gap, double thickness, double t_B) const;
+    // The contact impulses P_ from the free relative velocities in c_ and
+    // the Delassus matrix G_ of the m active corners: c_ += ε γ_B, the warm
+    // start, the prox solver; a solve that fails throws.
+    void solve_contact_impulses(double t_B, const std::array<unsigned int, n_slider_corners> &active, unsigned int m,
+                                const Eigen::Matrix<double, 2 * n_slider_corners, 1> &gamma_B);
     [[noreturn]] static void throw_solver_failure(double t_B, const std::array<unsigned int, n_slider_corners> &active,
                                                   unsigned int m, const ProxSolverResult &result);
     [[noreturn]] void throw_non_finite_end(double t_B) const;

@@ -105,27 +105,18 @@ namespace beamslider
     // element, so its slope does not enter the force directions.
     const double thickness = beam.thickness_at(x_P);
 
-    const double secant = std::sqrt(1. + dw * dw); // 1/cos α
-    const double c      = 1. / secant;               // cos α
-    const double dz     = z_P - f.base_displacement - w;
-
+    const CornerContactGeometry g(zeta, z_P, f.base_displacement, w, dw, thickness);
     out.x         = x_P;
     out.thickness = thickness;
-    out.gap       = zeta * c * dz - 0.5 * thickness * secant;
+    out.gap       = g.gap();
     out.n_local   = 0;
     if (detail == CornerDetail::for_step && out.gap > 0.)
       return;
 
-    // n = ζ c (−w', 1), t = ζ c (−1, −w')
-    const double n_x = -zeta * c * dw, n_z = zeta * c;
-    const double t_x = -zeta * c, t_z = -zeta * c * dw;
-
-    // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
-    // Beam part of W_T = −t·v_B with v_B = (−ζ(h/2) ẇ', ẇ) (+ the base part).
-    const double dg_dw     = -zeta * c;
-    const double dg_ddw    = -dw * c * (zeta * dz * c * c + 0.5 * thickness);
-    const double dt_dw     = -t_z;
-    const double dt_ddw    = zeta * 0.5 * thickness * t_x;
+    const double n_x = g.normal_x(), n_z = g.normal_z();
+    const double t_x = g.tangent_x(), t_z = g.tangent_z();
+    const double dg_dw = g.dgap_dw(), dg_ddw = g.dgap_ddw();
+    const double dt_dw = g.dtangent_dw(), dt_ddw = g.dtangent_ddw();
     if (local)
       {
         out.n_local = local_point_.n;

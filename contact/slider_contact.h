@@ -33,6 +33,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <cmath>
 
 namespace beamslider
 {
@@ -68,6 +69,41 @@ namespace beamslider
   // Corner k: sx = −1, +1, −1, +1 and ζ = +1, +1, −1, −1.
   inline double corner_side(const unsigned int k) { return (k % 2 == 0) ? -1. : 1.; }
   inline double corner_zeta(const unsigned int k) { return (k < 2) ? 1. : -1.; }
+
+  // A corner's gap and the derivatives that make its force directions, from
+  // the beam's w, w' and thickness h under it (the formulas of this file's
+  // header): the one place both Moreau steps take them from (the general
+  // one through SliderGeometry::evaluate, the explicit modal one in
+  // explicit_modal_step.cc). gap() first: an open corner needs nothing else.
+  struct CornerContactGeometry
+  {
+    double zeta, dw, thickness; // ζ, w' [-], h [m]
+    double secant, c, dz;       // 1/cos α, cos α, z_P − w0 − w [m]
+
+    // z_P: the corner's height, w0: the base's displacement [m].
+    CornerContactGeometry(const double zeta_, const double z_P, const double w0, const double w, const double dw_,
+                          const double thickness_)
+      : zeta(zeta_)
+      , dw(dw_)
+      , thickness(thickness_)
+      , secant(std::sqrt(1. + dw_ * dw_))
+      , c(1. / secant)
+      , dz(z_P - w0 - w)
+    {}
+    double gap() const { return zeta * c * dz - 0.5 * thickness * secant; } // g_N [m]
+
+    // n = ζ c (−w', 1), t = ζ c (−1, −w')
+    double normal_x() const { return -zeta * c * dw; }
+    double normal_z() const { return zeta * c; }
+    double tangent_x() const { return -zeta * c; }
+    double tangent_z() const { return -zeta * c * dw; }
+    // Beam part of W_N = ∂g_N/∂q: ∂g/∂w = −ζ c, ∂g/∂w' = −w' c (ζ Δz c² + h/2).
+    double dgap_dw() const { return -zeta * c; }
+    double dgap_ddw() const { return -dw * c * (zeta * dz * c * c + 0.5 * thickness); }
+    // Beam part of W_T = −t·v_B with v_B = (−ζ(h/2) ẇ', ẇ) (+ the base part).
+    double dtangent_dw() const { return -tangent_z(); }
+    double dtangent_ddw() const { return zeta * 0.5 * thickness * tangent_x(); }
+  };
 
   // Everything the Moreau step needs about one corner at one configuration.
   struct CornerKinematics
