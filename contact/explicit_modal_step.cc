@@ -13,7 +13,7 @@
 // - the works of the contact impulses from γ_E = c_free + G P (the 2m ≤ 8
 //   relative velocities at the end from the Delassus matrix the solver had)
 //   instead of another pass over the beam's coordinates;
-// - every pass written as a loop over the N modes, no calls.
+// - every pass over the N modes an inline loop or Eigen expression, no calls.
 //
 // So its results equal the general step's to round-off, not to the bit
 // (tests/test_reduced_rom_contact_beam.cc runs both for the first dozens
@@ -210,8 +210,7 @@ namespace beamslider
         report_.work_base_contact = -P.dot(imposed_.head(m2));
       }
 
-    // The end state, checked before it replaces the old one (a NaN or an
-    // infinity anywhere makes the sum non-finite).
+    // The end state, checked before it replaces the old one.
     q_next_ = q_M_ + half_dt * u_E_;
     const Eigen::Vector3d s_E = s_M + half_dt * v_E;
     if (!q_next_.allFinite() || !u_E_.allFinite() || !s_E.allFinite() || !v_E.allFinite())
