@@ -28,15 +28,6 @@ namespace beamslider
 {
   namespace
   {
-    // The interval of the table holding x ∈ [0, L] (the caller has checked
-    // the range): the last left end at or before x.
-    unsigned int table_interval(const ExplicitModalForm &f, const double x)
-    {
-      const double *end = f.vertices + f.n_intervals + 1;
-      const long e      = std::upper_bound(f.vertices, end, x) - f.vertices - 1;
-      return static_cast<unsigned int>(std::clamp<long>(e, 0, f.n_intervals - 1));
-    }
-
     // Σ a_i b_i in four running sums (one AVX2 register; short chains
     // instead of one of N dependent additions).
     double dot(const double *a, const double *b, const unsigned int n)
@@ -125,7 +116,7 @@ namespace beamslider
         const double r_z = frame.sin_beta * px + frame.cos_beta * pz;
         const double x_P = s_M[0] + r_x, z_P = s_M[1] + r_z;
 
-        const unsigned int e = table_interval(f, x_P);
+        const unsigned int e = interval_holding(f.vertices, f.n_intervals, x_P);
         const double h_e = f.vertices[e + 1] - f.vertices[e], inv_h = 1. / h_e;
         std::array<double, 4> N, dN;
         hermite_shape((x_P - f.vertices[e]) * inv_h, h_e, inv_h, N, dN);

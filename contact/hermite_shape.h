@@ -6,6 +6,7 @@
 // assembly (fem/fe_beam.h).
 #pragma once
 
+#include <algorithm>
 #include <array>
 
 namespace beamslider
@@ -34,5 +35,15 @@ namespace beamslider
   {
     hermite_shape(xi, h, N, dN);
     ddN = {{(-6 + 12 * xi) / (h * h), (-4 + 6 * xi) / h, (6 - 12 * xi) / (h * h), (-2 + 6 * xi) / h}};
+  }
+
+  // The interval of a line of n_intervals intervals with ends vertices[0..n]
+  // (increasing) that holds x ∈ [vertices[0], vertices[n]]: the last left end
+  // at or before x, the last interval for x at the right end. The caller
+  // checks the range (reduced/hermite_mode_table.h, the explicit modal step).
+  inline unsigned int interval_holding(const double *vertices, const unsigned int n_intervals, const double x)
+  {
+    const long e = std::upper_bound(vertices, vertices + n_intervals + 1, x) - vertices - 1;
+    return static_cast<unsigned int>(std::clamp<long>(e, 0, static_cast<long>(n_intervals) - 1));
   }
 } // namespace beamslider

@@ -15,9 +15,7 @@ namespace beamslider
     if (!(x >= 0 && x <= length))
       throw std::out_of_range("modal basis evaluated at x = " + std::to_string(x) + " m, outside [0, " +
                               std::to_string(length) + "] m");
-    // The interval whose left end is the last one at or before x.
-    const auto it = std::upper_bound(vertices.begin(), vertices.end(), x);
-    return std::min<unsigned int>(std::max<long>(it - vertices.begin() - 1, 0), n_intervals - 1);
+    return interval_holding(vertices.data(), n_intervals, x);
   }
 
   void HermiteModeTable::evaluate(const double x, Eigen::VectorXd &phi, Eigen::VectorXd &dphi) const
