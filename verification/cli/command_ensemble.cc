@@ -25,6 +25,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/member_runs.h"
+#include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
@@ -35,7 +36,9 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 namespace beamslider
 {
@@ -125,6 +128,11 @@ namespace beamslider
       }
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
+    // The FE proves itself: the same ensemble at Δt/2 beside it, then
+    // halved until two steps agree (convergence_check.h).
+    const bool checked = options.model == "fe" && !options.unchecked;
+    const std::vector<RefinementPlan> plans = {
+      step_refinements("the FE in Δt", settings.model, checked ? reference_max_halvings : 0)};
     const std::vector<MemberGroup> groups = {{"", scene, settings.model, settings.n_members, settings.perturbation}};
     MemberRunsSettings runs;
     runs.study           = "ensemble";
@@ -132,9 +140,14 @@ namespace beamslider
     runs.progress_prefix = "  ";
     if (mpi.rank() != 0)
       {
-        run_member_groups(groups, runs); // computes what rank 0 hands out
+        // Computes what rank 0 hands out: the ensemble, then the check's rounds.
+        if (checked)
+          work_on_check_rounds(scene, plans, {0}, settings.n_members, settings.perturbation, runs);
+        else
+          run_member_groups(groups, runs);
         return 0;
       }
+    const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
 
     const std::string dir =
       prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
@@ -145,12 +158,34 @@ namespace beamslider
               << settings.n_members << " members of " << settings.model.label() << ", "
               << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
               << ", into " << dir << std::endl;
+    if (checked)
+      console() << "  checked in Δt: the same members at Δt/2 beside them, halved further (at most "
+                << reference_max_halvings << " times) until two steps end alike" << std::endl;
 
     const auto start = std::chrono::steady_clock::now();
     std::vector<EnsembleMember> members;
+    std::optional<ConvergenceCheck> check;
     try
       {
-        members = run_member_groups(groups, runs).front();
+        if (!checked)
+          members = run_member_groups(groups, runs).front();
+        else
+          {
+            // The first round (the pair) into member_runs.csv, later rounds
+            // into member_runs.check-r.csv.
+            const MemberGroupRunner later = check_rounds_runner(runs);
+            bool first                    = true;
+            const MemberGroupRunner runner = [&](const std::vector<MemberGroup> &g) {
+              if (!std::exchange(first, false))
+                return later(g);
+              return run_member_groups(g, runs);
+            };
+            check = run_convergence_checks(scene, plans, {}, settings.n_members, settings.perturbation, runner,
+                                           round_sharer(&mpi))
+                      .front();
+            members        = check->reference().members;
+            settings.model = check->reference().model;
+          }
       }
     catch (const MemberRunsStopped &e)
       {
@@ -220,6 +255,20 @@ namespace beamslider
     std::map<std::string, unsigned int> classes;
     for (const auto &m : members)
       ++classes[to_string(m.analysis.outcome)];
+    if (check)
+      {
+        md << "\n## Convergence in Δt\n\nThe same members at the FE's Δt and refined (Δt/2, …, at most "
+           << reference_max_halvings
+           << " halvings); a step is accepted when its half ends within the ensembles' own spread (W₁ of the final "
+              "positions, 90 % interval against the spread) or closer than "
+           << convergence_resolution << " L. The statistics above are those of "
+           << (check->converged ? "the accepted step" : "the finest step tried, NOT CONVERGED")
+           << " (convergence.csv).\n\n"
+           << describe_convergence({*check});
+        write_convergence_csv(dir, {*check});
+      }
+    else if (options.model == "fe")
+      md << "\n**Unchecked** (`--unchecked`): whether the FE has converged in Δt at this step was not tested.\n";
     md << "\nOutcome classes:";
     for (const auto &[name, count] : classes)
       md << " " << name << " × " << count << ";";
@@ -258,6 +307,11 @@ namespace beamslider
     run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
                                                 " (" + settings.model.label() + ")"});
     console() << md.str();
+    if (check && !check->converged)
+      {
+        std::cerr << "ensemble: " << check->verdict() << " (" << dir << "/summary.md)" << std::endl;
+        return not_converged_exit_code;
+      }
     return 0;
   }
 } // namespace beamslider

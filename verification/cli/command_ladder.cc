@@ -81,9 +81,10 @@ namespace beamslider
     settings.progress_prefix   = "ladder: ";
     if (mpi.rank() != 0)
       {
-        work_on_ladder(scene, rungs, settings);
+        work_on_ladder(scene, rungs, reference, settings);
         return 0;
       }
+    const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
     const std::string dir = prepare_output_dir(common, scene, "ladder");
 
     std::ostringstream md;
@@ -91,9 +92,10 @@ namespace beamslider
        << "Written by `beamslider ladder`" << (options.diagnostics ? " --diagnostics" : options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
        << settings.members << " members over " << settings.end_time << " s. The same study as report section 5.1–5.2 "
        << "(doc/verification.md §6).\n\n";
+    bool proven = true;
     try
       {
-        md << run_and_describe_ladder(dir, scene, rungs, reference, settings);
+        md << run_and_describe_ladder(dir, scene, rungs, reference, settings, &proven);
       }
     catch (const MemberRunsStopped &e)
       {
@@ -103,6 +105,12 @@ namespace beamslider
     write_text_file(dir + "/summary.md", md.str());
     console() << "wrote " << dir << "/summary.md, ladder.csv, ladder_members.csv, ladder_steps.csv, ladder.png"
               << std::endl;
+    if (!proven)
+      {
+        std::cerr << "ladder: a convergence check did not converge; the results are written and marked (" << dir
+                  << "/summary.md, convergence.csv)" << std::endl;
+        return not_converged_exit_code;
+      }
     return 0;
   }
 } // namespace beamslider

@@ -179,6 +179,9 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
     ->check(finite_in(0., 1e-3));
   ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
   ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
+  ensemble_cmd->add_flag("--unchecked", ensemble.unchecked,
+                         "fe: skip the convergence check (the same ensemble at Δt/2, Δt/4, … until it ends where Δt "
+                         "ends); the result says it is unchecked");
 
   MapOptions map;
   auto *map_cmd = app.add_subcommand("map", "the adaptation over a grid of parameters, one run or ensemble per cell "

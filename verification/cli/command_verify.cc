@@ -124,22 +124,13 @@ namespace beamslider
         if (ladder_section)
           {
             const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
-            work_on_ladder(scene, ladder.rungs, ladder.settings);
+            work_on_ladder(scene, ladder.rungs, ladder.reference, ladder.settings);
           }
         return 0;
       }
-    // If rank 0 ends before the ladder (an error, a stop), the other ranks,
-    // waiting for its members, are told to stop.
-    struct ReleaseWorkers
-    {
-      const MpiSession &mpi;
-      bool waiting;
-      ~ReleaseWorkers()
-      {
-        if (waiting && mpi.n_distributions() == 0)
-          release_workers(mpi);
-      }
-    } release{mpi, ladder_section};
+    // If rank 0 ends before the ladder or its checks' rounds (an error, a
+    // stop), the other ranks, waiting for its members, are told to stop.
+    const WorkerRelease release(mpi, ladder_section);
     Report report;
     if (part)
       report.dir = common.output_dir; // the whole verify's folder, which holds its run record

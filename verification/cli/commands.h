@@ -12,6 +12,12 @@
 
 namespace beamslider
 {
+  // The exit code of a command that finished and wrote its results, but
+  // whose reference did not prove its convergence (convergence_check.h): the
+  // results are marked so; a script can tell it from success (0) and from
+  // failure (1).
+  constexpr int not_converged_exit_code = 3;
+
   struct CommonOptions
   {
     std::string scene_file;             // path to a .prm scene
@@ -142,6 +148,9 @@ namespace beamslider
     // rom: the cubic coefficients (ModelSetting::coefficients); empty: the
     // scene's default (analytic on a beam, ICE from the solid on a solid)
     std::string coefficients;
+    // fe: skip the convergence check in Δt (convergence_check.h); the
+    // result then says that it is unchecked.
+    bool unchecked = false;
   };
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
 

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -130,16 +131,17 @@ namespace beamslider
     std::size_t n_kept = 0;
     if (settings.n_kept)
       *settings.n_kept = 0;
-    const std::string path = settings.dir.empty() ? std::string() : settings.dir + "/member_runs.csv";
+    const std::string stem = settings.dir + "/" + settings.file.substr(0, settings.file.rfind(".csv"));
+    const std::string path = settings.dir.empty() ? std::string() : stem + ".csv";
     if (!path.empty())
       {
         std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
         const std::vector<std::string> previous = records(read_text_file_if_present(path));
         if (!previous.empty() && previous.front() != "# " + key)
           {
-            std::filesystem::rename(path, settings.dir + "/member_runs.other.csv");
+            std::filesystem::rename(path, stem + ".other.csv");
             console() << settings.progress_prefix << path
-                      << " holds the members of other settings: not reused, moved to member_runs.other.csv; "
+                      << " holds the members of other settings: not reused, moved to " << stem << ".other.csv; "
                          "every member is run afresh"
                       << std::endl;
           }
@@ -227,5 +229,32 @@ namespace beamslider
   MemberGroupRunner member_runs_runner(const MemberRunsSettings &settings)
   {
     return [settings](const std::vector<MemberGroup> &groups) { return run_member_groups(groups, settings); };
+  }
+
+  MemberGroupRunner check_rounds_runner(const MemberRunsSettings &settings)
+  {
+    auto round = std::make_shared<unsigned int>(0);
+    return [settings, round](const std::vector<MemberGroup> &groups) {
+      MemberRunsSettings s = settings;
+      s.file               = "member_runs.check-" + std::to_string(++*round) + ".csv";
+      return run_member_groups(groups, s);
+    };
+  }
+
+  std::function<unsigned long(unsigned long)> round_sharer(const MpiSession *mpi)
+  {
+    if (!mpi)
+      return {};
+    return [mpi](const unsigned long mask) { return share_round(*mpi, mask); };
+  }
+
+  void work_on_check_rounds(const Scene &scene, const std::vector<RefinementPlan> &plans,
+                            std::vector<std::size_t> n_done, const unsigned int n_members,
+                            const double perturbation, const MemberRunsSettings &settings)
+  {
+    work_on_convergence_checks(
+      scene, plans, std::move(n_done), n_members, perturbation,
+      [&settings](const std::vector<MemberGroup> &groups) { run_member_groups(groups, settings); },
+      round_sharer(settings.mpi));
   }
 } // namespace beamslider

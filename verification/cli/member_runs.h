@@ -20,6 +20,7 @@
 #pragma once
 
 #include "verification/cli/mpi_cells.h"
+#include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 
 #include <stdexcept>
@@ -31,6 +32,10 @@ namespace beamslider
   struct MemberRunsSettings
   {
     std::string dir;                 // folder of member_runs.csv ("": nothing persisted)
+    // The record's name in `dir`: a convergence check's later rounds keep
+    // their members apart (member_runs.check-1.csv, …), so that each round
+    // resumes on its own.
+    std::string file = "member_runs.csv";
     std::string study;               // "ladder", "ensemble": part of the key
     const MpiSession *mpi = nullptr; // nullptr: this process alone
     unsigned int n_threads = 0;      // without MPI: threads (0: one per core)
@@ -55,6 +60,19 @@ namespace beamslider
 
   // run_member_groups as a runner for run_ensemble / run_ladder (rank 0).
   MemberGroupRunner member_runs_runner(const MemberRunsSettings &settings);
+
+  // The later rounds of convergence checks (convergence_check.h) as a
+  // runner on rank 0: round r (1, 2, …) persists its members into
+  // member_runs.check-r.csv, so that a stopped check resumes round by round.
+  MemberGroupRunner check_rounds_runner(const MemberRunsSettings &settings);
+  // The broadcast of the rounds' mask from rank 0 (share_round), for
+  // run_convergence_checks; without MPI the mask itself.
+  std::function<unsigned long(unsigned long)> round_sharer(const MpiSession *mpi);
+  // The other ranks' part of those rounds (work_on_convergence_checks with
+  // run_member_groups).
+  void work_on_check_rounds(const Scene &scene, const std::vector<RefinementPlan> &plans,
+                            std::vector<std::size_t> n_done, unsigned int n_members, double perturbation,
+                            const MemberRunsSettings &settings);
 
   // The key line of member_runs.csv for these groups (without the "# ").
   std::string member_runs_key(const std::vector<MemberGroup> &groups, const std::string &study);

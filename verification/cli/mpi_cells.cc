@@ -210,4 +210,33 @@ namespace beamslider
         mpi, {}, [](std::size_t) { return std::string(); }, [](std::size_t, const std::string &, unsigned int) {},
         [] { return true; });
   }
+
+  unsigned long share_round(const MpiSession &mpi, unsigned long mask)
+  {
+    if (mpi.size() > 1)
+      {
+        static_assert(sizeof(unsigned long) == 8, "the mask travels as 64 bits");
+        check(MPI_Bcast(&mask, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+      }
+    if (mpi.rank() == 0 && mask == 0)
+      mpi.rounds_ended_ = true;
+    return mask;
+  }
+
+  WorkerRelease::~WorkerRelease()
+  {
+    if (!waiting_ || mpi_.size() == 1 || mpi_.rank() != 0)
+      return;
+    try
+      {
+        if (mpi_.n_distributions() == 0)
+          release_workers(mpi_);
+        if (!mpi_.rounds_ended())
+          share_round(mpi_, 0);
+      }
+    catch (...)
+      {
+        // Leaving anyway: an MPI failure here has nobody left to tell.
+      }
+  }
 } // namespace beamslider

@@ -4,12 +4,14 @@
 #include "verification/cli/commands.h"
 #include "verification/cli/member_runs.h"
 #include "verification/report/report.h"
+#include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -136,7 +138,7 @@ namespace beamslider
   }
 
   std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
-                                    const std::size_t reference, const LadderRunSettings &settings)
+                                    const std::size_t reference, const LadderRunSettings &settings, bool *proven)
   {
     const auto start             = clock::now();
     const unsigned int n_members = settings.members;
@@ -168,13 +170,26 @@ namespace beamslider
     runs.progress_prefix = settings.progress_prefix;
     std::size_t n_kept   = 0;
     runs.n_kept          = &n_kept;
+    const LadderChecks checks = ladder_checks(scene, rungs, reference);
+    for (const RefinementPlan &plan : checks.plans)
+      console() << settings.progress_prefix << "check: " << plan.name << ", " << plan.models[0].label() << " against "
+                << plan.models[1].label() << " beside the rungs"
+                << (plan.models.size() > 2 ? ", refined further until they agree (at most " +
+                                               std::to_string(plan.models.size() - 1) + " refinements)"
+                                           : std::string())
+                << std::endl;
     const LadderStudy study = run_ladder(
       scene, rungs, reference, end_time, n_members,
       [&](const LadderRung &rung, const std::size_t i) {
         console() << settings.progress_prefix << "rung " << i << ": " << rung.name << " (" << rung.model.label()
                   << ")" << std::endl;
       },
-      member_runs_runner(runs));
+      member_runs_runner(runs), check_rounds_runner(runs), round_sharer(runs.mpi));
+    write_convergence_csv(dir, study.checks);
+    if (proven)
+      *proven = study.proven();
+    for (const ConvergenceCheck &c : study.checks)
+      (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
 
     // The tables in ladder order, from the members (read back or computed).
     LadderFiles files(dir);
@@ -213,6 +228,17 @@ namespace beamslider
            << " | " << classes(r.outcome_classes) << (r.n_failed ? ", " + std::to_string(r.n_failed) + " failed" : "")
            << " |\n";
       }
+
+    md << "\n**The reference proves itself.** Every check runs the same "
+          "ensemble with the model refined (the FE reference in Δt, halved at most "
+       << reference_max_halvings << " times; the ROM that claims to be converged in N against ⌈1.5 N⌉ modes) and "
+          "accepts it when the refinement ends where it ends: within the ensembles' spread (the test above), or "
+          "closer than "
+       << fixed(convergence_resolution, 3) << " L, a difference no verdict here rests on. "
+       << (study.proven() ? "Every check converged."
+                          : "**Not every check converged: the verdicts below rest on an unproven model.**")
+       << "\n\n"
+       << describe_convergence(study.checks) << "\n";
 
     // The verdict in words: the published ROM, the converged ROM, and the
     // midpoint-rule FE in Δt where the ladder has it.
@@ -306,8 +332,9 @@ namespace beamslider
         md << ". Every other step is within the ensembles' own scatter.\n";
       }
     md << "\n![The ladder: final positions per rung, and speed against accuracy](ladder.png)\n\n"
-       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv; member_runs.csv holds every member as it finished "
-          "(the same command started again into this folder runs only the members not there yet). "
+       << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv, convergence.csv; member_runs.csv holds every "
+          "member as it finished, member_runs.check-1.csv, … the members of the checks' later rounds (the same "
+          "command started again into this folder runs only the members not there yet). "
        << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(n_member_runs) +
                       " members were read back from there, computed by an earlier, stopped run of this same build "
                       "and settings. "
@@ -317,12 +344,18 @@ namespace beamslider
     return md.str();
   }
 
-  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings)
+  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
+                      const LadderRunSettings &settings)
   {
     MemberRunsSettings runs;
     runs.study = "ladder";
     runs.mpi   = MpiSession::active();
-    run_member_groups(ladder_groups(scene, rungs, settings.end_time, settings.members), runs);
+    const LadderChecks checks   = ladder_checks(scene, rungs, reference);
+    run_member_groups(ladder_groups_with_checks(scene, rungs, checks, settings.end_time, settings.members), runs);
+    Scene s                  = scene;
+    s.time_stepping.end_time = settings.end_time;
+    work_on_check_rounds(s, checks.plans, std::vector<std::size_t>(checks.plans.size(), 2), settings.members,
+                         EnsembleSettings().perturbation, runs);
   }
 
   LadderScope ladder_scope(const bool full, const bool diagnostics)

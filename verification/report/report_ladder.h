@@ -55,16 +55,20 @@ namespace beamslider
 
   // Runs `rungs` (reference: rungs[reference]) as ensembles into `dir`
   // (member_runs.csv, LadderFiles and ladder.png) and returns the Markdown:
-  // the headline table of every rung against the reference, the verdict on
+  // the headline table of every rung against the reference, the evidence of
+// the reference's convergence checks (convergence.csv), the verdict on
   // the end state, and what each step of the ladder contributes (computed
   // from this run). Throws MemberRunsStopped (member_runs.h) when stopped
   // before every member is done. Under MPI this is rank 0's part.
+  // `proven` (optional) is set to whether every convergence check converged.
   std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
-                                      std::size_t reference, const LadderRunSettings &settings);
+                                      std::size_t reference, const LadderRunSettings &settings,
+                                      bool *proven = nullptr);
 
   // The other MPI ranks' part of run_and_describe_ladder (same arguments
   // but the folder): compute the members rank 0 hands out.
-  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings);
+  void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
+                      const LadderRunSettings &settings);
 
   // Which rungs: the quick ladder unless `full`; its diagnostic rungs too
   // when `diagnostics` (which needs `full`).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <numeric>
 #include <sstream>
 
@@ -63,7 +64,7 @@ namespace beamslider
     rungs.push_back({"ROM N=" + std::to_string(N0) + " (published)", "the scene's reduced model and time step",
                      rom(N0, dt)});
     rungs.push_back({"ROM N=10", "more modes (Δt/2: the explicit step's limit 2/ω_N)", rom(10, dt / 2)});
-    rungs.push_back({"ROM N=20", "converged in N (Δt/4)", rom(20, dt / 4)});
+    rungs.push_back({"ROM N=20", "converged in N (Δt/4)", rom(20, dt / 4), false, true});
     // The FE reference is the scene's own FE model: its FE time step and
     // Moreau–Jean θ. On mueller2023 that is θ = 0.51 at 1e-5 s, which ends
     // where the midpoint rule (θ = ½) ends once converged in Δt (1.25e-6 and
@@ -131,20 +132,87 @@ namespace beamslider
     return groups;
   }
 
+  LadderChecks ladder_checks(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference)
+  {
+    LadderChecks checks;
+    checks.plans.push_back(step_refinements("the reference in Δt", rungs.at(reference).model, reference_max_halvings));
+    checks.rung.push_back(reference);
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      if (rungs[i].converged_in_n && rungs[i].model.family == "rom")
+        {
+          checks.plans.push_back(mode_refinements(rungs[i].name + " in N", scene, rungs[i].model));
+          checks.rung.push_back(i);
+        }
+    return checks;
+  }
+
+  bool LadderStudy::proven() const
+  {
+    return std::all_of(checks.begin(), checks.end(), [](const ConvergenceCheck &c) { return c.converged; });
+  }
+
+  std::vector<MemberGroup> ladder_groups_with_checks(const Scene &scene, const std::vector<LadderRung> &rungs,
+                                                     const LadderChecks &checks, const double end_time,
+                                                     const unsigned int members)
+  {
+    std::vector<MemberGroup> groups = ladder_groups(scene, rungs, end_time, members);
+    for (std::size_t c = 0; c < checks.plans.size(); ++c)
+      for (const MemberGroup &g : trial_groups(groups.front().scene, checks.plans[c], 1, 1,
+                                               rung_members(rungs[checks.rung[c]], members),
+                                               EnsembleSettings().perturbation))
+        groups.push_back(g);
+    return groups;
+  }
+
   LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
                          const double end_time, const unsigned int members,
                          const std::function<void(const LadderRung &, std::size_t)> &before_rung,
-                         const MemberGroupRunner &runner)
+                         const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
+                         const std::function<unsigned long(unsigned long)> &share)
   {
     if (reference >= rungs.size())
       throw std::invalid_argument("run_ladder: reference rung " + std::to_string(reference) + " of " +
                                   std::to_string(rungs.size()));
-    const std::vector<MemberGroup> groups = ladder_groups(scene, rungs, end_time, members);
+    const LadderChecks checks             = ladder_checks(scene, rungs, reference);
+    const std::vector<MemberGroup> groups = ladder_groups_with_checks(scene, rungs, checks, end_time, members);
     if (before_rung)
       for (std::size_t i = 0; i < rungs.size(); ++i)
         before_rung(rungs[i], i);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(groups) : run_groups_in_threads(groups);
-    return assemble_ladder(scene, rungs, reference, end_time, std::move(results));
+
+    // Each check's trials so far: its rung's ensemble and the refinement
+    // that ran beside it; then the rounds that decide it.
+    std::vector<std::vector<std::vector<EnsembleMember>>> done(checks.plans.size());
+    for (std::size_t c = 0; c < checks.plans.size(); ++c)
+      done[c] = {results[checks.rung[c]], std::move(results[rungs.size() + c])};
+    results.resize(rungs.size());
+    std::vector<ConvergenceCheck> checked =
+      run_convergence_checks(groups.front().scene, checks.plans, std::move(done), members,
+                             EnsembleSettings().perturbation, rounds ? rounds : runner, share);
+    return assemble_ladder(scene, rungs, reference, end_time, std::move(results), std::move(checked), checks);
+  }
+
+  LadderStudy assemble_ladder(const Scene &scene, std::vector<LadderRung> rungs, const std::size_t reference,
+                              const double end_time, std::vector<std::vector<EnsembleMember>> members,
+                              std::vector<ConvergenceCheck> checks, const LadderChecks &plans)
+  {
+    for (std::size_t c = 0; c < checks.size() && c < plans.rung.size(); ++c)
+      if (plans.rung[c] == reference && !checks[c].trials.empty())
+        {
+          // The reference is the step its check accepted (or the finest).
+          const ConvergenceTrial &accepted = checks[c].reference();
+          LadderRung &ref                  = rungs[reference];
+          if (accepted.model.time_step != ref.model.time_step)
+            {
+              ref.model = accepted.model;
+              ref.name  = fe_step_name(scene.time_stepping.time_step, ref.model.time_step, ref.model.theta);
+              ref.change += " (at the step its convergence check needed)";
+              members[reference] = accepted.members;
+            }
+        }
+    LadderStudy study = assemble_ladder(scene, rungs, reference, end_time, std::move(members));
+    study.checks      = std::move(checks);
+    return study;
   }
 
   LadderStudy assemble_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "meshes/scene.h"
+#include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/fe_rom_study.h"
 
@@ -38,6 +39,9 @@ namespace beamslider
     // runs half the ladder's members, at least 2: its W₁ interval is wider,
     // and the ladder with diagnostics costs less (rung_members).
     bool diagnostic = false;
+    // The rung claims to be converged in N: the ladder checks it against
+    // ⌈1.5 N⌉ modes (convergence_check.h).
+    bool converged_in_n = false;
   };
 
   // The number of bending modes the scene's FE mesh has: its free w and θ
@@ -75,7 +79,23 @@ namespace beamslider
     // What each step of the ladder contributes: rung i−1 against rung i on
     // the final position (steps[0] is empty, n_a = 0).
     std::vector<SampleComparison> steps;
+    // The evidence for the reference (in Δt) and for the rung converged in
+    // N, in the order of ladder_checks. The reference rung holds the
+    // reference check's accepted trial (or, not converged, its finest).
+    std::vector<ConvergenceCheck> checks;
+    // Whether every check converged.
+    bool proven() const;
   };
+
+  // The checks of a ladder: the reference rung in Δt (Δt, Δt/2, … up to
+  // reference_max_halvings), the rung converged in N (if any) against
+  // ⌈1.5 N⌉ modes. Each plan's trial 0 is that rung's own ensemble.
+  struct LadderChecks
+  {
+    std::vector<RefinementPlan> plans;
+    std::vector<std::size_t> rung; // the rung each plan checks
+  };
+  LadderChecks ladder_checks(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference);
 
   // Which rungs a ladder has.
   //   quick        the published ROM (N = scene's, Δt = scene's), the
@@ -110,19 +130,32 @@ namespace beamslider
   // is group i, `members` members over [0, end_time], ε = 1e-9.
   std::vector<MemberGroup> ladder_groups(const Scene &scene, const std::vector<LadderRung> &rungs, double end_time,
                                          unsigned int members);
+  // The ladder's groups and, after them, trial 1 of every check (the
+  // refinement runs beside the rungs, in the same list).
+  std::vector<MemberGroup> ladder_groups_with_checks(const Scene &scene, const std::vector<LadderRung> &rungs,
+                                                     const LadderChecks &checks, double end_time, unsigned int members);
 
   // Runs every rung as an ensemble of `members` members over [0, end_time]:
-  // all members of all rungs as one list, longest first (in threads of this
-  // process, or by `runner`: spread over MPI ranks and persisted, see
-  // verification/cli/member_runs.h). `before_rung` (optional) announces
-  // each rung, in ladder order, before the runs start.
+  // all members of all rungs, with the first refinement of every check, as
+  // one list, longest first (in threads of this process, or by `runner`:
+  // spread over MPI ranks and persisted, see verification/cli/member_runs.h);
+  // then the checks' further rounds, if any, by `rounds` (default: as the
+  // first list) in step with the other ranks by `share`
+  // (run_convergence_checks). `before_rung` (optional) announces each rung,
+  // in ladder order, before the runs start.
   LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
                          double end_time, unsigned int members,
                          const std::function<void(const LadderRung &, std::size_t)> &before_rung = {},
-                         const MemberGroupRunner &runner = {});
+                         const MemberGroupRunner &runner = {}, const MemberGroupRunner &rounds = {},
+                         const std::function<unsigned long(unsigned long)> &share = {});
 
   // The study from the members of every rung (members[i]: rung i's):
   // statistics, comparisons with the reference and between neighbours.
   LadderStudy assemble_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
                               double end_time, std::vector<std::vector<EnsembleMember>> members);
+  // The same after the checks: the reference rung takes the reference
+  // check's accepted trial (model, name and members) before the comparisons.
+  LadderStudy assemble_ladder(const Scene &scene, std::vector<LadderRung> rungs, std::size_t reference,
+                              double end_time, std::vector<std::vector<EnsembleMember>> members,
+                              std::vector<ConvergenceCheck> checks, const LadderChecks &plans);
 } // namespace beamslider

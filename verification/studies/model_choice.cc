@@ -77,7 +77,7 @@ namespace beamslider
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
       << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
       << ' ' << s.time_stepping.fe_time_step << ' ' << s.time_stepping.fe_theta
-      << " ladder-3"; // the ladder's rungs: version 3 has the scene's FE model as the reference
+      << " ladder-4"; // the ladder's rungs: version 4's reference is the FE step its convergence check accepted
     // A mesh beam by its elements and sections (not its file name alone:
     // the file may change), and the point bodies.
     for (const BeamMeshCell &cell : s.beam.mesh_cells)
@@ -153,6 +153,8 @@ namespace beamslider
                      number(r.w1_high)});
         cache.close();
         log << "model choice from the error ladder just computed (cached in " << path << "):\n";
+        for (const ConvergenceCheck &c : study.checks)
+          log << "  " << c.verdict() << "\n";
       }
 
     const LadderChoiceRow &chosen = cheapest_within(rows, tolerance);

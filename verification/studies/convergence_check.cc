@@ -1,0 +1,244 @@
+// The reference's convergence check, see convergence_check.h.
+#include "verification/studies/convergence_check.h"
+
+#include "contact/beam_system.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  namespace
+  {
+    std::string fixed(const double x, const int digits)
+    {
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(digits) << x;
+      return s.str();
+    }
+
+    std::string w1(const SampleComparison &c)
+    {
+      return fixed(c.wasserstein, 4) + " [" + fixed(c.interval_low, 4) + ", " + fixed(c.interval_high, 4) + "]";
+    }
+
+    // What the parameter of a trial is, in words: "Δt = 1e-05 s", "N = 30".
+    std::string setting_text(const std::string &parameter, const ModelSetting &m)
+    {
+      std::ostringstream s;
+      if (parameter == "N")
+        s << "N = " << m.n_modes << " (Δt = " << m.time_step << " s)";
+      else
+        s << "Δt = " << m.time_step << " s";
+      return s.str();
+    }
+
+    // The trials each undecided check runs next: up to trial 1 at once (the
+    // pair is the least that decides anything), then one at a time.
+    std::pair<std::size_t, std::size_t> next_trials(const RefinementPlan &plan, const std::size_t n_done)
+    {
+      const std::size_t last = std::min(std::max<std::size_t>(n_done, 1), plan.models.size() - 1);
+      return {n_done, last};
+    }
+  } // namespace
+
+  RefinementPlan step_refinements(const std::string &name, const ModelSetting &model, const unsigned int max_halvings)
+  {
+    RefinementPlan plan{name, "Δt", {model}};
+    for (unsigned int k = 0; k < max_halvings; ++k)
+      {
+        ModelSetting finer = plan.models.back();
+        finer.time_step /= 2;
+        plan.models.push_back(finer);
+      }
+    return plan;
+  }
+
+  ModelSetting more_modes(const Scene &scene, const ModelSetting &rom)
+  {
+    if (rom.family != "rom")
+      throw std::invalid_argument("more_modes: '" + rom.label() + "' is not a reduced model");
+    ModelSetting finer = rom;
+    finer.n_modes      = static_cast<unsigned int>(std::ceil(1.5 * rom.n_modes));
+    if (finer.integrator == "explicit")
+      {
+        // The explicit scheme's limit 2/ω_max of the larger basis, read off
+        // the model itself (built at a step it surely takes).
+        ModelSetting probe = finer;
+        probe.time_step    = 1e-12;
+        const double limit = make_beam_model(scene, probe)->max_stable_time_step();
+        while (finer.time_step > limit)
+          finer.time_step /= 2;
+      }
+    return finer;
+  }
+
+  RefinementPlan mode_refinements(const std::string &name, const Scene &scene, const ModelSetting &rom)
+  {
+    return {name, "N", {rom, more_modes(scene, rom)}};
+  }
+
+  bool ends_alike(const SampleComparison &c)
+  {
+    return c.n_a > 0 && c.n_b > 0 && (!c.distinguishable || c.interval_high <= convergence_resolution);
+  }
+
+  const ConvergenceTrial &ConvergenceCheck::reference() const
+  {
+    if (trials.empty())
+      throw std::logic_error("ConvergenceCheck::reference: no trial has run");
+    return converged ? trials[accepted] : trials.back();
+  }
+
+  std::string ConvergenceCheck::verdict() const
+  {
+    std::ostringstream s;
+    if (trials.size() < 2)
+      {
+        s << name << ": not checked (no refinement ran)";
+        return s.str();
+      }
+    if (converged)
+      {
+        const ConvergenceTrial &a = trials[accepted], &b = trials[accepted + 1];
+        s << name << ": converged at " << setting_text(parameter, a.model) << ": it ends at x_C/L = "
+          << fixed(a.final_position.median, 4) << ", " << setting_text(parameter, b.model) << " at "
+          << fixed(b.final_position.median, 4) << "; W₁ " << w1(a.position_to_next) << " against the spread "
+          << fixed(a.position_to_next.spread, 4)
+          << (a.position_to_next.distinguishable ? ", within the resolution " + fixed(convergence_resolution, 3) + " L"
+                                                  : ", indistinguishable at this ensemble size");
+        if (accepted > 0)
+          s << " (the coarser " << setting_text(parameter, trials.front().model) << " was not: W₁ "
+            << w1(trials.front().position_to_next) << ", spread " << fixed(trials.front().position_to_next.spread, 4)
+            << ")";
+        return s.str();
+      }
+    s << name << ": NOT CONVERGED in " << parameter << " down to " << setting_text(parameter, trials.back().model)
+      << ": the end states";
+    for (std::size_t k = 0; k < trials.size(); ++k)
+      s << (k ? ", " : " ") << fixed(trials[k].final_position.median, 4);
+    s << "; W₁ between neighbours";
+    for (std::size_t k = 0; k + 1 < trials.size(); ++k)
+      s << (k ? ", " : " ") << w1(trials[k].position_to_next) << " (spread "
+        << fixed(trials[k].position_to_next.spread, 4) << ")";
+    s << ". The finest is used, unproven";
+    return s.str();
+  }
+
+  ConvergenceCheck judge_convergence(const RefinementPlan &plan, std::vector<std::vector<EnsembleMember>> trial_members)
+  {
+    if (trial_members.size() > plan.models.size())
+      throw std::invalid_argument("judge_convergence: more trials than the plan has models");
+    ConvergenceCheck check;
+    check.name      = plan.name;
+    check.parameter = plan.parameter;
+    std::vector<OutcomeSamples> samples;
+    for (std::size_t k = 0; k < trial_members.size(); ++k)
+      {
+        ConvergenceTrial t;
+        t.model   = plan.models[k];
+        t.members = std::move(trial_members[k]);
+        samples.push_back(outcome_samples(t.members));
+        t.final_position  = statistics("final x_C/L", samples.back().final_position);
+        t.final_amplitude = statistics("final amplitude [h]", samples.back().final_amplitude);
+        for (const EnsembleMember &m : t.members)
+          t.wall_seconds_per_member += m.wall_seconds / t.members.size();
+        check.trials.push_back(std::move(t));
+      }
+    for (std::size_t k = 0; k + 1 < check.trials.size(); ++k)
+      {
+        ConvergenceTrial &t = check.trials[k];
+        if (samples[k].final_position.empty() || samples[k + 1].final_position.empty())
+          continue; // no end state to compare (every member failed): not accepted
+        t.position_to_next  = compare_samples(samples[k].final_position, samples[k + 1].final_position);
+        t.amplitude_to_next = compare_samples(samples[k].final_amplitude, samples[k + 1].final_amplitude);
+        if (ends_alike(t.position_to_next) && !check.converged)
+          {
+            check.converged = true;
+            check.accepted  = k;
+          }
+      }
+    check.decided = check.converged || (!check.trials.empty() && check.trials.size() == plan.models.size());
+    return check;
+  }
+
+  std::vector<MemberGroup> trial_groups(const Scene &scene, const RefinementPlan &plan, const std::size_t first,
+                                        const std::size_t last, const unsigned int n_members, const double perturbation)
+  {
+    std::vector<MemberGroup> groups;
+    for (std::size_t k = first; k <= last && k < plan.models.size(); ++k)
+      groups.push_back({plan.name + ": " + plan.models[k].label(), scene, plan.models[k], n_members, perturbation});
+    return groups;
+  }
+
+  std::vector<ConvergenceCheck>
+  run_convergence_checks(const Scene &scene, const std::vector<RefinementPlan> &plans,
+                         std::vector<std::vector<std::vector<EnsembleMember>>> done, const unsigned int n_members,
+                         const double perturbation, const MemberGroupRunner &runner,
+                         const std::function<unsigned long(unsigned long)> &share)
+  {
+    if (plans.size() > 8 * sizeof(unsigned long))
+      throw std::invalid_argument("run_convergence_checks: too many checks for one mask");
+    done.resize(plans.size());
+    std::vector<ConvergenceCheck> checks(plans.size());
+    while (true)
+      {
+        unsigned long mask = 0;
+        for (std::size_t i = 0; i < plans.size(); ++i)
+          {
+            checks[i] = judge_convergence(plans[i], done[i]);
+            if (!checks[i].decided)
+              mask |= 1ul << i;
+          }
+        if (share)
+          share(mask);
+        if (mask == 0)
+          return checks;
+        // One round: the next trials of every undecided check, as one list.
+        std::vector<MemberGroup> groups;
+        std::vector<std::pair<std::size_t, std::size_t>> owner; // group → (check, trial)
+        for (std::size_t i = 0; i < plans.size(); ++i)
+          if (mask & (1ul << i))
+            {
+              const auto [first, last] = next_trials(plans[i], done[i].size());
+              std::size_t k = first;
+              for (const MemberGroup &g : trial_groups(scene, plans[i], first, last, n_members, perturbation))
+                {
+                  owner.emplace_back(i, k++);
+                  groups.push_back(g);
+                }
+            }
+        std::vector<std::vector<EnsembleMember>> results = runner ? runner(groups) : run_groups_in_threads(groups);
+        for (std::size_t g = 0; g < groups.size(); ++g)
+          done[owner[g].first].push_back(std::move(results[g]));
+      }
+  }
+
+  void work_on_convergence_checks(const Scene &scene, const std::vector<RefinementPlan> &plans,
+                                  std::vector<std::size_t> n_done, const unsigned int n_members,
+                                  const double perturbation,
+                                  const std::function<void(const std::vector<MemberGroup> &)> &work,
+                                  const std::function<unsigned long(unsigned long)> &share)
+  {
+    n_done.resize(plans.size());
+    while (true)
+      {
+        const unsigned long mask = share(0);
+        if (mask == 0)
+          return;
+        std::vector<MemberGroup> groups;
+        for (std::size_t i = 0; i < plans.size(); ++i)
+          if (mask & (1ul << i))
+            {
+              const auto [first, last] = next_trials(plans[i], n_done[i]);
+              for (const MemberGroup &g : trial_groups(scene, plans[i], first, last, n_members, perturbation))
+                groups.push_back(g);
+              n_done[i] = last + 1;
+            }
+        work(groups);
+      }
+  }
+} // namespace beamslider
