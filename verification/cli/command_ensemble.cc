@@ -129,22 +129,20 @@ namespace beamslider
     settings.n_members       = options.members;
     settings.perturbation    = options.perturbation;
     // The FE proves itself: the same ensemble at Δt/2 beside it, then
-    // halved until two steps agree (convergence_check.h).
+    // halved until two steps agree (convergence_check.h). Unchecked, the
+    // same code runs the model alone (a plan without refinements), so that
+    // every rank takes part in the same rounds either way.
     const bool checked = options.model == "fe" && !options.unchecked;
-    const std::vector<RefinementPlan> plans = {
-      step_refinements("the FE in Δt", settings.model, checked ? reference_max_halvings : 0)};
-    const std::vector<MemberGroup> groups = {{"", scene, settings.model, settings.n_members, settings.perturbation}};
+    const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", settings.model,
+                                                                checked ? reference_max_halvings : 0)};
     MemberRunsSettings runs;
     runs.study           = "ensemble";
     runs.mpi             = &mpi;
     runs.progress_prefix = "  ";
     if (mpi.rank() != 0)
       {
-        // Computes what rank 0 hands out: the ensemble, then the check's rounds.
-        if (checked)
-          work_on_check_rounds(scene, plans, {0}, settings.n_members, settings.perturbation, runs);
-        else
-          run_member_groups(groups, runs);
+        // Computes what rank 0 hands out: the ensemble and the check's rounds.
+        work_on_check_rounds(scene, plans, {0}, settings.n_members, settings.perturbation, runs);
         return 0;
       }
     const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
@@ -167,25 +165,23 @@ namespace beamslider
     std::optional<ConvergenceCheck> check;
     try
       {
-        if (!checked)
-          members = run_member_groups(groups, runs).front();
-        else
-          {
-            // The first round (the pair) into member_runs.csv, later rounds
-            // into member_runs.check-r.csv.
-            const MemberGroupRunner later = check_rounds_runner(runs);
-            bool first                    = true;
-            const MemberGroupRunner runner = [&](const std::vector<MemberGroup> &g) {
-              if (!std::exchange(first, false))
-                return later(g);
-              return run_member_groups(g, runs);
-            };
-            check = run_convergence_checks(scene, plans, {}, settings.n_members, settings.perturbation, runner,
-                                           round_sharer(&mpi))
-                      .front();
-            members        = check->reference().members;
-            settings.model = check->reference().model;
-          }
+        // The first round (the model, and its refinement when checked) into
+        // member_runs.csv, later rounds into member_runs.check-r.csv.
+        const MemberGroupRunner later = check_rounds_runner(runs);
+        bool first                    = true;
+        const MemberGroupRunner runner = [&](const std::vector<MemberGroup> &g) {
+          if (!std::exchange(first, false))
+            return later(g);
+          return run_member_groups(g, runs);
+        };
+        const ConvergenceCheck result =
+          run_convergence_checks(scene, plans, {}, settings.n_members, settings.perturbation, runner,
+                                 round_sharer(&mpi))
+            .front();
+        members        = result.reference().members;
+        settings.model = result.reference().model;
+        if (checked)
+          check = result;
       }
     catch (const MemberRunsStopped &e)
       {

@@ -19,6 +19,7 @@
 #include "verification/cli/member_runs.h"
 #include "verification/cli/mpi_cells.h"
 #include "verification/report/report_ladder.h"
+#include "verification/report/report_region.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 
@@ -123,6 +124,9 @@ namespace beamslider
         // The other ranks' share of the report: the ladder's members.
         if (ladder_section)
           {
+            // In the order rank 0 runs them: the region (full report), the ladder.
+            if (options.full)
+              work_on_region_members(scene, RegionRunSettings());
             const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
             work_on_ladder(scene, ladder.rungs, ladder.reference, ladder.settings);
           }
@@ -130,7 +134,7 @@ namespace beamslider
       }
     // If rank 0 ends before the ladder or its checks' rounds (an error, a
     // stop), the other ranks, waiting for its members, are told to stop.
-    const WorkerRelease release(mpi, ladder_section);
+    const WorkerRelease release(mpi, ladder_section ? (options.full ? 2 : 1) : 0);
     Report report;
     if (part)
       report.dir = common.output_dir; // the whole verify's folder, which holds its run record

@@ -236,7 +236,8 @@ namespace beamslider
     auto round = std::make_shared<unsigned int>(0);
     return [settings, round](const std::vector<MemberGroup> &groups) {
       MemberRunsSettings s = settings;
-      s.file               = "member_runs.check-" + std::to_string(++*round) + ".csv";
+      // member_runs.csv → member_runs.check-1.csv, …
+      s.file = settings.file.substr(0, settings.file.rfind(".csv")) + ".check-" + std::to_string(++*round) + ".csv";
       return run_member_groups(groups, s);
     };
   }

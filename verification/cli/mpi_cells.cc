@@ -219,20 +219,25 @@ namespace beamslider
         check(MPI_Bcast(&mask, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
       }
     if (mpi.rank() == 0 && mask == 0)
-      mpi.rounds_ended_ = true;
+      {
+        ++mpi.studies_ended_;
+        mpi.distributions_at_study_end_ = mpi.n_distributions_;
+      }
     return mask;
   }
 
   WorkerRelease::~WorkerRelease()
   {
-    if (!waiting_ || mpi_.size() == 1 || mpi_.rank() != 0)
+    if (mpi_.size() == 1 || mpi_.rank() != 0)
       return;
     try
       {
-        if (mpi_.n_distributions() == 0)
-          release_workers(mpi_);
-        if (!mpi_.rounds_ended())
-          share_round(mpi_, 0);
+        while (mpi_.studies_ended_ < n_studies_)
+          {
+            if (mpi_.n_distributions_ == mpi_.distributions_at_study_end_)
+              release_workers(mpi_); // they wait for the study's members
+            share_round(mpi_, 0);    // then for its rounds
+          }
       }
     catch (...)
       {

@@ -41,9 +41,6 @@ namespace beamslider
     // part in: a command with one distribution among other work (verify)
     // releases the other ranks if it ends without reaching it.
     unsigned int n_distributions() const { return n_distributions_; }
-    // Whether rank 0 has told the other ranks that no further round of a
-    // convergence check follows (share_round with 0, or end_rounds).
-    bool rounds_ended() const { return rounds_ended_; }
 
   private:
     struct Impl;
@@ -51,9 +48,13 @@ namespace beamslider
     unsigned int rank_ = 0, size_ = 1;
     bool serialized_   = true;
     mutable unsigned int n_distributions_ = 0;
-    mutable bool rounds_ended_            = false;
+    // Rank 0's count of studies ended (share_round with 0), and of
+    // distributions when the last one ended: a study whose distribution has
+    // not started is one the other ranks wait for (WorkerRelease).
+    mutable unsigned int studies_ended_ = 0, distributions_at_study_end_ = 0;
     friend class DistributionCount;
     friend unsigned long share_round(const MpiSession &, unsigned long);
+    friend class WorkerRelease;
   };
 
   // Computes work(cell) for every cell of `todo`. On rank 0, `done(cell,
@@ -75,27 +76,29 @@ namespace beamslider
   // a distribution that rank 0 did not reach. Nothing without MPI.
   void release_workers(const MpiSession &mpi);
 
-  // The rounds of a convergence check (verification/studies/
-  // convergence_check.h) after a distribution of members: rank 0 says which
-  // checks go on (`mask`, 0: none, no further round) and every rank returns
-  // rank 0's mask. Every rank calls it equally often; without MPI it returns
-  // `mask`.
+  // A study spread over the ranks (an ensemble, a ladder, the region) is
+  // one distribution of members, then the rounds of its convergence checks
+  // (verification/studies/convergence_check.h), each round a distribution:
+  // before every round rank 0 says which checks go on (`mask`; 0: none,
+  // the study ends) and every rank returns rank 0's mask. Every rank calls
+  // it equally often; without MPI it returns `mask`.
   unsigned long share_round(const MpiSession &mpi, unsigned long mask);
 
-  // On rank 0, leaving a command whose other ranks compute its members
-  // (an ensemble, a ladder) by any way, an error or a stop included: releases
-  // them if it never handed out a member, then tells them that no further
-  // round follows, unless it did. Nothing on the other ranks or without MPI.
+  // On rank 0, leaving a command whose other ranks compute the members of
+  // `n_studies` studies, by any way (an error or a stop included): for each
+  // study not ended, releases the other ranks from its distribution if it
+  // never started, then ends its rounds. Nothing on the other ranks or
+  // without MPI.
   class WorkerRelease
   {
   public:
-    explicit WorkerRelease(const MpiSession &mpi, bool workers_wait = true) : mpi_(mpi), waiting_(workers_wait) {}
+    explicit WorkerRelease(const MpiSession &mpi, unsigned int n_studies = 1) : mpi_(mpi), n_studies_(n_studies) {}
     ~WorkerRelease();
     WorkerRelease(const WorkerRelease &) = delete;
     WorkerRelease &operator=(const WorkerRelease &) = delete;
 
   private:
     const MpiSession &mpi_;
-    bool waiting_;
+    unsigned int n_studies_;
   };
 } // namespace beamslider

@@ -52,9 +52,10 @@ namespace beamslider
     return md.str();
   }
 
-  void write_convergence_csv(const std::string &dir, const std::vector<ConvergenceCheck> &checks)
+  void write_convergence_csv(const std::string &dir, const std::vector<ConvergenceCheck> &checks,
+                             const std::string &name)
   {
-    CsvWriter csv(dir + "/convergence.csv",
+    CsvWriter csv(dir + "/" + name,
                   {"check", "parameter", "trial", "model", "time_step_s", "n_modes", "members", "final_x_median",
                    "final_x_min", "final_x_max", "final_amplitude_median", "w1_to_next", "w1_to_next_low",
                    "w1_to_next_high", "spread", "distinguishable", "wall_s_per_member", "status"});

@@ -21,6 +21,7 @@ namespace beamslider
   // The table of every check's trials and one verdict line per check.
   std::string describe_convergence(const std::vector<ConvergenceCheck> &checks);
 
-  // Writes `dir`/convergence.csv.
-  void write_convergence_csv(const std::string &dir, const std::vector<ConvergenceCheck> &checks);
+  // Writes `dir`/`name` (convergence.csv unless named).
+  void write_convergence_csv(const std::string &dir, const std::vector<ConvergenceCheck> &checks,
+                             const std::string &name = "convergence.csv");
 } // namespace beamslider

@@ -180,6 +180,18 @@ namespace beamslider
                          const double perturbation, const MemberGroupRunner &runner,
                          const std::function<unsigned long(unsigned long)> &share)
   {
+    return run_convergence_checks(std::vector<Scene>(plans.size(), scene), plans, std::move(done), n_members,
+                                  perturbation, runner, share);
+  }
+
+  std::vector<ConvergenceCheck>
+  run_convergence_checks(const std::vector<Scene> &scenes, const std::vector<RefinementPlan> &plans,
+                         std::vector<std::vector<std::vector<EnsembleMember>>> done, const unsigned int n_members,
+                         const double perturbation, const MemberGroupRunner &runner,
+                         const std::function<unsigned long(unsigned long)> &share)
+  {
+    if (scenes.size() != plans.size())
+      throw std::invalid_argument("run_convergence_checks: a scene per plan");
     if (plans.size() > 8 * sizeof(unsigned long))
       throw std::invalid_argument("run_convergence_checks: too many checks for one mask");
     done.resize(plans.size());
@@ -205,7 +217,7 @@ namespace beamslider
             {
               const auto [first, last] = next_trials(plans[i], done[i].size());
               std::size_t k = first;
-              for (const MemberGroup &g : trial_groups(scene, plans[i], first, last, n_members, perturbation))
+              for (const MemberGroup &g : trial_groups(scenes[i], plans[i], first, last, n_members, perturbation))
                 {
                   owner.emplace_back(i, k++);
                   groups.push_back(g);
@@ -223,6 +235,16 @@ namespace beamslider
                                   const std::function<void(const std::vector<MemberGroup> &)> &work,
                                   const std::function<unsigned long(unsigned long)> &share)
   {
+    work_on_convergence_checks(std::vector<Scene>(plans.size(), scene), plans, std::move(n_done), n_members,
+                               perturbation, work, share);
+  }
+
+  void work_on_convergence_checks(const std::vector<Scene> &scenes, const std::vector<RefinementPlan> &plans,
+                                  std::vector<std::size_t> n_done, const unsigned int n_members,
+                                  const double perturbation,
+                                  const std::function<void(const std::vector<MemberGroup> &)> &work,
+                                  const std::function<unsigned long(unsigned long)> &share)
+  {
     n_done.resize(plans.size());
     while (true)
       {
@@ -234,7 +256,7 @@ namespace beamslider
           if (mask & (1ul << i))
             {
               const auto [first, last] = next_trials(plans[i], n_done[i]);
-              for (const MemberGroup &g : trial_groups(scene, plans[i], first, last, n_members, perturbation))
+              for (const MemberGroup &g : trial_groups(scenes[i], plans[i], first, last, n_members, perturbation))
                 groups.push_back(g);
               n_done[i] = last + 1;
             }

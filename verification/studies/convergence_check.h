@@ -112,10 +112,22 @@ namespace beamslider
                          double perturbation, const MemberGroupRunner &runner = {},
                          const std::function<unsigned long(unsigned long)> &share = {});
 
+  // The same with a scene per plan (`scenes[i]` for plans[i], end time
+  // set): checks at several operating points in one list.
+  std::vector<ConvergenceCheck>
+  run_convergence_checks(const std::vector<Scene> &scenes, const std::vector<RefinementPlan> &plans,
+                         std::vector<std::vector<std::vector<EnsembleMember>>> done, unsigned int n_members,
+                         double perturbation, const MemberGroupRunner &runner = {},
+                         const std::function<unsigned long(unsigned long)> &share = {});
+
   // The other MPI ranks' part: the same rounds, told by `share` (which
   // returns rank 0's mask), each computing what rank 0 hands out by `work`.
   // `n_done[i]`: how many trials of plan i ran before, as on rank 0.
   void work_on_convergence_checks(const Scene &scene, const std::vector<RefinementPlan> &plans,
+                                  std::vector<std::size_t> n_done, unsigned int n_members, double perturbation,
+                                  const std::function<void(const std::vector<MemberGroup> &)> &work,
+                                  const std::function<unsigned long(unsigned long)> &share);
+  void work_on_convergence_checks(const std::vector<Scene> &scenes, const std::vector<RefinementPlan> &plans,
                                   std::vector<std::size_t> n_done, unsigned int n_members, double perturbation,
                                   const std::function<void(const std::vector<MemberGroup> &)> &work,
                                   const std::function<unsigned long(unsigned long)> &share);

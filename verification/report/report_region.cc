@@ -1,0 +1,256 @@
+// The verdict across the signature-move region as Markdown and CSV, see
+// report_region.h.
+#include "verification/report/report_region.h"
+
+#include "contact/csv_writer.h"
+#include "verification/cli/member_runs.h"
+#include "verification/report/report.h"
+#include "verification/report/report_convergence.h"
+#include "verification/studies/console.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace beamslider
+{
+  namespace
+  {
+    // One model at one point: its members' statistics and its distance to
+    // the point's reference.
+    struct Column
+    {
+      std::string name;
+      ModelSetting model;
+      OutcomeStatistics position, amplitude;
+      SampleComparison to_reference; // n_a = 0 for the reference
+      std::map<std::string, unsigned int> classes;
+    };
+
+    Column column(const std::string &name, const ModelSetting &model, const std::vector<EnsembleMember> &members,
+                  const OutcomeSamples *reference)
+    {
+      Column c{name, model, {}, {}, {}, {}};
+      const OutcomeSamples s = outcome_samples(members);
+      c.position             = statistics("final x_C/L", s.final_position);
+      c.amplitude            = statistics("final amplitude [h]", s.final_amplitude);
+      if (reference && !s.final_position.empty() && !reference->final_position.empty())
+        c.to_reference = compare_samples(s.final_position, reference->final_position);
+      for (const EnsembleMember &m : members)
+        if (m.analysis.valid)
+          ++c.classes[to_string(m.analysis.outcome)];
+      return c;
+    }
+
+    // The columns of one point: the ROM rungs, the N-check's refinement
+    // (N = 30), and the reference last.
+    std::vector<Column> point_columns(const LadderStudy &l)
+    {
+      const LadderRungResult &ref        = l.rungs[l.reference];
+      const OutcomeSamples ref_samples   = outcome_samples(ref.members);
+      std::vector<Column> columns;
+      for (std::size_t i = 0; i < l.rungs.size(); ++i)
+        if (i != l.reference)
+          columns.push_back(column(l.rungs[i].rung.name, l.rungs[i].rung.model, l.rungs[i].members, &ref_samples));
+      for (const ConvergenceCheck &c : l.checks)
+        if (c.parameter == "N" && c.trials.size() > 1)
+          columns.push_back(column("ROM N=" + std::to_string(c.trials[1].model.n_modes), c.trials[1].model,
+                                   c.trials[1].members, &ref_samples));
+      columns.push_back(column(ref.rung.name, ref.rung.model, ref.members, nullptr));
+      return columns;
+    }
+
+    std::string end_state(const Column &c)
+    {
+      if (c.position.n == 0)
+        return "–";
+      return fixed(c.position.median, 3) + " [" + fixed(c.position.min, 3) + ", " + fixed(c.position.max, 3) + "]";
+    }
+
+    std::string w1(const SampleComparison &d)
+    {
+      if (d.n_a == 0 || std::isnan(d.wasserstein))
+        return "–";
+      const int digits = d.interval_high < 0.01 ? 4 : 3;
+      return fixed(d.wasserstein, digits) + " [" + fixed(d.interval_low, digits) + ", " +
+             fixed(d.interval_high, digits) + "]";
+    }
+
+    std::string classes(const std::map<std::string, unsigned int> &counts)
+    {
+      std::string s;
+      for (const auto &[name, n] : counts)
+        s += (s.empty() ? "" : ", ") + std::to_string(n) + "× " + name;
+      return s.empty() ? "–" : s;
+    }
+
+    const ConvergenceCheck *check_in(const LadderStudy &l, const std::string &parameter)
+    {
+      for (const ConvergenceCheck &c : l.checks)
+        if (c.parameter == parameter)
+          return &c;
+      return nullptr;
+    }
+
+    void write_region_csv(const std::string &dir, const RegionStudy &study)
+    {
+      CsvWriter csv(dir + "/region.csv",
+                    {"frequency_hz", "acceleration_m_s2", "model", "time_step_s", "n_modes", "members", "final_x_median",
+                     "final_x_min", "final_x_max", "final_amplitude_median", "w1", "w1_low", "w1_high", "spread",
+                     "distinguishable", "classes", "reference_convergence"});
+      for (std::size_t p = 0; p < study.points.size(); ++p)
+        {
+          const LadderStudy &l         = study.ladders[p];
+          const ConvergenceCheck *in_t = check_in(l, "Δt");
+          for (const Column &c : point_columns(l))
+            {
+              const bool is_reference = c.to_reference.n_a == 0 && c.name == l.rungs[l.reference].rung.name;
+              const bool compared     = c.to_reference.n_a > 0;
+              const auto maybe = [compared](const double x) { return compared ? CsvWriter::cell(x) : std::string(); };
+              std::string status;
+              if (is_reference && in_t)
+                status = in_t->converged ? "converged" : "not converged";
+              csv.row({CsvWriter::cell(study.points[p].frequency_hz), CsvWriter::cell(study.points[p].acceleration_m_s2),
+                       c.name, CsvWriter::cell(c.model.time_step), CsvWriter::cell(c.model.n_modes),
+                       CsvWriter::cell(c.position.n), CsvWriter::cell(c.position.median),
+                       CsvWriter::cell(c.position.min), CsvWriter::cell(c.position.max),
+                       CsvWriter::cell(c.amplitude.median), maybe(c.to_reference.wasserstein),
+                       maybe(c.to_reference.interval_low), maybe(c.to_reference.interval_high),
+                       maybe(c.to_reference.spread), compared ? (c.to_reference.distinguishable ? "1" : "0") : "",
+                       classes(c.classes), status});
+            }
+        }
+      csv.close();
+    }
+
+    // The summary the README quotes: each model's W₁ range over the
+    // points, where it meets the reference, and the reference's evidence.
+    std::string summary(const RegionStudy &study)
+    {
+      std::ostringstream md;
+      const std::size_t n_points = study.points.size();
+      std::map<std::string, std::vector<const Column *>> by_model;
+      std::vector<std::vector<Column>> columns;
+      for (const LadderStudy &l : study.ladders)
+        columns.push_back(point_columns(l));
+      std::vector<std::string> order;
+      for (const auto &points : columns)
+        for (const Column &c : points)
+          if (c.to_reference.n_a > 0)
+            {
+              if (!by_model.count(c.name))
+                order.push_back(c.name);
+              by_model[c.name].push_back(&c);
+            }
+      unsigned int converged = 0;
+      for (const LadderStudy &l : study.ladders)
+        converged += check_in(l, "Δt") && check_in(l, "Δt")->converged;
+      md << "**Across the region** (" << n_points << " points): the FE reference converged in Δt at " << converged
+         << " of " << n_points << " points" << (converged < n_points ? " (**not at every point**: see below)" : "")
+         << ". W₁ to the reference, smallest and largest over the points, and where the model ends alike "
+            "(indistinguishable, or closer than "
+         << fixed(convergence_resolution, 3) << " L):";
+      std::string first_everywhere;
+      for (const std::string &name : order)
+        {
+          const auto &cs = by_model[name];
+          double lo = INFINITY, hi = 0;
+          unsigned int alike = 0;
+          for (const Column *c : cs)
+            {
+              lo = std::min(lo, c->to_reference.wasserstein);
+              hi = std::max(hi, c->to_reference.wasserstein);
+              alike += ends_alike(c->to_reference);
+            }
+          md << " " << name << " " << fixed(lo, 4) << "–" << fixed(hi, 4) << " L (alike at " << alike << " of "
+             << cs.size() << ");";
+          if (first_everywhere.empty() && alike == cs.size() && cs.size() == n_points)
+            first_everywhere = name;
+        }
+      md << (first_everywhere.empty()
+               ? " no reduced model tried meets the reference at every point."
+               : " the first model in this list that meets the reference at every point is " + first_everywhere + ".")
+         << "\n\n";
+      return md.str();
+    }
+  } // namespace
+
+  std::string run_and_describe_region(const std::string &dir, const Scene &scene, const RegionRunSettings &settings)
+  {
+    const auto start                          = std::chrono::steady_clock::now();
+    const std::vector<OperatingPoint> points = signature_move_region(scene);
+    console() << settings.progress_prefix << "the verdict across the signature-move region: " << points.size()
+              << " operating points × (4 models + their checks) × " << settings.members << " members over "
+              << settings.end_time << " s" << std::endl;
+    MemberRunsSettings runs;
+    runs.dir             = dir;
+    runs.file            = "member_runs.region.csv";
+    runs.study           = "region";
+    runs.mpi             = MpiSession::active();
+    runs.progress_prefix = settings.progress_prefix;
+    const RegionStudy study = run_region(scene, points, settings.end_time, settings.members, member_runs_runner(runs),
+                                         check_rounds_runner(runs), round_sharer(runs.mpi));
+    write_region_csv(dir, study);
+    std::vector<ConvergenceCheck> all_checks;
+    for (const LadderStudy &l : study.ladders)
+      all_checks.insert(all_checks.end(), l.checks.begin(), l.checks.end());
+    write_convergence_csv(dir, all_checks, "region_convergence.csv");
+
+    std::ostringstream md;
+    md << "Is the verdict of one operating point the verdict of the region? At " << points.size()
+       << " operating points spread over the signature-move region of the operating-range map (section 6), the "
+          "same models run as ensembles of "
+       << settings.members << " members over " << settings.end_time
+       << " s from the scene's start, each against the FE reference of its own point. Every reference proves "
+          "itself: the same members at half its step run beside it, and the step is halved further (at most "
+       << reference_max_halvings
+       << " times) until two steps end alike; the ROM with N = 20 is checked against N = 30 the same way, and "
+          "its members are the N = 30 column.\n\n"
+       << summary(study)
+       << "| point | FE reference: step, end x_C/L median [min, max] | its half step: end x_C/L, W₁ [90 %] / spread | "
+          "ROM N=5 (published) | ROM N=10 | ROM N=20 | ROM N=30 | classes (reference) |\n|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t p = 0; p < points.size(); ++p)
+      {
+        const LadderStudy &l          = study.ladders[p];
+        const std::vector<Column> cs  = point_columns(l);
+        const Column &ref             = cs.back();
+        const ConvergenceCheck *in_t  = check_in(l, "Δt");
+        md << "| " << points[p].label() << " | Δt = " << ref.model.time_step << " s: " << end_state(ref) << " | ";
+        if (in_t && in_t->trials.size() > 1)
+          {
+            const std::size_t k = in_t->converged ? in_t->accepted : in_t->trials.size() - 2;
+            const ConvergenceTrial &half = in_t->trials[k + 1];
+            md << fixed(half.final_position.median, 3) << ", " << w1(in_t->trials[k].position_to_next) << " / "
+               << fixed(in_t->trials[k].position_to_next.spread, 4)
+               << (in_t->converged ? "" : " **not converged**");
+          }
+        else
+          md << "–";
+        md << " |";
+        for (std::size_t i = 0; i + 1 < cs.size(); ++i)
+          md << " " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference) << " |";
+        for (std::size_t i = cs.size() - 1; i < 4; ++i)
+          md << " – |"; // a model this scene's ladder lacks
+        md << " " << classes(ref.classes) << " |\n";
+      }
+    md << "\nEach ROM cell: end x_C/L median [min, max], W₁ of its final positions to the point's reference [90 % "
+          "interval]. The checks' evidence (every trial, its end state and W₁ to the next):\n\n"
+       << describe_convergence(all_checks)
+       << "\nFiles: region.csv, region_convergence.csv; member_runs.region.csv (and .check-1.csv, …) hold every "
+          "member as it finished. This study took "
+       << seconds_since(start) << ".\n\n";
+    return md.str();
+  }
+
+  void work_on_region_members(const Scene &scene, const RegionRunSettings &settings)
+  {
+    MemberRunsSettings runs;
+    runs.study = "region";
+    runs.mpi   = MpiSession::active();
+    work_on_region(
+      scene, signature_move_region(scene), settings.end_time, settings.members,
+      [&runs](const std::vector<MemberGroup> &groups) { run_member_groups(groups, runs); }, round_sharer(runs.mpi));
+  }
+} // namespace beamslider

@@ -1,0 +1,37 @@
+// The verdict across the signature-move region (verification/studies/
+// region_verdict.h) as the full report's headline: one row per operating
+// point with its converged FE reference and the evidence (the step it
+// needed, its end state and its half step's), and each reduced model's end
+// state and W₁ to that reference. Files written into the report folder:
+//   member_runs.region.csv, member_runs.region.check-1.csv, …
+//                     every finished member (the resume record)
+//   region.csv        one row per point and model: point, model, step,
+//                     members, final x_C/L median/min/max, final amplitude
+//                     median, W₁ to the reference with its interval and the
+//                     spread, distinguishable, outcome classes, and for the
+//                     reference the convergence status
+//   region_convergence.csv  every point's checks (report_convergence.h)
+#pragma once
+
+#include "meshes/scene.h"
+#include "verification/studies/region_verdict.h"
+
+#include <string>
+
+namespace beamslider
+{
+  struct RegionRunSettings
+  {
+    double end_time      = 40.; // [s] simulated per member
+    unsigned int members = 4;
+    std::string progress_prefix;
+  };
+
+  // Runs the region study into `dir` (over the MPI ranks under mpirun, else
+  // the cores) and returns its Markdown: the table, the summary the README
+  // quotes, the checks' evidence. Throws MemberRunsStopped when stopped.
+  std::string run_and_describe_region(const std::string &dir, const Scene &scene, const RegionRunSettings &settings);
+
+  // The other MPI ranks' part.
+  void work_on_region_members(const Scene &scene, const RegionRunSettings &settings);
+} // namespace beamslider

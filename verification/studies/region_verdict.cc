@@ -1,0 +1,149 @@
+// The verdict across the signature-move region, see region_verdict.h.
+#include "verification/studies/region_verdict.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace beamslider
+{
+  namespace
+  {
+    // Every point's scene, rungs, checks and member groups, in the order
+    // rank 0 and the other ranks both build them.
+    struct RegionPlan
+    {
+      std::vector<Scene> scenes; // per point, end time set
+      std::vector<std::vector<LadderRung>> rungs;
+      std::size_t reference = 0;
+      std::vector<LadderChecks> checks;         // per point
+      std::vector<std::size_t> first_group;     // per point: its first group in `groups`
+      std::vector<MemberGroup> groups;          // every point's rungs and first refinements
+      std::vector<RefinementPlan> check_plans;  // every point's checks, in point order
+      std::vector<Scene> check_scenes;          // the scene of each
+    };
+
+    RegionPlan region_plan(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
+                           const unsigned int members)
+    {
+      RegionPlan plan;
+      for (const OperatingPoint &p : points)
+        {
+          Scene s                  = at_point(scene, p);
+          s.time_stepping.end_time = end_time;
+          std::vector<LadderRung> rungs = region_rungs(s, plan.reference);
+          LadderChecks checks           = ladder_checks(s, rungs, plan.reference);
+          for (RefinementPlan &c : checks.plans)
+            c.name = p.label() + ": " + c.name;
+          plan.first_group.push_back(plan.groups.size());
+          for (MemberGroup g : ladder_groups_with_checks(s, rungs, checks, end_time, members))
+            {
+              if (g.name.rfind(p.label(), 0) != 0) // the checks' groups carry the point already
+                g.name = p.label() + ": " + g.name;
+              plan.groups.push_back(g);
+            }
+          for (const RefinementPlan &c : checks.plans)
+            {
+              plan.check_plans.push_back(c);
+              plan.check_scenes.push_back(s);
+            }
+          plan.scenes.push_back(s);
+          plan.rungs.push_back(rungs);
+          plan.checks.push_back(checks);
+        }
+      return plan;
+    }
+  } // namespace
+
+  std::string OperatingPoint::label() const
+  {
+    std::ostringstream s;
+    s << frequency_hz << " Hz / " << acceleration_m_s2 << " m/s²";
+    return s.str();
+  }
+
+  std::vector<OperatingPoint> signature_move_region(const Scene &scene)
+  {
+    // On mueller2023 (124 Hz, 14 m/s²): 116/12, 120/9, 124/14, 124/19,
+    // 129/16, 133/19, each a signature-move cell of the map or between two;
+    // other scenes get the same pattern around their own excitation.
+    const double f = scene.excitation.frequency_hz, a = scene.excitation.acceleration_amplitude;
+    const std::vector<std::pair<double, double>> factors = {{116. / 124, 12. / 14}, {120. / 124, 9. / 14},
+                                                            {1., 1.},               {1., 19. / 14},
+                                                            {129. / 124, 16. / 14}, {133. / 124, 19. / 14}};
+    std::vector<OperatingPoint> points;
+    for (const auto &[kf, ka] : factors)
+      {
+        // Rounded as a user would type them (0.1 Hz, 0.1 m/s²).
+        const auto round1 = [](const double x) { return std::round(10 * x) / 10; };
+        points.push_back({round1(kf * f), round1(ka * a)});
+      }
+    return points;
+  }
+
+  Scene at_point(const Scene &scene, const OperatingPoint &point)
+  {
+    Scene s                                = scene;
+    s.excitation.frequency_hz              = point.frequency_hz;
+    s.excitation.acceleration_amplitude    = point.acceleration_m_s2;
+    validate_scene(s);
+    return s;
+  }
+
+  std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference)
+  {
+    // The quick ladder is exactly these models: published, N = 10, N = 20
+    // (converged in N), the reference.
+    return default_ladder(scene, LadderScope::quick, reference);
+  }
+
+  RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
+                         const unsigned int members, const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
+                         const std::function<unsigned long(unsigned long)> &share)
+  {
+    if (points.empty())
+      throw std::invalid_argument("run_region: no operating point");
+    const RegionPlan plan = region_plan(scene, points, end_time, members);
+    std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
+
+    // Each check's first trials: its rung's members and the refinement
+    // beside them (ladder_groups_with_checks puts it after the rungs).
+    std::vector<std::vector<std::vector<EnsembleMember>>> done;
+    for (std::size_t p = 0; p < points.size(); ++p)
+      {
+        const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
+        for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
+          done.push_back({results[first + plan.checks[p].rung[c]], results[first + n_rungs + c]});
+      }
+    std::vector<ConvergenceCheck> checks =
+      run_convergence_checks(plan.check_scenes, plan.check_plans, std::move(done), members,
+                             EnsembleSettings().perturbation, rounds ? rounds : runner, share);
+
+    RegionStudy study;
+    study.points = points;
+    std::size_t next_check = 0;
+    for (std::size_t p = 0; p < points.size(); ++p)
+      {
+        const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
+        std::vector<std::vector<EnsembleMember>> members_p(results.begin() + first,
+                                                           results.begin() + first + n_rungs);
+        std::vector<ConvergenceCheck> checks_p(checks.begin() + next_check,
+                                               checks.begin() + next_check + plan.checks[p].plans.size());
+        next_check += plan.checks[p].plans.size();
+        study.ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.reference, end_time,
+                                                std::move(members_p), std::move(checks_p), plan.checks[p]));
+      }
+    return study;
+  }
+
+  void work_on_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
+                      const unsigned int members, const std::function<void(const std::vector<MemberGroup> &)> &work,
+                      const std::function<unsigned long(unsigned long)> &share)
+  {
+    const RegionPlan plan = region_plan(scene, points, end_time, members);
+    work(plan.groups);
+    work_on_convergence_checks(plan.check_scenes, plan.check_plans,
+                               std::vector<std::size_t>(plan.check_plans.size(), 2), members,
+                               EnsembleSettings().perturbation, work, share);
+  }
+} // namespace beamslider

@@ -1,0 +1,65 @@
+// The verdict across the signature-move region: the error ladder's
+// question (how far does a reduced model land from the FE beam?) asked at
+// several operating points (excitation frequency and level) at once, each
+// with a reference that proves its own convergence (convergence_check.h).
+//
+// At every point the same models run as ensembles from the scene's start:
+// the published ROM (the scene's N and Δt), N = 10 (Δt/2), N = 20 (Δt/4,
+// checked in N against N = 30 at the explicit scheme's step, whose members
+// are the N = 30 column) and the scene's FE model (checked in Δt: Δt/2
+// beside it, halved further until two steps end alike). All members of all
+// points run as one list, longest first, then the checks' later rounds.
+//
+// This study computes and returns results; it writes no files
+// (verification/report/report_region.h formats them).
+#pragma once
+
+#include "meshes/scene.h"
+#include "verification/studies/error_ladder.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace beamslider
+{
+  struct OperatingPoint
+  {
+    double frequency_hz      = 0; // f_ex [Hz]
+    double acceleration_m_s2 = 0; // â [m/s²]
+    std::string label() const;    // "124 Hz / 14 m/s²"
+  };
+
+  // Six points spread over the signature-move region of the scene's
+  // operating-range map (ROM N = 5 from x_C/L = 0.3: signature moves from
+  // 113 to 136 Hz and from 7.9 to 21 m/s², report section 6), the scene's
+  // own excitation among them.
+  std::vector<OperatingPoint> signature_move_region(const Scene &scene);
+
+  // The scene with its excitation at `point`.
+  Scene at_point(const Scene &scene, const OperatingPoint &point);
+
+  // The models of every point: ROM N = 5, 10, 20 (converged_in_n) and the
+  // FE reference last (`reference` is set to its index).
+  std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference);
+
+  struct RegionStudy
+  {
+    std::vector<OperatingPoint> points;
+    std::vector<LadderStudy> ladders; // one per point, with its checks
+  };
+
+  // Every point's rungs and checks as one list of member runs (`runner`,
+  // or threads), then the checks' rounds (`rounds`, in step over the ranks
+  // by `share`; run_convergence_checks).
+  RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, double end_time,
+                         unsigned int members, const MemberGroupRunner &runner = {},
+                         const MemberGroupRunner &rounds = {},
+                         const std::function<unsigned long(unsigned long)> &share = {});
+
+  // The other MPI ranks' part of run_region, given how they compute a list
+  // of member groups (`work`) and rank 0's mask (`share`).
+  void work_on_region(const Scene &scene, const std::vector<OperatingPoint> &points, double end_time,
+                      unsigned int members, const std::function<void(const std::vector<MemberGroup> &)> &work,
+                      const std::function<unsigned long(unsigned long)> &share);
+} // namespace beamslider
