@@ -74,7 +74,8 @@ namespace
   }
 
   // A small ladder: the ROM N=10 rung and the FE reference, 3 members each
-  // over 0.3 s (37 periods: enough for the trace analysis).
+  // over 0.3 s (37 periods: enough for the trace analysis), and beside them
+  // the reference's check at half its step: 9 members in member_runs.csv.
   std::vector<std::string> small_ladder(const fs::path &out)
   {
     return {BEAMSLIDER_EXECUTABLE, "ladder", "--rung", "ROM N=10", "--members", "3", "--end-time", "0.3",
@@ -91,25 +92,29 @@ namespace
     EXPECT_EQ(without_column(b / "ladder.csv", "wall_s_per_member"), without_column(a / "ladder.csv", "wall_s_per_member"));
     EXPECT_EQ(without_column(b / "ladder_members.csv", "wall_s"), without_column(a / "ladder_members.csv", "wall_s"));
     EXPECT_EQ(read_file(b / "ladder_steps.csv"), read_file(a / "ladder_steps.csv"));
+    // The reference's convergence evidence too (but the wall times).
+    EXPECT_EQ(without_column(b / "convergence.csv", "wall_s_per_member"),
+              without_column(a / "convergence.csv", "wall_s_per_member"));
   }
 
   // member_runs.csv's rows: the key line, the header, one row per member.
   const std::size_t head_lines = 2;
+  const std::size_t ladder_members = 9; // 2 rungs and the reference's Δt/2, 3 members each
 } // namespace
 
 TEST(MemberRuns, LadderKilledAndStartedAgainEndsWithTheFilesOfAnUninterruptedRun)
 {
   const fs::path whole = fresh("whole"), killed = fresh("killed");
   ASSERT_EQ(run_program(small_ladder(whole)), 0);
-  ASSERT_EQ(lines(whole / "member_runs.csv").size(), head_lines + 6);
+  ASSERT_EQ(lines(whole / "member_runs.csv").size(), head_lines + ladder_members);
 
-  // kill -9 once the first member is persisted (five still to run, the
+  // kill -9 once the first member is persisted (eight still to run, the
   // longest first), then the same command again.
   const fs::path record = killed / "member_runs.csv";
   run_program(small_ladder(killed), [&] { return fs::exists(record) && lines(record).size() > head_lines; });
   ASSERT_EQ(run_program(small_ladder(killed)), 0);
   expect_same_ladder(whole, killed);
-  EXPECT_EQ(lines(killed / "member_runs.csv").size(), head_lines + 6);
+  EXPECT_EQ(lines(killed / "member_runs.csv").size(), head_lines + ladder_members);
   fs::remove_all(whole);
   fs::remove_all(killed);
 }
@@ -122,26 +127,37 @@ TEST(MemberRuns, AMembersFileCutShortIsResumedKeepingItsCompleteRows)
   // cut in the middle. The wall time of the first kept member is set to a
   // mark: if it is read back (not run again), ladder_members.csv shows it.
   std::vector<std::string> rows = lines(whole / "member_runs.csv");
-  ASSERT_EQ(rows.size(), head_lines + 6);
+  ASSERT_EQ(rows.size(), head_lines + ladder_members);
   const std::string wall_mark = "4321"; // as ladder_members.csv writes it (4 digits)
+  // The kept member must be a rung's (group 0 or 1), not one of the check's
+  // (group 2, the longest, so the first to finish), to show in ladder_members.csv.
+  std::size_t rung_row = head_lines;
+  while (rung_row < rows.size() && rows[rung_row].rfind("2,", 0) == 0)
+    ++rung_row;
+  ASSERT_LT(rung_row, rows.size());
   {
-    std::string &kept = rows[head_lines];
+    std::string &kept = rows[rung_row];
     // wall_s is the 15th of 17 cells; the periods (last) hold no commas.
     std::size_t at = 0;
     for (int k = 0; k < 14; ++k)
       at = kept.find(',', at) + 1;
     kept.replace(at, kept.find(',', at) - at, wall_mark);
   }
+  // Two complete members (the rung's and another) and one cut in the middle.
+  const std::size_t other = rung_row == head_lines ? head_lines + 1 : head_lines;
+  const std::size_t cut_row = std::max(rung_row, other) + 1;
+  ASSERT_LT(cut_row, rows.size());
   fs::create_directories(cut);
   {
     std::ofstream out(cut / "member_runs.csv");
-    out << rows[0] << '\n' << rows[1] << '\n' << rows[2] << '\n' << rows[3] << '\n' << rows[4].substr(0, rows[4].size() / 2);
+    out << rows[0] << '\n' << rows[1] << '\n' << rows[other] << '\n' << rows[rung_row] << '\n'
+        << rows[cut_row].substr(0, rows[cut_row].size() / 2);
   }
   ASSERT_EQ(run_program(small_ladder(cut)), 0);
   expect_same_ladder(whole, cut);
   EXPECT_NE(read_file(cut / "ladder_members.csv").find(wall_mark), std::string::npos)
     << "the complete member was run again instead of read back";
-  EXPECT_EQ(lines(cut / "member_runs.csv").size(), head_lines + 6);
+  EXPECT_EQ(lines(cut / "member_runs.csv").size(), head_lines + ladder_members);
   fs::remove_all(whole);
   fs::remove_all(cut);
 }

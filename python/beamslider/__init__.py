@@ -25,13 +25,19 @@ import csv
 import os
 import shutil
 import tempfile
+import warnings
 
 import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Result", "Interrupted", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
+__all__ = ["Scene", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "read_table"]
+
+
+class NotConvergedWarning(UserWarning):
+    """A study finished, but its reference did not prove its convergence in
+    Δt (doc/verification.md §6): its result says so in ``.convergence``."""
 
 
 class Interrupted(KeyboardInterrupt):
@@ -196,6 +202,12 @@ def _run(command, scene, options, output, progress, read=Result):
             raise Interrupted(message or f"interrupted by signal {signal}", partial)
         if status == 2:
             raise ValueError(message)
+        if status == 3:
+            # Finished and written, but a reference did not prove its
+            # convergence: the results say so (convergence.csv), and so does
+            # the warning.
+            warnings.warn(message, NotConvergedWarning, stacklevel=3)
+            return read(folder, keep)
         if status != 0:
             raise RuntimeError(message or f"beamslider {command} failed with status {status}")
         return read(folder, keep)
@@ -296,13 +308,15 @@ def simulate(scene="mueller2023", model="rom", case=None, end_time=None, output=
 
 
 def ensemble(scene="mueller2023", model="rom", case=None, members=8, end_time=None, perturbation=None,
-             integrator=None, against=None, output=None, progress=None):
+             integrator=None, against=None, unchecked=False, output=None, progress=None):
     """K runs differing by a tiny start shift: ``.members`` (one row per member:
     final_x_over_L, outcome, ...), ``.statistics``, ``.comparison`` with
-    ``against`` (another ensemble's folder)."""
+    ``against`` (another ensemble's folder). With model="fe" the FE's step is
+    checked (``.convergence``: every step tried); if no two steps end alike a
+    NotConvergedWarning says so. ``unchecked=True`` skips the check."""
     return _run("ensemble", scene,
                 _options(model=model, case=case, members=members, end_time=end_time, perturbation=perturbation,
-                         integrator=integrator, against=against),
+                         integrator=integrator, against=against, unchecked=unchecked),
                 output, progress)
 
 
