@@ -17,6 +17,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 
 namespace beamslider
@@ -295,7 +297,12 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
         return run_ladder_command(common, ladder);
       if (*template_cmd)
         {
-          std::cout << scene_template();
+          // A full disk or a closed pipe must not pass for a written template.
+          errno = 0;
+          std::cout << scene_template() << std::flush;
+          if (!std::cout)
+            throw OutputError(std::string("the scene template could not be written to standard output: ") +
+                              (errno != 0 ? std::strerror(errno) : "write error"));
           return 0;
         }
     }
