@@ -214,14 +214,19 @@ namespace beamslider
         {
           std::string inner;
           std::istringstream printed(reader_output.str());
+          // The explanation: the lines after "Additional information:" up
+          // to the first blank one, joined.
+          bool explanation = false;
           for (std::string line; std::getline(printed, line);)
-            if (line.find("Additional information:") != std::string::npos)
-              {
-                while (std::getline(printed, line) && line.find_first_not_of(" \t") == std::string::npos)
-                  ;
-                inner = printable(line.substr(std::min(line.size(), line.find_first_not_of(" \t"))), 200);
+            {
+              const auto b = line.find_first_not_of(" \t");
+              if (explanation && b == std::string::npos && !inner.empty())
                 break;
-              }
+              if (explanation && b != std::string::npos)
+                inner += (inner.empty() ? "" : " ") + line.substr(b);
+              explanation = explanation || line.find("Additional information:") != std::string::npos;
+            }
+          inner = printable(inner, 300);
           // (The Abaqus reader's own text points to the message "printed above".)
           const std::string reason =
             abaqus && !inner.empty() ? "converting the deck failed: " + inner + " (a truncated or incomplete deck?)"

@@ -247,13 +247,18 @@ TEST(MeshMessages, BadMeshFilesGiveOneLineNamingTheFile)
   {
     std::ifstream in(meshes + "strip-hex-abaqus.inp");
     std::string deck((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    write(dir / "cut.inp", deck.substr(0, 600));
     std::ifstream scene_in(meshes + "strip-hex-abaqus.prm");
     std::string scene((std::istreambuf_iterator<char>(scene_in)), std::istreambuf_iterator<char>());
     scene.replace(scene.find("strip-hex-abaqus.inp"), std::string("strip-hex-abaqus.inp").size(), "cut.inp");
     write(dir / "cut.prm", scene);
-    expect_input_error(modes(dir / "cut.prm", dir), {"Solid mesh '" + (dir / "cut.inp").string() + "'", "Abaqus"},
-                       "truncated .inp");
+    // Cut in the nodes, and in the elements (a cell's vertex missing).
+    for (const std::size_t size : {600, 20000})
+      {
+        write(dir / "cut.inp", deck.substr(0, size));
+        expect_input_error(modes(dir / "cut.prm", dir),
+                           {"Solid mesh '" + (dir / "cut.inp").string() + "'", "Abaqus", "converting the deck failed: "},
+                           "truncated .inp, " + std::to_string(size) + " bytes");
+      }
   }
   // A binary file given as a Gmsh mesh: its bytes escaped, the message bounded.
   {
