@@ -32,4 +32,18 @@ namespace beamslider
       }
     return out;
   }
+
+  // A message as one line on a terminal: control bytes (a line break or an
+  // escape sequence in a value the user gave) written as in printable(),
+  // other text, UTF-8 included, as it is, and no length bound.
+  inline std::string one_line(const std::string &text)
+  {
+    std::string out;
+    for (const char c : text)
+      {
+        const auto byte = static_cast<unsigned char>(c);
+        out += byte < 0x20 || byte == 0x7f ? printable(std::string(1, c)) : std::string(1, c);
+      }
+    return out;
+  }
 } // namespace beamslider

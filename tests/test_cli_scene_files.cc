@@ -197,6 +197,11 @@ TEST(SceneRoundTrip, APathParametersPrmCannotRecordIsRefused)
   expect_input_error(run, {"Parameter 'Beam/Mesh file' = 'be\\nam\\x1b[2J.msh'", "control character"}, "newline");
   run = modes(meshes + "strip-blocks.prm", dir, {"--set", "Solid/Loaded boundary=top #1"});
   expect_input_error(run, {"Parameter 'Solid/Loaded boundary' = 'top #1'", "'#'"}, "group");
+  // Any value the user gives is echoed on one line, its control bytes escaped.
+  run = modes(meshes + "mueller2023.prm", dir, {"--set", "Slider/Mass=1\n\x1b[2Jx"});
+  expect_input_error(run, {"'Slider/Mass' = '1\\n\\x1b[2Jx'"}, "number");
+  run = modes(meshes + "mueller2023.prm", dir, {"--set", "Slider/Ma\nss=1"});
+  expect_input_error(run, {"unknown parameter 'Slider/Ma\\nss'"}, "name");
   fs::remove_all(dir);
 }
 

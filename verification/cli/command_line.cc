@@ -8,6 +8,7 @@
 
 #include "contact/interruption.h"
 #include "contact/output_file.h"
+#include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
@@ -308,19 +309,20 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
     }
   catch (const InputError &e)
     {
-      errors << "error: " << e.what() << std::endl;
+      // Values the user gave may hold a line break or an escape sequence.
+      errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
   catch (const std::invalid_argument &e)
     {
       // The library's checks of values that came from the scene or the
       // options (a time step above the model's stability limit, ...).
-      errors << "error: " << e.what() << std::endl;
+      errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
   catch (const OutputError &e)
     {
-      errors << "error: results not written: " << e.what() << std::endl;
+      errors << "error: results not written: " << one_line(e.what()) << std::endl;
       return 1;
     }
   catch (const dealii::ExceptionBase &e)
