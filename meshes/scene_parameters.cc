@@ -454,6 +454,17 @@ namespace beamslider
       return b == std::string::npos ? std::string() : x.substr(b, e - b + 1);
     }
 
+    // The first word of a scene line in lower case if deal.II takes it for
+    // a keyword, which it does in lower or upper case ("set", "SET"); ""
+    // for any other word ("Set").
+    std::string scene_keyword(const std::string &word)
+    {
+      std::string lower = word, upper = word;
+      std::transform(word.begin(), word.end(), lower.begin(), [](const unsigned char c) { return std::tolower(c); });
+      std::transform(word.begin(), word.end(), upper.begin(), [](const unsigned char c) { return std::toupper(c); });
+      return word == lower || word == upper ? lower : std::string();
+    }
+
     // The text of one file, after checking with stat() that it is a regular
     // file of bounded size, before it is opened (a FIFO is never opened).
     // `what` names it in messages: "Scene file 'x.prm'" or the include line.
@@ -541,16 +552,9 @@ namespace beamslider
               continue;
             }
           std::istringstream words(content);
-          std::string keyword;
-          words >> keyword;
-          const std::string rest = trim(content.substr(keyword.size()));
-          {
-            // deal.II knows each keyword in lower or upper case ("set", "SET").
-            std::string lower = keyword, upper = keyword;
-            std::transform(keyword.begin(), keyword.end(), lower.begin(), [](const unsigned char c) { return std::tolower(c); });
-            std::transform(keyword.begin(), keyword.end(), upper.begin(), [](const unsigned char c) { return std::toupper(c); });
-            keyword = keyword == lower || keyword == upper ? lower : std::string();
-          }
+          std::string word;
+          words >> word;
+          const std::string keyword = scene_keyword(word), rest = trim(content.substr(word.size()));
           if (keyword == "subsection" && !rest.empty())
             ++depth;
           else if (keyword == "end" && rest.empty())
@@ -633,8 +637,9 @@ namespace beamslider
           ++line_number;
           line = trim(line.substr(0, line.find('#')));
           std::istringstream words(line);
-          std::string keyword;
-          words >> keyword;
+          std::string word;
+          words >> word;
+          const std::string keyword = scene_keyword(word);
           if (keyword == "subsection")
             sections.push_back(trim(line.substr(keyword.size())));
           else if (keyword == "end" && !sections.empty())

@@ -212,6 +212,16 @@ TEST(SceneErrors, UnknownParameterInAFileIsAnError)
   expect_contains(error_for_file("bad_scene.prm", "subsection Beam\n  set Lenght = 0.1\nend\n"), "Lenght");
 }
 
+// deal.II takes a keyword in upper case too ("SET"); so does the check for
+// a parameter set twice, and a mixed-case "Set" is no keyword at all.
+TEST(SceneErrors, KeywordsInUpperCaseAreKeywordsToo)
+{
+  expect_contains(error_for_file("upper_scene.prm", "SUBSECTION Slider\n  set Mass = 0.05\n  SET Mass = 0.06\nEND\n"),
+                  "line 3: 'Slider/Mass' is set a second time (first on line 2)");
+  expect_contains(error_for_file("mixed_scene.prm", "subsection Slider\n  Set Mass = 0.05\nend\n"),
+                  "line 2 is not a scene line");
+}
+
 TEST(SceneErrors, MissingFile)
 {
   std::string m;
