@@ -840,7 +840,9 @@ namespace beamslider
     // cgroup (memory.max) is limited.
     std::pair<double, std::string> memory_limit()
     {
-      std::pair<double, std::string> limit{double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE)),
+      const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
+      std::pair<double, std::string> limit{pages > 0 && page_size > 0 ? double(pages) * double(page_size)
+                                                                       : std::numeric_limits<double>::infinity(),
                                            "this machine's memory"};
       rlimit address_space{};
       if (::getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
