@@ -1,6 +1,7 @@
 #include "fem/solid_mesh.h"
 
 #include "meshes/deal_ii_message.h"
+#include "meshes/printable.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>
@@ -14,6 +15,8 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -42,13 +45,17 @@ namespace beamslider
           in >> n;
           for (std::size_t i = 0; i < n && in; ++i)
             {
-              int d         = 0;
-              unsigned int tag = 0;
+              // Signed: an unsigned read would take -1 for 4294967295.
+              int d = 0, tag = 0;
               in >> d >> tag;
               std::getline(in, line);
               const auto a = line.find('"'), b = line.rfind('"');
+              if (in && tag < 0)
+                throw InputError("Solid mesh '" + path + "': $PhysicalNames gives the group '" +
+                                 printable(a != std::string::npos && b > a ? line.substr(a + 1, b - a - 1) : line, 80) +
+                                 "' the tag " + std::to_string(tag) + "; a physical tag is a number >= 0");
               if (a != std::string::npos && b > a)
-                names[line.substr(a + 1, b - a - 1)] = {d, tag};
+                names[line.substr(a + 1, b - a - 1)] = {d, static_cast<unsigned int>(tag)};
             }
           break;
         }
@@ -185,6 +192,15 @@ namespace beamslider
       std::ifstream in(path);
       if (!in)
         throw InputError(where + " cannot be opened (unreadable)");
+      // deal.II's Abaqus reader prints the exception of its inner UCD step,
+      // stack trace and all, to std::cerr before it throws a generic one:
+      // kept here, and its "Additional information" goes into the one line.
+      std::ostringstream reader_output;
+      struct RestoreCerr
+      {
+        std::streambuf *buffer;
+        ~RestoreCerr() { std::cerr.rdbuf(buffer); }
+      } restore{std::cerr.rdbuf(reader_output.rdbuf())};
       try
         {
           GridIn<dim> reader;
@@ -196,8 +212,27 @@ namespace beamslider
         }
       catch (const ExceptionBase &e)
         {
+          std::string inner;
+          std::istringstream printed(reader_output.str());
+          // The explanation: the lines after "Additional information:" up
+          // to the first blank one, joined.
+          bool explanation = false;
+          for (std::string line; std::getline(printed, line);)
+            {
+              const auto b = line.find_first_not_of(" \t");
+              if (explanation && b == std::string::npos && !inner.empty())
+                break;
+              if (explanation && b != std::string::npos)
+                inner += (inner.empty() ? "" : " ") + line.substr(b);
+              explanation = explanation || line.find("Additional information:") != std::string::npos;
+            }
+          inner = printable(inner, 300);
+          // (The Abaqus reader's own text points to the message "printed above".)
+          const std::string reason =
+            abaqus && !inner.empty() ? "converting the deck failed: " + inner + " (a truncated or incomplete deck?)"
+                                     : deal_ii_message(e);
           throw InputError(where + " is not a " + kind + " solid mesh that deal.II's " +
-                           (abaqus ? "Abaqus" : "Gmsh") + " reader accepts: " + deal_ii_message(e));
+                           (abaqus ? "Abaqus" : "Gmsh") + " reader accepts: " + reason);
         }
       catch (const std::exception &e)
         {
@@ -214,12 +249,22 @@ namespace beamslider
       const auto names = abaqus ? std::map<std::string, std::pair<int, unsigned int>>() : gmsh_physical_names(path);
       std::set<types::boundary_id> face_ids;
       std::set<types::material_id> cell_ids;
+      // GridIn reads a physical tag as unsigned: -1 arrives as 4294967295.
+      const auto require_tag = [&where](const unsigned int id, const std::string &of) {
+        if (id > static_cast<unsigned int>(std::numeric_limits<int>::max()))
+          throw InputError(where + ": " + of + " has the physical tag " + std::to_string(static_cast<int>(id)) +
+                           "; a physical tag is a number >= 0");
+      };
       for (const auto &cell : tria.active_cell_iterators())
         {
+          require_tag(cell->material_id(), "the cell at " + at(cell->center()));
           cell_ids.insert(cell->material_id());
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary())
-              face_ids.insert(face->boundary_id());
+              {
+                require_tag(face->boundary_id(), "the boundary face at " + at(face->center()));
+                face_ids.insert(face->boundary_id());
+              }
         }
 
       SolidMeshGroups groups;
@@ -250,30 +295,20 @@ namespace beamslider
                                                        scene.beam.density, dim);
           return groups;
         }
-      std::istringstream entries(solid.materials);
-      std::string entry;
-      while (std::getline(entries, entry, ','))
+      // The entries are checked (numbers, ranges, no group twice) with the
+      // scene; here a name and a tag may still give one region twice.
+      std::map<types::material_id, std::string> given_as;
+      for (const SolidMaterialEntry &m : solid_material_entries(solid.materials))
         {
-          if (entry.find_first_not_of(" \t") == std::string::npos)
-            continue;
-          const auto colon = entry.find(':');
-          std::string spec = entry.substr(0, colon);
-          spec.erase(0, spec.find_first_not_of(" \t"));
-          spec.erase(spec.find_last_not_of(" \t") + 1);
-          double E = 0, nu = 0, rho = 0;
-          std::istringstream values(colon == std::string::npos ? "" : entry.substr(colon + 1));
-          std::string rest;
-          if (colon == std::string::npos || !(values >> E >> nu >> rho) || (values >> rest))
-            throw InputError("Parameter 'Solid/Materials' = '" + solid.materials + "': the entry '" + entry +
-                             "' is not 'group: E nu rho' (three numbers)");
-          if (!(E > 0 && std::isfinite(E)) || !(nu >= 0 && nu < 0.5) || !(rho > 0 && std::isfinite(rho)))
-            throw InputError("Parameter 'Solid/Materials' entry '" + entry + "': E must be > 0 Pa, nu in [0, 0.5), "
-                             "rho > 0 kg/m^3");
-          const unsigned int tag = resolve_group(spec, dim, names, "Solid/Materials", path);
+          const unsigned int tag = resolve_group(m.group, dim, names, "Solid/Materials", path);
           if (!cell_ids.count(tag))
-            throw InputError("Parameter 'Solid/Materials' gives the region '" + spec + "' (tag " +
+            throw InputError("Parameter 'Solid/Materials' gives the region '" + printable(m.group) + "' (tag " +
                              std::to_string(tag) + "), which no cell of the mesh '" + path + "' carries");
-          groups.materials[tag] = SolidMaterial::from(E, nu, rho, dim);
+          if (const auto [it, inserted] = given_as.emplace(tag, m.group); !inserted)
+            throw InputError("Parameter 'Solid/Materials' gives the region of tag " + std::to_string(tag) +
+                             " twice, as '" + printable(it->second) + "' and as '" + printable(m.group) +
+                             "'; give each region once");
+          groups.materials[tag] = SolidMaterial::from(m.youngs_modulus, m.poissons_ratio, m.density, dim);
         }
       for (const types::material_id id : cell_ids)
         if (!groups.materials.count(id))

@@ -3,6 +3,8 @@
 // the checks below turn what a beam mesh must be into clear errors.
 #include "meshes/beam_mesh.h"
 
+#include "meshes/printable.h"
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/tria.h>
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace beamslider
@@ -47,7 +50,8 @@ namespace beamslider
           line += " " + part.substr(pb);
           i = next;
         }
-      return line;
+      // The reader quotes what it read: a binary file's bytes.
+      return printable(line, 200);
     }
   } // namespace
 
@@ -94,7 +98,13 @@ namespace beamslider
           throw InputError(where + ": an element runs from x = " + number(a[0]) + " m to x = " + number(b[0]) +
                            " m; x must increase from an element's first node to its second (and an element must "
                            "have a length)");
-        cells.push_back({a[0], b[0], static_cast<unsigned int>(cell->material_id())});
+        // GridIn reads a physical tag as unsigned: -1 arrives as 4294967295.
+        const auto tag = static_cast<unsigned int>(cell->material_id());
+        if (tag > static_cast<unsigned int>(std::numeric_limits<int>::max()))
+          throw InputError(where + ": the element from x = " + number(a[0]) + " m to x = " + number(b[0]) +
+                           " m has the physical tag " + std::to_string(static_cast<int>(tag)) +
+                           "; a physical tag is a number >= 0");
+        cells.push_back({a[0], b[0], tag});
       }
     std::sort(cells.begin(), cells.end(), [](const auto &l, const auto &r) { return l.x_begin < r.x_begin; });
 

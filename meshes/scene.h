@@ -341,6 +341,20 @@ namespace beamslider
   // (R > h, slider inside the beam, ...). Throws InputError.
   void validate_scene(const Scene &scene);
 
+  // One 'group: E nu rho' entry of Solid/Materials.
+  struct SolidMaterialEntry
+  {
+    std::string group;          // Gmsh physical name or tag
+    double youngs_modulus = 0;  // E [Pa]
+    double poissons_ratio = 0;  // ν [-]
+    double density        = 0;  // ρ [kg/m^3]
+    std::string text;           // the entry as written, for messages
+  };
+  // The entries of Solid/Materials, each checked: three numbers, E, ν and ρ
+  // in the ranges of Beam/Young's modulus, Solid/Poisson's ratio and
+  // Beam/Density, and no group given twice. Throws InputError.
+  std::vector<SolidMaterialEntry> solid_material_entries(const std::string &materials);
+
   // Writes a complete, commented scene file with every parameter, its default,
   // unit and allowed range.
   std::string scene_template();

@@ -8,23 +8,32 @@
 
 #include "meshes/beam_mesh.h"
 #include "meshes/deal_ii_message.h"
+#include "meshes/printable.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <tuple>
+
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace beamslider
 {
@@ -407,55 +416,230 @@ namespace beamslider
       return assignment.substr(0, assignment.find('='));
     }
 
-    // The text of a scene file, after checking that it is one: a regular,
-    // non-empty file (a folder, a FIFO or a device is refused before it is
-    // opened, so that reading cannot hang).
-    std::string read_scene_text(const std::string &filename)
+    // A scene file, and each file it includes, is a regular file of at most
+    // this size: a device (/dev/zero) would be read without end, a FIFO would
+    // block. The scene with its includes expanded is bounded alike (a file
+    // included many times over).
+    constexpr std::uintmax_t max_scene_bytes = 1u << 20;
+    // Includes nest at most this deep (a chain of distinct files).
+    constexpr unsigned int max_include_depth = 16;
+
+    // The lines of a scene after its `include` lines are replaced by the
+    // files they name, with where each line comes from, so that a message
+    // names the file and the line the user wrote.
+    struct SceneText
+    {
+      struct Origin
+      {
+        std::string file;
+        unsigned int line;
+      };
+      std::string text;            // every line, '\n'-terminated
+      std::vector<Origin> origins; // of line i + 1 of text
+
+      // "Scene file 'F', line N" for line `line` (from 1) of text.
+      std::string where(const unsigned int line) const
+      {
+        if (line == 0 || line > origins.size())
+          return "Scene file";
+        const Origin &o = origins[line - 1];
+        return "Scene file '" + printable(o.file) + "', line " + std::to_string(o.line);
+      }
+    };
+
+    std::string trim(const std::string &x)
+    {
+      const auto b = x.find_first_not_of(" \t\r");
+      const auto e = x.find_last_not_of(" \t\r");
+      return b == std::string::npos ? std::string() : x.substr(b, e - b + 1);
+    }
+
+    // The first word of a scene line in lower case if deal.II takes it for
+    // a keyword, which it does in lower or upper case ("set", "SET"); ""
+    // for any other word ("Set").
+    std::string scene_keyword(const std::string &word)
+    {
+      std::string lower = word, upper = word;
+      std::transform(word.begin(), word.end(), lower.begin(), [](const unsigned char c) { return std::tolower(c); });
+      std::transform(word.begin(), word.end(), upper.begin(), [](const unsigned char c) { return std::toupper(c); });
+      return word == lower || word == upper ? lower : std::string();
+    }
+
+    // The text of one file, after checking with stat() that it is a regular
+    // file of bounded size, before it is opened (a FIFO is never opened).
+    // `what` names it in messages: "Scene file 'x.prm'" or the include line.
+    std::string read_bounded_file(const std::string &path, const std::string &what)
+    {
+      struct stat info;
+      if (::stat(path.c_str(), &info) != 0)
+        throw InputError(what + (errno == ENOENT || errno == ENOTDIR ? " does not exist"
+                                                                    : " cannot be examined: " +
+                                                                        std::string(std::strerror(errno))));
+      if (S_ISDIR(info.st_mode))
+        throw InputError(what + " is a folder, not a scene file (.prm)");
+      if (!S_ISREG(info.st_mode))
+        throw InputError(what + " is not a regular file (a FIFO, device or socket); give a .prm file");
+      if (static_cast<std::uintmax_t>(info.st_size) > max_scene_bytes)
+        throw InputError(what + " has " + std::to_string(info.st_size) +
+                         " bytes; a scene file has at most 1 MB (1048576 bytes)");
+      // O_NONBLOCK: should the file have been replaced by a FIFO since
+      // stat(), open() does not wait for a writer; fstat() then refuses it.
+      const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+      if (fd < 0)
+        throw InputError(what + " cannot be opened (unreadable)");
+      std::string text;
+      bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+      std::array<char, 65536> buffer;
+      while (regular && text.size() <= max_scene_bytes)
+        {
+          const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n <= 0)
+            break;
+          text.append(buffer.data(), n);
+        }
+      ::close(fd);
+      if (!regular)
+        throw InputError(what + " is not a regular file (a FIFO, device or socket); give a .prm file");
+      if (text.size() > max_scene_bytes)
+        throw InputError(what + " has more than 1 MB; a scene file has at most 1 MB (1048576 bytes)");
+      return text;
+    }
+
+    // Appends the lines of `file` to `scene`, each `include` line replaced
+    // by the lines of the file it names (a path relative to the including
+    // file, as Beam/Mesh file is). deal.II's own `include` would open the
+    // path as given without any check; here every line is checked to be a
+    // scene line first, so that a message never quotes a line of a file
+    // that is not a scene (an included /etc/passwd is refused by its file
+    // name and line number only). `chain` holds the files being read, the
+    // outermost first: a file that includes one of them is a cycle.
+    // `what` names the file for a message about the file as a whole,
+    // `included_by` (" (included by 'a.prm', line 3)", or "") follows the
+    // place of a message about one of its lines.
+    void append_scene_file(const std::string &file, const std::string &what, const std::string &included_by,
+                           std::vector<std::string> &chain, SceneText &scene)
     {
       namespace fs = std::filesystem;
+      const std::string text = read_bounded_file(file, what);
       std::error_code ec;
-      const fs::file_status status = fs::status(filename, ec);
-      if (ec || !fs::exists(status))
-        throw InputError("Scene file '" + filename + "' does not exist");
-      if (fs::is_directory(status))
-        throw InputError("Scene file '" + filename + "' is a folder, not a scene file (.prm)");
-      if (!fs::is_regular_file(status))
-        throw InputError("Scene file '" + filename +
-                         "' is not a regular file (a FIFO, device or socket); give a .prm file");
-      std::ifstream in(filename, std::ios::binary);
-      if (!in)
-        throw InputError("Scene file '" + filename + "' cannot be opened (unreadable)");
-      std::ostringstream text;
-      text << in.rdbuf();
-      if (text.str().empty())
-        throw InputError("Scene file '" + filename + "' is empty; a scene sets its parameters with 'set Name = value' "
-                         "(see `beamslider scene-template`)");
-      return text.str();
+      chain.push_back(fs::weakly_canonical(fs::absolute(file), ec).string());
+
+      std::istringstream in(text);
+      std::string line;
+      unsigned int line_number = 0, depth = 0;
+      bool continued = false; // the previous line ends in '\': deal.II joins the two
+      while (std::getline(in, line))
+        {
+          ++line_number;
+          const std::string where =
+            "Scene file '" + printable(file) + "', line " + std::to_string(line_number) + included_by;
+          for (std::size_t i = 0; i < line.size(); ++i)
+            {
+              const auto byte = static_cast<unsigned char>(line[i]);
+              if ((byte < 0x20 && byte != '\t' && byte != '\r') || byte == 0x7f)
+                throw InputError(where + " holds a byte that is not text (" + printable(std::string(1, line[i])) +
+                                 " at column " + std::to_string(i + 1) + "); a scene file is text");
+            }
+          const std::string content = trim(line.substr(0, line.find('#')));
+          const bool starts = !continued;
+          continued = !trim(line).empty() && trim(line).back() == '\\';
+          if (!starts || content.empty())
+            {
+              scene.text += line + '\n';
+              scene.origins.push_back({file, line_number});
+              continue;
+            }
+          std::istringstream words(content);
+          std::string word;
+          words >> word;
+          const std::string keyword = scene_keyword(word), rest = trim(content.substr(word.size()));
+          if (keyword == "subsection" && !rest.empty())
+            ++depth;
+          else if (keyword == "end" && rest.empty())
+            {
+              if (depth == 0)
+                throw InputError(where + ": 'end' without a 'subsection' before it in this file");
+              --depth;
+            }
+          else if (keyword == "include" && !rest.empty() && !continued)
+            {
+              if (chain.size() > max_include_depth)
+                throw InputError(where + ": includes nest deeper than " + std::to_string(max_include_depth) +
+                                 " files");
+              fs::path target(rest);
+              if (target.is_relative())
+                target = fs::path(file).parent_path() / target;
+              const std::string canonical = fs::weakly_canonical(fs::absolute(target), ec).string();
+              const auto cycle = std::find(chain.begin(), chain.end(), canonical);
+              if (cycle != chain.end())
+                {
+                  std::string names;
+                  for (auto f = cycle; f != chain.end(); ++f)
+                    names += "'" + printable(*f) + "' includes ";
+                  throw InputError(where + ": 'include " + printable(rest) + "' is a cycle: " + names + "'" +
+                                   printable(canonical) + "'; a scene cannot include itself");
+                }
+              const std::string place = "'" + printable(file) + "', line " + std::to_string(line_number);
+              append_scene_file(target.string(), where + ": the included file '" + printable(target.string()) + "'",
+                                " (included by " + place + ")", chain, scene);
+              continue;
+            }
+          else if (keyword != "set" || rest.empty())
+            throw InputError(where + " is not a scene line: a scene has only 'set Name = value', 'subsection "
+                                     "Name', 'end' and 'include FILE' lines (the line is not shown, as it may "
+                                     "not be from a scene file)");
+          scene.text += line + '\n';
+          scene.origins.push_back({file, line_number});
+          if (scene.text.size() > max_scene_bytes)
+            throw InputError(where + ": the scene with its included files has more than 1 MB; a scene has at "
+                                     "most 1 MB (1048576 bytes)");
+        }
+      if (continued)
+        throw InputError("Scene file '" + printable(file) + "', line " + std::to_string(line_number) + included_by +
+                         ": the last line ends in '\\', which would join it to a line of another file");
+      if (depth != 0)
+        throw InputError("Scene file '" + printable(file) + "'" + included_by + ": " + std::to_string(depth) +
+                         " 'subsection' without its 'end' (each file closes the subsections it opens)");
+      chain.pop_back();
+    }
+
+    // The text of a scene file with its includes, after checking that it is
+    // one: a regular, non-empty text file of scene lines (a folder, a FIFO
+    // or a device is refused before it is opened, so that reading cannot
+    // hang).
+    SceneText read_scene_text(const std::string &filename)
+    {
+      const std::string what = "Scene file '" + printable(filename) + "'";
+      SceneText scene;
+      std::vector<std::string> chain;
+      append_scene_file(filename, what, "", chain, scene);
+      if (trim(scene.text).empty())
+        throw InputError(what + " is empty; a scene sets its parameters with 'set Name = value' "
+                                "(see `beamslider scene-template`)");
+      return scene;
     }
 
     // deal.II's reader lets a later `set` silently replace an earlier one; a
     // scene that sets a parameter twice is almost always an editing slip, so
     // it is refused. Also refuses a file without any `set`: it would run the
     // built-in defaults under the file's name.
-    std::set<std::string> check_entries_unique(const std::string &filename, const std::string &text)
+    std::set<std::string> check_entries_unique(const std::string &filename, const SceneText &scene)
     {
-      std::istringstream in(text);
+      std::istringstream in(scene.text);
       std::vector<std::string> sections;
       std::map<std::string, unsigned int> first_line;
       std::string line;
       unsigned int line_number = 0, n_entries = 0;
-      auto trim = [](std::string x) {
-        const auto b = x.find_first_not_of(" \t\r");
-        const auto e = x.find_last_not_of(" \t\r");
-        return b == std::string::npos ? std::string() : x.substr(b, e - b + 1);
-      };
       while (std::getline(in, line))
         {
           ++line_number;
           line = trim(line.substr(0, line.find('#')));
           std::istringstream words(line);
-          std::string keyword;
-          words >> keyword;
+          std::string word;
+          words >> word;
+          const std::string keyword = scene_keyword(word);
           if (keyword == "subsection")
             sections.push_back(trim(line.substr(keyword.size())));
           else if (keyword == "end" && !sections.empty())
@@ -470,13 +654,18 @@ namespace beamslider
               ++n_entries;
               const auto [it, inserted] = first_line.emplace(key, line_number);
               if (!inserted)
-                throw InputError("Scene file '" + filename + "', line " + std::to_string(line_number) + ": '" + key +
-                                 "' is set a second time (first on line " + std::to_string(it->second) +
-                                 "); a scene sets each parameter once");
+                {
+                  const SceneText::Origin &first = scene.origins[it->second - 1];
+                  const bool same_file = first.file == scene.origins[line_number - 1].file;
+                  throw InputError(scene.where(line_number) + ": '" + printable(key) + "' is set a second time (first " +
+                                   (same_file ? "on line " + std::to_string(first.line)
+                                              : "in '" + printable(first.file) + "', line " + std::to_string(first.line)) +
+                                   "); a scene sets each parameter once");
+                }
             }
         }
       if (n_entries == 0)
-        throw InputError("Scene file '" + filename + "' sets no parameter (no 'set Name = value' line); "
+        throw InputError("Scene file '" + printable(filename) + "' sets no parameter (no 'set Name = value' line); "
                          "see `beamslider scene-template`");
       std::set<std::string> keys;
       for (const auto &[key, line] : first_line)
@@ -545,6 +734,16 @@ namespace beamslider
         b.sections[tag] = {t.sections.at("Width").at(tag), t.sections.at("Thickness").at(tag),
                            t.sections.at("Young's modulus").at(tag), t.sections.at("Density").at(tag)};
 
+      // The mesh decides Length and (unless set) Number of elements; both
+      // must lie in their patterns, which parameters.prm is written with.
+      const double mesh_length = b.mesh_cells.back().x_end;
+      if (!(mesh_length >= 1e-3 && mesh_length <= 10))
+        throw InputError("Mesh file '" + printable(b.mesh_file) + "': the beam is " + num(mesh_length) +
+                         " m long; 'Beam/Length', the mesh's length, must be in [1e-3, 10] m");
+      if (!set_keys.count("Discretisation/Number of elements") && b.mesh_cells.size() > 4096)
+        throw InputError("Mesh file '" + printable(b.mesh_file) + "' has " + std::to_string(b.mesh_cells.size()) +
+                         " elements; 'Discretisation/Number of elements', the mesh's unless set, must be in [1, 4096]");
+
       // Length and the reference (thickest) section follow from the mesh.
       BeamSection thickest = b.sections.begin()->second;
       for (const auto &[tag, section] : b.sections)
@@ -594,6 +793,93 @@ namespace beamslider
       if (!condition)
         throw InputError("Parameter '" + parameter + "' = " + num(value) + " is not allowed: " + allowed);
     }
+
+    // parameters.prm records a text parameter as `set Name = value` on one
+    // line, which deal.II reads back up to a '#' (a comment), trimmed, with
+    // tabs as spaces, joined to the next line after a trailing '\'. It has
+    // no escape for these, so a value that would not read back to itself is
+    // refused: a run's folder must repeat the run.
+    void require_recordable(const std::string &parameter, const std::string &value)
+    {
+      std::string why;
+      if (value.find('#') != std::string::npos)
+        why = "it holds a '#', which starts a comment in a parameter file";
+      else if (std::any_of(value.begin(), value.end(),
+                           [](const unsigned char c) { return c < 0x20 || c == 0x7f; }))
+        why = "it holds a control character (a line break, a tab, ...), which a parameter file cannot hold";
+      else if (!value.empty() && value.back() == '\\')
+        why = "it ends in '\\', which joins a parameter file's line to the next";
+      else if (value != trim(value))
+        why = "it begins or ends with a space, which a parameter file drops";
+      if (!why.empty())
+        throw InputError("Parameter '" + parameter + "' = '" + printable(value) + "' is not allowed: " + why +
+                         ", so the run's parameters.prm could not record it; use a name without it");
+    }
+
+    // Every text parameter of a scene, as parameters.prm would write it.
+    void require_recordable(const Scene &s)
+    {
+      require_recordable("Beam/Mesh file", s.beam.mesh_file);
+      require_recordable("Solid/Mesh file", s.solid.mesh_file);
+      require_recordable("Solid/Loaded boundary", s.solid.loaded_boundary);
+      require_recordable("Solid/Materials", s.solid.materials);
+      for (const std::string &group : s.solid.clamped_boundaries)
+        require_recordable("Solid/Clamped boundaries", group);
+    }
+
+    std::string gigabytes(const double bytes)
+    {
+      std::ostringstream s;
+      s.precision(3);
+      s << bytes / 1e9 << " GB";
+      return s.str();
+    }
+
+    // The memory this program may use [bytes] and what sets it: the
+    // machine's memory, or less if the address space (ulimit -v) or the
+    // cgroup (memory.max) is limited.
+    std::pair<double, std::string> memory_limit()
+    {
+      const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
+      std::pair<double, std::string> limit{pages > 0 && page_size > 0 ? double(pages) * double(page_size)
+                                                                       : std::numeric_limits<double>::infinity(),
+                                           "this machine's memory"};
+      rlimit address_space{};
+      if (::getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
+          double(address_space.rlim_cur) < limit.first)
+        limit = {double(address_space.rlim_cur), "the address-space limit (ulimit -v)"};
+      double cgroup = 0;
+      if (std::ifstream("/sys/fs/cgroup/memory.max") >> cgroup && cgroup > 0 && cgroup < limit.first)
+        limit = {cgroup, "the cgroup's memory limit (memory.max)"};
+      return limit;
+    }
+
+    // The generated strip against the memory there is: a strip of 1e9
+    // cells would run until std::bad_alloc. The estimate is a floor: the
+    // mesh (about 1 kB a cell) and the stiffness and mass matrices (12 bytes
+    // a nonzero each; a cell of FE_Q(p) adds d p^d rows of d (2p + 1)^d
+    // nonzeros); the eigensolver's factorisation needs more.
+    void require_strip_fits_in_memory(const Scene &s)
+    {
+      const SolidData &solid = s.solid;
+      const unsigned int dim = solid.dimension();
+      double cells = double(solid.elements_along_length) * solid.elements_through_thickness;
+      if (dim == 3)
+        cells *= solid.elements_across_width;
+      const double p = solid.degree;
+      const double rows_per_cell = dim * std::pow(p, dim), nonzeros_per_row = dim * std::pow(2 * p + 1, dim);
+      const double bytes = cells * (1024. + rows_per_cell * nonzeros_per_row * 24.);
+      const auto [limit, what] = memory_limit();
+      if (bytes > limit)
+        throw InputError("Parameters 'Solid/Elements along length' = " + std::to_string(solid.elements_along_length) +
+                         (dim == 3 ? ", 'Solid/Elements across width' = " + std::to_string(solid.elements_across_width)
+                                   : std::string()) +
+                         " and 'Solid/Elements through thickness' = " +
+                         std::to_string(solid.elements_through_thickness) + " are not allowed: the strip's " +
+                         num(cells) + " cells of degree " + std::to_string(solid.degree) + " need at least " +
+                         gigabytes(bytes) + " of memory (the mesh and two matrices alone), more than " + what +
+                         " of " + gigabytes(limit) + "; use fewer elements");
+    }
   } // namespace
 
   namespace
@@ -626,6 +912,7 @@ namespace beamslider
 
   void validate_scene(const Scene &s)
   {
+    require_recordable(s);
     // NaN and infinity pass no check below silently: every comparison with
     // NaN is false, so each require() states the allowed set positively.
     require(std::isfinite(s.slider.mass) && s.slider.mass > 0, "Slider/Mass", s.slider.mass, "must be > 0 kg");
@@ -677,9 +964,12 @@ namespace beamslider
                                "clamped physical group (or it floats)");
             const std::string ext = std::filesystem::path(s.solid.mesh_file).extension().string();
             if (ext != ".msh" && ext != ".inp")
-              throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is not allowed: the "
+              throw InputError("Parameter 'Solid/Mesh file' = '" + printable(s.solid.mesh_file) + "' is not allowed: the "
                                "extension must be .msh (Gmsh) or .inp (Abaqus)");
+            solid_material_entries(s.solid.materials);
           }
+        else
+          require_strip_fits_in_memory(s);
       }
     else if (s.solid.from_mesh())
       throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is set, but 'Solid/Continuum' is "
@@ -723,6 +1013,17 @@ namespace beamslider
     require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
     require(s.slider.window_width < s.beam.length, "Slider/Window width", s.slider.window_width,
             "the slider must be narrower than the beam length L = " + num(s.beam.length) + " m");
+    {
+      // The corners are the slider's only contacts: a window lower than it
+      // is wide (R < B) lets the slider turn by less than 45 degrees before
+      // they meet the beam; a taller one is a loose ring the model does not
+      // describe (and R/h = 1e300 overflows the gaps to NaN).
+      const double largest = s.slider.window_width / s.beam.thickness;
+      require(s.slider.window_height_ratio < largest, "Slider/Window height ratio", s.slider.window_height_ratio,
+              "R/h must be in (1, B/h = " + num(largest) + "): the window (R = " +
+                num(s.slider.window_height_ratio * s.beam.thickness) + " m) must be lower than it is wide (B = " +
+                num(s.slider.window_width) + " m), as the model's only contacts are its four corners");
+    }
     require(s.slider.mass_factor > 0, "Slider/Mass factor", s.slider.mass_factor, "must be > 0");
     const double half_window_over_L = 0.5 * s.slider.window_width / s.beam.length;
     require(s.initial.slider_position_over_L >= half_window_over_L &&
@@ -796,6 +1097,44 @@ namespace beamslider
       }
   }
 
+  std::vector<SolidMaterialEntry> solid_material_entries(const std::string &materials)
+  {
+    std::vector<SolidMaterialEntry> entries;
+    std::istringstream in(materials);
+    std::string entry;
+    while (std::getline(in, entry, ','))
+      {
+        if (entry.find_first_not_of(" \t") == std::string::npos)
+          continue;
+        const std::string where = "Parameter 'Solid/Materials' entry '" + printable(trim(entry)) + "'";
+        const auto colon = entry.find(':');
+        SolidMaterialEntry m;
+        m.text  = trim(entry);
+        m.group = trim(entry.substr(0, colon));
+        std::istringstream values(colon == std::string::npos ? "" : entry.substr(colon + 1));
+        std::string rest;
+        if (colon == std::string::npos || m.group.empty() ||
+            !(values >> m.youngs_modulus >> m.poissons_ratio >> m.density) || (values >> rest))
+          throw InputError(where + " is not 'group: E nu rho' (a group and three numbers)");
+        // The ranges of Beam/Young's modulus, Solid/Poisson's ratio and
+        // Beam/Density: E = 1e-300 Pa would reach the eigensolver as a
+        // singular matrix.
+        if (!(m.youngs_modulus >= 1e6 && m.youngs_modulus <= 1e13))
+          throw InputError(where + ": E = " + num(m.youngs_modulus) + " Pa is not allowed: E must be in [1e6, 1e13] Pa");
+        if (!(m.poissons_ratio >= 0 && m.poissons_ratio < 0.5))
+          throw InputError(where + ": nu = " + num(m.poissons_ratio) + " is not allowed: nu must be in [0, 0.5)");
+        if (!(m.density >= 1 && m.density <= 1e5))
+          throw InputError(where + ": rho = " + num(m.density) +
+                           " kg/m^3 is not allowed: rho must be in [1, 1e5] kg/m^3");
+        for (const SolidMaterialEntry &other : entries)
+          if (other.group == m.group)
+            throw InputError("Parameter 'Solid/Materials' gives the region '" + printable(m.group) + "' twice ('" +
+                             printable(other.text) + "' and '" + printable(m.text) + "'); give each region once");
+        entries.push_back(m);
+      }
+    return entries;
+  }
+
   std::string deal_ii_message(const dealii::ExceptionBase &e)
   {
     std::ostringstream s;
@@ -809,12 +1148,13 @@ namespace beamslider
         line += ' ';
     while (!line.empty() && line.back() == ' ')
       line.pop_back();
-    return line;
+    // A reader's message may quote what it read (a binary file's bytes).
+    return printable(line, 400);
   }
 
   Scene read_scene(const std::string &filename, const std::vector<std::string> &overrides)
   {
-    const std::string text = read_scene_text(filename);
+    const SceneText text = read_scene_text(filename);
     std::set<std::string> set_keys = check_entries_unique(filename, text);
     check_overrides_unique(overrides);
     for (const auto &o : overrides)
@@ -826,15 +1166,22 @@ namespace beamslider
     bind_scene(prm, s, tables);
     try
       {
-        std::istringstream in(text);
+        std::istringstream in(text.text);
         prm.parse_input(in, filename);
       }
     catch (const dealii::ExceptionBase &e)
       {
-        throw InputError("Scene file '" + filename + "':" + info(e));
+        // deal.II counts the lines of the expanded text: name the file and
+        // the line they come from instead.
+        const std::string message = deal_ii_message(e);
+        std::smatch m;
+        if (std::regex_search(message, m, std::regex("^Line <([0-9]+)> of file <[^>]*>: *")))
+          throw InputError(text.where(std::stoul(m[1])) + ": " + printable(m.suffix(), 400));
+        throw InputError("Scene file '" + printable(filename) + "': " + printable(message, 400));
       }
     for (const auto &o : overrides)
       apply_override(prm, o);
+    require_recordable(s); // as given, before a path is opened; validate_scene checks the resolved paths
 
     build_beam(s, tables, filename, set_keys);
     resolve_solid_mesh(s, filename);

@@ -5,6 +5,7 @@
 // is refused with an InputError naming the problem.
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
+#include "fem/solid_mesh.h"
 #include "fem/solid_modes.h"
 #include "fem/solid_statics.h"
 #include "meshes/scene.h"
@@ -303,4 +304,39 @@ TEST(SolidMesh, BadMeshesAreRefusedWithTheirProblemNamed)
   EXPECT_NE(absent.find("no cell"), std::string::npos) << absent;
   for (const std::string &message : {no_clamp, unused, folded, flat, surface, unlisted, absent})
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+}
+
+// A hexahedron whose two faces are listed the other way round (the top face
+// first: a mirrored, left-handed cell) is turned by deal.II's reader into the
+// right-handed cell it describes, and accepted: the same mesh, as
+// doc/scenes.md §2b says. Only a cell folded over itself or flat is refused
+// (above).
+TEST(SolidMesh, AHexahedronWithItsFacesSwappedIsReorientedAndAccepted)
+{
+  const BadMesh bad;
+  const std::string mesh = BadMesh::text(), first_hex = "3 5 2 1 1 1 2 5 4 7 8 11 10\n";
+  std::string swapped = mesh;
+  const auto at = swapped.find(first_hex);
+  ASSERT_NE(at, std::string::npos) << mesh;
+  swapped.replace(at, first_hex.size(), "3 5 2 1 1 7 8 11 10 1 2 5 4\n");
+  EXPECT_EQ(bad.error(swapped), "");
+
+  const auto cell_volumes = [&bad](const std::string &text) {
+    const fs::path file = bad.folder / "volumes.msh";
+    std::ofstream(file) << text;
+    const Scene scene = read_scene(scene_dir + "strip-hex.prm", {"Solid/Mesh file=" + file.string()});
+    dealii::Triangulation<3> tria;
+    make_solid_mesh(scene, tria);
+    std::vector<double> volumes;
+    for (const auto &cell : tria.active_cell_iterators())
+      volumes.push_back(cell->measure());
+    return volumes;
+  };
+  const std::vector<double> original = cell_volumes(mesh), reoriented = cell_volumes(swapped);
+  ASSERT_EQ(reoriented.size(), original.size());
+  for (std::size_t c = 0; c < original.size(); ++c)
+    {
+      EXPECT_GT(reoriented[c], 0.) << "cell " << c;
+      EXPECT_NEAR(reoriented[c], original[c], 1e-12 * original[c]) << "cell " << c;
+    }
 }

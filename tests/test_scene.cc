@@ -212,6 +212,53 @@ TEST(SceneErrors, UnknownParameterInAFileIsAnError)
   expect_contains(error_for_file("bad_scene.prm", "subsection Beam\n  set Lenght = 0.1\nend\n"), "Lenght");
 }
 
+// deal.II takes a keyword in upper case too ("SET"); so does the check for
+// a parameter set twice, and a mixed-case "Set" is no keyword at all.
+TEST(SceneErrors, KeywordsInUpperCaseAreKeywordsToo)
+{
+  expect_contains(error_for_file("upper_scene.prm", "SUBSECTION Slider\n  set Mass = 0.05\n  SET Mass = 0.06\nEND\n"),
+                  "line 3: 'Slider/Mass' is set a second time (first on line 2)");
+  expect_contains(error_for_file("mixed_scene.prm", "subsection Slider\n  Set Mass = 0.05\nend\n"),
+                  "line 2 is not a scene line");
+}
+
+// Each file of an include chain stands on its own: it closes the
+// subsections it opens and does not end in a continued line (which would
+// join a line of the file after it), and the chain is at most 16 deep.
+TEST(SceneErrors, EachIncludedFileStandsOnItsOwn)
+{
+  const std::string dir = ::testing::TempDir();
+  const auto write = [&dir](const std::string &name, const std::string &text) { std::ofstream(dir + name) << text; };
+  const auto error = [&dir](const std::string &name) {
+    try
+      {
+        read_scene(dir + name);
+      }
+    catch (const InputError &e)
+      {
+        return std::string(e.what());
+      }
+    return std::string();
+  };
+  write("open_part.prm", "subsection Slider\n  set Mass = 0.05\n");
+  write("open_scene.prm", "include open_part.prm\nend\n");
+  expect_contains(error("open_scene.prm"), "open_part.prm' (included by '");
+  expect_contains(error("open_scene.prm"), "1 'subsection' without its 'end'");
+
+  write("continued_part.prm", "subsection Slider\n  set Mass = 0.05\nend\nset x = \\\n");
+  write("continued_scene.prm", "include continued_part.prm\n");
+  expect_contains(error("continued_scene.prm"), "continued_part.prm', line 4 (included by '");
+
+  for (int i = 0; i < 20; ++i)
+    write("chain_" + std::to_string(i) + ".prm", "include chain_" + std::to_string(i + 1) + ".prm\n");
+  expect_contains(error("chain_0.prm"), "chain_16.prm', line 1 (included by '");
+  expect_contains(error("chain_0.prm"), "includes nest deeper than 16 files");
+  for (int i = 0; i < 20; ++i)
+    std::remove((dir + "chain_" + std::to_string(i) + ".prm").c_str());
+  for (const char *name : {"open_part.prm", "open_scene.prm", "continued_part.prm", "continued_scene.prm"})
+    std::remove((dir + name).c_str());
+}
+
 TEST(SceneErrors, MissingFile)
 {
   std::string m;

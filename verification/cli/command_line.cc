@@ -8,6 +8,7 @@
 
 #include "contact/interruption.h"
 #include "contact/output_file.h"
+#include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
@@ -17,6 +18,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 
 namespace beamslider
@@ -298,25 +301,31 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
         return run_ladder_command(common, ladder);
       if (*template_cmd)
         {
-          std::cout << scene_template();
+          // A full disk or a closed pipe must not pass for a written template.
+          errno = 0;
+          std::cout << scene_template() << std::flush;
+          if (!std::cout)
+            throw OutputError(std::string("the scene template could not be written to standard output: ") +
+                              (errno != 0 ? std::strerror(errno) : "write error"));
           return 0;
         }
     }
   catch (const InputError &e)
     {
-      errors << "error: " << e.what() << std::endl;
+      // Values the user gave may hold a line break or an escape sequence.
+      errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
   catch (const std::invalid_argument &e)
     {
       // The library's checks of values that came from the scene or the
       // options (a time step above the model's stability limit, ...).
-      errors << "error: " << e.what() << std::endl;
+      errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
   catch (const OutputError &e)
     {
-      errors << "error: results not written: " << e.what() << std::endl;
+      errors << "error: results not written: " << one_line(e.what()) << std::endl;
       return 1;
     }
   catch (const dealii::ExceptionBase &e)
