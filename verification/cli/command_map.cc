@@ -155,6 +155,7 @@ namespace beamslider
         continued.append = true;
         map_rows.emplace(map_csv, columns, continued);
         CsvOptions timing_options;
+        timing_options.in_place = true; // rows as cells finish
         // A resumed map appends to the timing rows it has (its header is there).
         std::error_code no_file;
         timing_options.append = std::filesystem::file_size(dir + "/timing.csv", no_file) > 0 && !no_file;

@@ -210,7 +210,13 @@ namespace beamslider
   //   run.txt         the command line, working directory, time (UTC),
   //                   beamslider version and source revision; a run that
   //                   continues the folder's run (simulate --resume) appends
-  //                   its record, so the folder keeps every one.
+  //                   its record, so the folder keeps every one (and
+  //                   parameters.prm and command.prm stay those of the run
+  //                   it continues).
+  // Before that it takes the folder for this run (lock_output_folder: exit 1
+  // if a live process holds it) and, for a new run, removes the result files
+  // the command writes (command_common.cc, result_files), so that no file in
+  // the folder is left from another run.
   // Throws OutputError if the folder or either file cannot be written.
   enum class RunRecord
   {
