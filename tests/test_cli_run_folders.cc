@@ -8,7 +8,8 @@
 //   replaced by a link (exit 2), never padding it with NUL bytes;
 // - a new run removes the previous run's results first, so an interrupted
 //   ensemble or ladder leaves no summary of the run before it;
-// - results replace a symbolic link in the folder, never write through it.
+// - results replace a symbolic link in the folder, never write through it;
+// - a map into the folder of another map is refused before it writes.
 #include "contact/output_file.h"
 #include "tests/cli_runner.h"
 
@@ -252,8 +253,8 @@ TEST(RunFolder, ResultsReplaceALinkAndNeverWriteThroughIt)
   const fs::path out = dir / "out", target = dir / "precious.txt";
   fs::create_directories(out);
   write(target, "not a result\n");
-  const std::vector<std::string> simulate_files = {"trace.csv", "periods.csv", "summary.md", "parameters.prm",
-                                                   "command.prm", "run.txt"};
+  const std::vector<std::string> simulate_files = {"trace.csv", "periods.csv", "summary.md", "trace.png",
+                                                   "parameters.prm", "command.prm", "run.txt"};
   for (const std::string &name : simulate_files)
     fs::create_symlink(target, out / name);
   CliRun run = run_beamslider({"simulate", scene, "--end-time", "0.05", "--output", out.string()});
@@ -278,5 +279,30 @@ TEST(RunFolder, ResultsReplaceALinkAndNeverWriteThroughIt)
   // No temporary left beside the results.
   for (const auto &entry : fs::directory_iterator(modes))
     EXPECT_EQ(entry.path().extension() == ".tmp", false) << entry.path();
+  fs::remove_all(dir);
+}
+
+// A map into the folder of a map of other settings is refused (exit 2)
+// before it writes anything: the folder's command.prm and parameters.prm
+// still describe the map that is there. The same map again continues it.
+TEST(RunFolder, AMapOfOtherSettingsLeavesTheFolderOfAMapAsItIs)
+{
+  const fs::path dir = fresh_folder("map_settings");
+  CliRun run = run_beamslider({"map", scene, "--frequency", "124", "--acceleration", "14", "--end-time", "0.3",
+                               "--quiet", "--output", dir.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string options = read_file(dir / "command.prm"), parameters = read_file(dir / "parameters.prm"),
+                    rows    = read_file(dir / "map.csv");
+  run = run_beamslider({"map", scene, "--frequency", "110", "--acceleration", "14", "--end-time", "0.3", "--quiet",
+                        "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(first_line(run.err).find("holds a map with other settings"), std::string::npos) << run.err;
+  EXPECT_EQ(read_file(dir / "command.prm"), options);
+  EXPECT_EQ(read_file(dir / "parameters.prm"), parameters);
+  EXPECT_EQ(read_file(dir / "map.csv"), rows);
+  run = run_beamslider({"map", scene, "--frequency", "124", "--acceleration", "14", "--end-time", "0.3", "--quiet",
+                        "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(read_file(dir / "map.csv"), rows);
   fs::remove_all(dir);
 }

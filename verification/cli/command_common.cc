@@ -69,8 +69,9 @@ namespace beamslider
     // own check: member_runs.csv (its key, member_runs.h; one of other
     // settings is moved aside to member_runs.other.csv, kept). A resumed
     // simulate removes nothing (its checkpoint says what it continues).
-    // map, identify and verify keep their folders as they are: they resume
-    // from them (map.csv, a report's sections).
+    // map keeps map.csv, map_settings.txt and timing.csv (a restart of the
+    // same map continues them); verify keeps its folder as it is (a report's
+    // sections, the studies' subfolders).
     const std::vector<std::string> &result_files(const std::string &command)
     {
       static const std::vector<std::string> none;
@@ -89,6 +90,10 @@ namespace beamslider
         {"statics", {"statics.csv", "statics.vtu", "statics.pvtu", "statics_*.vtu", "summary.md"}},
         {"coefficients", {"coefficients.csv", "quadratic_coefficients.csv", "summary.md"}},
         {"backbone", {"backbone.csv", "eq4.csv", "backbone.png", "summary.md"}},
+        {"map",
+         {"summary.md", "published_cases.csv", "map_outcome_*.png", "map_final_position_*.png",
+          "map_late_amplitude_*.png", "map_line_*.png"}},
+        {"identify", {"facts.csv", "identification.csv", "verdicts.csv", "summary.md"}},
         {"sweep",
          {"pcs.csv", "runs.csv", "resonance.csv", "free_periods.csv", "pcs.png", "comparison.csv", "crossings.csv",
           "pcs_compare.png", "summary.md"}}};
@@ -181,12 +186,18 @@ namespace beamslider
     recorded_command() = {command, settings};
   }
 
-  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
-                                 const RunRecord record)
+  std::string output_dir_path(const CommonOptions &common, const Scene &scene, const std::string &command)
   {
     const fs::path dir = !common.output_dir.empty() ? fs::path(common.output_dir)
                          : command.empty()           ? fs::path("reports") / scene.name
                                                      : fs::path("reports") / scene.name / command;
+    return dir.string();
+  }
+
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
+                                 const RunRecord record)
+  {
+    const fs::path dir = output_dir_path(common, scene, command);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)

@@ -225,6 +225,9 @@ namespace beamslider
   };
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
                                  RunRecord record = RunRecord::replace);
+  // The folder prepare_output_dir would prepare, untouched (for a command
+  // that must check what the folder holds before it writes there).
+  std::string output_dir_path(const CommonOptions &common, const Scene &scene, const std::string &command);
 
   // This build's version and source revision ("beamslider 0.9.0 1a2b3c…"),
   // as run.txt records it: part of what a resumable study's records were
