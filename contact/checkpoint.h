@@ -11,7 +11,8 @@
 // program's version, the payload's length, the payload, and an FNV-1a 64-bit
 // checksum of the payload. read_checkpoint_file refuses a file of another
 // format or version, a truncated file and a checksum that does not match;
-// the caller compares the scene's content hash stored in the payload.
+// the caller compares the scene's content hash stored in the payload, and
+// (simulate) the run's identity and the digests of the files it continues.
 #pragma once
 
 #include <Eigen/Dense>

@@ -1,6 +1,7 @@
 // Checked result files, see output_file.h.
 #include "contact/output_file.h"
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -29,7 +30,7 @@ namespace beamslider
     // complete. Hidden, so that a folder listing shows only results.
     std::pair<int, std::string> create_temporary(const std::string &path)
     {
-      static unsigned long n_created = 0;
+      static std::atomic<unsigned long> n_created{0}; // files may be opened from several threads
       const std::filesystem::path target(path);
       for (int attempt = 0;; ++attempt)
         {
@@ -61,6 +62,14 @@ namespace beamslider
     errno = 0;
     if (mode == FileMode::whole)
       {
+        // A folder in the result's place fails now, before any work, not
+        // when the finished file is renamed.
+        struct stat existing;
+        if (::lstat(path_.c_str(), &existing) == 0 && S_ISDIR(existing.st_mode))
+          {
+            errno = EISDIR;
+            fail("cannot be opened for writing");
+          }
         const auto [fd, tmp] = create_temporary(path_);
         if (fd < 0)
           fail("cannot be opened for writing");
