@@ -9,7 +9,9 @@
 namespace beamslider
 {
   CsvWriter::CsvWriter(const std::string &path, const std::vector<std::string> &columns, const CsvOptions &options)
-    : file_(path, options.append)
+    : file_(path, options.append     ? FileMode::append
+                  : options.in_place ? FileMode::stream
+                                     : FileMode::whole)
     , n_columns_(columns.size())
     , flush_every_(options.flush_every)
   {

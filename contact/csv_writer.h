@@ -6,7 +6,8 @@
 // says ("a, b" and "say ""x""", which Python's csv module and spreadsheet
 // programs read back as the one cell each was).
 //
-// The file is an OutputFile: a failed open, write, flush or close throws
+// The file is an OutputFile, written whole (renamed into place by close()
+// or the destructor) unless it is a stream (CsvOptions::in_place, append): a failed open, write, flush or close throws
 // OutputError naming the file and the reason. By default every row is
 // flushed as it is written, so a stopped run never loses a finished row; a
 // writer of many rows per second (trace.csv) may flush every n rows instead.
@@ -25,6 +26,10 @@ namespace beamslider
     // Continue a file that has its header already (a resumed run): open it
     // for appending and write no header.
     bool append = false;
+    // A stream that grows during a run and must be there after a kill
+    // (trace.csv, statics.csv): written in place (FileMode::stream) rather
+    // than whole into a temporary renamed by close().
+    bool in_place = false;
     // Rows between flushes: 1 = each row reaches the file when written;
     // 0 = only when the caller flushes (a series of files flushed together).
     unsigned int flush_every = 1;

@@ -6,6 +6,13 @@
 // reason, and the program exits with status 1. OutputFile checks the open,
 // every flush and the close; write_text_file does the same for a whole text.
 //
+// A result file is written whole: into a temporary file in its folder,
+// renamed over the result when closed, so that a reader (or a run killed
+// half-way) never leaves half a file under the result's name, and a symbolic
+// link in the result's place is replaced, never written through. A stream
+// that grows during a run and must survive a kill -9 (trace.csv) is written
+// in place instead, but never through a link either (FileMode::stream).
+//
 // The process ignores SIGXFSZ (see interruption.h), so that a file-size limit
 // makes the write fail with EFBIG instead of killing the process.
 //
@@ -29,6 +36,14 @@ namespace beamslider
     using std::runtime_error::runtime_error;
   };
 
+  // Another live process holds the output folder (lock_output_folder).
+  // Exit status 1, and its message is the whole story.
+  class FolderInUseError : public OutputError
+  {
+  public:
+    using OutputError::OutputError;
+  };
+
   // A file could not be read (not there, a folder, no permission, an I/O
   // error). Callers rethrow it as their own kind where the file was the
   // user's input (a scene file, a checkpoint to resume).
@@ -38,15 +53,28 @@ namespace beamslider
     using std::runtime_error::runtime_error;
   };
 
+  enum class FileMode
+  {
+    whole,  // a temporary file, renamed over `path` by close()
+    stream, // `path` itself, truncated (a link in its place removed first)
+    append  // `path` itself, kept and continued (a link is refused)
+  };
+
   class OutputFile
   {
   public:
-    // Opens (truncates) `path` for writing; `append` keeps what is there.
-    // Throws OutputError if it cannot be opened.
-    explicit OutputFile(std::string path, bool append = false);
+    // Opens `path` for writing as `mode` says; throws OutputError if it
+    // cannot be opened.
+    explicit OutputFile(std::string path, FileMode mode = FileMode::whole);
+    // `append`: FileMode::append, else FileMode::whole.
+    OutputFile(std::string path, bool append)
+      : OutputFile(std::move(path), append ? FileMode::append : FileMode::whole)
+    {}
     OutputFile(const OutputFile &) = delete;
     OutputFile &operator=(const OutputFile &) = delete;
-    // Closes without throwing; call close() to learn whether the tail was written.
+    // Closes without throwing; call close() to learn whether the tail was
+    // written. A whole file is renamed into place unless an exception is on
+    // its way (a run that failed half-way): then the temporary is removed.
     ~OutputFile();
 
     std::ostream &stream() { return out_; }
@@ -61,17 +89,34 @@ namespace beamslider
 
   private:
     [[noreturn]] void fail(const std::string &what);
-    std::string path_;
+    void discard() noexcept;
+    std::string path_, temporary_; // temporary_: "" unless FileMode::whole
     std::ofstream out_;
+    int uncaught_ = 0; // std::uncaught_exceptions() when opened
   };
 
-  // Writes `text` to `path` (replacing it), checked; throws OutputError.
+  // Writes `text` to `path` (replacing it, whole), checked; throws OutputError.
   void write_text_file(const std::string &path, const std::string &text);
 
-  // Writes `bytes` to `path` atomically: into `path.tmp`, flushed to disk,
-  // then renamed over `path`, so that a reader sees either the old or the new
-  // file whole, never a half-written one. Throws OutputError.
+  // Writes `bytes` to `path` atomically: into a new temporary file beside
+  // it, flushed to disk, then renamed over `path`, so that a reader sees
+  // either the old or the new file whole, never a half-written one (and a
+  // power cut neither). Throws OutputError.
   void write_file_atomically(const std::string &path, const std::string &bytes);
+
+  // A folder one run writes into, for as long as the process lives (or
+  // until release_output_folders): an flock()ed file `.beamslider.lock` in
+  // it holds the owner's process id. The kernel drops the lock when the
+  // process ends, however it ends, so a kill -9 leaves no stale lock. A
+  // folder this process holds already is not locked twice. Throws
+  // OutputError ("output folder 'X' is in use by process P") if another
+  // process holds it; nothing else in the folder is touched then.
+  void lock_output_folder(const std::string &dir);
+  // Lets go of every folder this process holds (a command run in a process
+  // that lives on: the Python module).
+  void release_output_folders();
+  // The lock file's name, for tests that hold a folder themselves.
+  inline const char *output_folder_lock_name() { return ".beamslider.lock"; }
 
   // The whole of `path`, byte for byte. Throws FileReadError if it cannot be
   // opened or a read fails.

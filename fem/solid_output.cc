@@ -27,13 +27,11 @@ namespace beamslider
     template <typename Writer>
     void write_checked(const std::string &path, const Writer &write)
     {
-      std::ofstream out(path);
-      if (!out)
-        throw OutputError("cannot open " + path + " for writing");
-      write(out);
+      // A checked OutputFile: whole (a temporary renamed into place), never
+      // written through a link.
+      OutputFile out(path);
+      write(out.stream());
       out.close();
-      if (!out)
-        throw OutputError("could not write " + path);
     }
   } // namespace
 

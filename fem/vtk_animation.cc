@@ -54,12 +54,14 @@ namespace beamslider
     template <class Writer, class Data>
     void write_xml(Data &data, const std::string &filename)
     {
+      // In memory, then whole into the folder: never through a link.
       vtkNew<Writer> writer;
-      writer->SetFileName(filename.c_str());
+      writer->WriteToOutputStringOn();
       writer->SetInputData(&data);
       writer->SetDataModeToAppended();
       if (writer->Write() != 1)
         throw std::runtime_error("cannot write VTK file '" + filename + "'");
+      write_text_file(filename, writer->GetOutputString());
     }
   } // namespace
 
@@ -134,6 +136,7 @@ namespace beamslider
     CsvOptions options;
     options.comment     = comment.str();
     options.flush_every = 0; // with the .pvd, every 25 frames (write())
+    options.in_place    = true;
     csv_.emplace(directory_ + "/frames.csv",
                  std::vector<std::string>{"frame", "t_s", "part", "x_m", "z_m", "fx_N", "fz_N"}, options);
   }

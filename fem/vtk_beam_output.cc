@@ -1,5 +1,7 @@
 #include "fem/vtk_beam_output.h"
 
+#include "contact/output_file.h"
+
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -78,11 +80,14 @@ namespace beamslider
         grid->GetFieldData()->AddArray(a);
       }
 
+    // Into memory, then whole into the folder (a temporary renamed into
+    // place): VTK's own file writing would follow a link at `filename`.
     vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(filename.c_str());
+    writer->WriteToOutputStringOn();
     writer->SetInputData(grid);
     writer->SetDataModeToAppended();
     if (writer->Write() != 1)
       throw std::runtime_error("Cannot write VTK file '" + filename + "'");
+    write_text_file(filename, writer->GetOutputString());
   }
 } // namespace beamslider

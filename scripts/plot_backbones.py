@@ -10,7 +10,7 @@ Each continuation segment is drawn as its own line: the gap between segments
 is the internal-resonance tongue jumped over."""
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def segments(rows):
@@ -38,7 +38,7 @@ def command(folder):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{folder}/backbone.png", dpi=120)
+    save_figure(fig, f"{folder}/backbone.png", dpi=120)
 
 
 def report(folder):
@@ -62,7 +62,7 @@ def report(folder):
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{folder}/backbones.png", dpi=120)
+    save_figure(fig, f"{folder}/backbones.png", dpi=120)
 
     rows = read_rows(f"{folder}/backbone_harmonics.csv")
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
@@ -76,7 +76,7 @@ def report(folder):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{folder}/backbone_harmonics.png", dpi=120)
+    save_figure(fig, f"{folder}/backbone_harmonics.png", dpi=120)
 
 
 if __name__ == "__main__":

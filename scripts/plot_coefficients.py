@@ -3,7 +3,7 @@ b_111 against the STEP amplitude / ICE load level (coefficient_load_levels.csv
 in the report folder given as the only argument) -> coefficient_load_levels.png."""
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder):
@@ -24,7 +24,7 @@ def main(folder):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{folder}/coefficient_load_levels.png", dpi=120)
+    save_figure(fig, f"{folder}/coefficient_load_levels.png", dpi=120)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
-"""What beamslider's plot scripts share: matplotlib without a display, and
-reading a CSV file written by beamslider into one dict per row.
+"""What beamslider's plot scripts share: matplotlib without a display,
+reading a CSV file written by beamslider into one dict per row, and saving a
+chart whole (save_figure) as every result file is written.
 
 Import it first (`from plot_common import plt, read_rows`): it selects the
 Agg backend before pyplot is loaded. The scripts live beside it and are run
@@ -14,7 +15,24 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend choice)
 
-__all__ = ["plt", "read_rows", "positive_number", "read_checked_rows"]
+__all__ = ["plt", "read_rows", "positive_number", "read_checked_rows", "save_figure"]
+
+
+def save_figure(fig, path, **options):
+    """fig.savefig(path, **options), whole: into a hidden temporary file
+    beside `path`, renamed over it once complete, so that a reader never sees
+    half a chart and a link at `path` is replaced, never written through
+    (doc/cli.md, "A run's folder belongs to one run")."""
+    folder, name = os.path.split(path)
+    temporary = os.path.join(folder, f".{name}.{os.getpid()}.tmp")
+    options.setdefault("format", os.path.splitext(name)[1][1:] or "png")
+    try:
+        fig.savefig(temporary, **options)
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.lexists(temporary):
+            os.unlink(temporary)
+        raise
 
 
 def read_rows(path, missing_ok=False):

@@ -5,7 +5,7 @@ Arguments: folder (with member_periods.csv and members.csv), title."""
 import os
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder, title):
@@ -44,7 +44,7 @@ def main(folder, title):
     ax2.set_xlabel("t [s]")
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "ensemble.png"), dpi=110)
+    save_figure(fig, os.path.join(folder, "ensemble.png"), dpi=110)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ the scene's time step. Arguments: report folder (with
 explicit_time_step_limit.csv), the scene's time step [s]."""
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder, dt):
@@ -19,7 +19,7 @@ def main(folder, dt):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(f"{folder}/explicit_time_step_limit.png", dpi=120)
+    save_figure(fig, f"{folder}/explicit_time_step_limit.png", dpi=120)
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ import re
 import sys
 from collections import defaultdict
 
-from plot_common import plt  # noqa: E402
+from plot_common import plt, save_figure  # noqa: E402
 
 
 def read(path):
@@ -71,7 +71,7 @@ def main():
                  f"(z axis stretched); red: contact force on the slider, longest arrow {f_max:.3g} N",
                  fontsize=9)
     fig.tight_layout()
-    fig.savefig(dst, dpi=130)
+    save_figure(fig, dst, dpi=130)
 
 
 if __name__ == "__main__":

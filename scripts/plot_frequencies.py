@@ -6,7 +6,7 @@ bonded_slider.png beside them.
 """
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder):
@@ -28,7 +28,7 @@ def main(folder):
     axes[0].set_ylabel("relative frequency error")
     axes[1].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(f"{folder}/frequency_convergence.png", dpi=120)
+    save_figure(fig, f"{folder}/frequency_convergence.png", dpi=120)
 
     rows = read_rows(f"{folder}/bonded_slider.csv")
     x = [float(r["x_over_L"]) for r in rows]
@@ -44,7 +44,7 @@ def main(folder):
     ax2.set_ylabel("(Eq. 5 − FE)/FE [%]")
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(f"{folder}/bonded_slider.png", dpi=120)
+    save_figure(fig, f"{folder}/bonded_slider.png", dpi=120)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ grey mark. Arguments: report folder, scene name."""
 import sys
 from collections import defaultdict
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder, scene):
@@ -52,7 +52,7 @@ def main(folder, scene):
     ax2.set_title("speed against accuracy (bars: 90 % interval; grey: ensemble spread)", fontsize=9)
     ax2.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
-    fig.savefig(f"{folder}/ladder.png", dpi=120)
+    save_figure(fig, f"{folder}/ladder.png", dpi=120)
 
 
 if __name__ == "__main__":

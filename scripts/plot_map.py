@@ -25,7 +25,7 @@ import sys
 
 import matplotlib.colors as mcolors
 import matplotlib.patches as mpatches
-from plot_common import plt  # noqa: E402
+from plot_common import plt, save_figure  # noqa: E402
 import numpy as np
 
 # The outcome classes in tie-breaking order, each with its fixed colour.
@@ -292,7 +292,7 @@ def plot_pair(folder, title, axes, grids, summary, cases, ia, ib):
         ax.set_ylabel(label(b))
         fig.tight_layout()
         path = os.path.join(folder, f"{name}_{a}_{b}.png")
-        fig.savefig(path, dpi=120)
+        save_figure(fig, path, dpi=120)
         plt.close(fig)
         written.append(path)
 
@@ -379,7 +379,7 @@ def plot_line(folder, title, axes, grids, summary, cases):
     ax3.set_xlim(e[0], e[-1])
     fig.tight_layout()
     path = os.path.join(folder, f"map_line_{a}.png")
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return [path]
 

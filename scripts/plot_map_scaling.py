@@ -10,7 +10,7 @@ import csv
 import math
 import sys
 
-from plot_common import plt  # noqa: E402
+from plot_common import plt, save_figure  # noqa: E402
 from matplotlib.ticker import FuncFormatter
 
 COLUMNS = ["ranks", "cells", "wall_s", "cells_per_s", "machine"]
@@ -94,7 +94,7 @@ def main(src, out):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
 
 
 if __name__ == "__main__":

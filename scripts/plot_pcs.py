@@ -7,7 +7,7 @@ its spread over the averaged periods."""
 import os
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder, scene):
@@ -46,7 +46,7 @@ def main(folder, scene):
     ax2.set_ylabel(r"$\bar F_x$ [N] (+ toward $x = L$)")
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "pcs.png"), dpi=120)
+    save_figure(fig, os.path.join(folder, "pcs.png"), dpi=120)
 
 
 if __name__ == "__main__":

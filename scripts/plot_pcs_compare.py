@@ -8,7 +8,7 @@ Arguments: folder, other folder, label, other label."""
 import os
 import sys
 
-from plot_common import plt, read_rows  # noqa: E402
+from plot_common import plt, save_figure, read_rows  # noqa: E402
 
 
 def main(folder, other, label, other_label):
@@ -40,7 +40,7 @@ def main(folder, other, label, other_label):
     ax2.legend(fontsize=7)
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "pcs_compare.png"), dpi=120)
+    save_figure(fig, os.path.join(folder, "pcs_compare.png"), dpi=120)
 
 
 if __name__ == "__main__":

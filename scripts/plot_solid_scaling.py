@@ -6,7 +6,7 @@ Arguments: solid_scaling.csv (columns dofs,ranks,wall_s,modes_s,max_rss_mb,
 machine), output PNG."""
 import sys
 
-from plot_common import plt, positive_number, read_checked_rows  # noqa: E402
+from plot_common import plt, save_figure, positive_number, read_checked_rows  # noqa: E402
 from matplotlib.ticker import FuncFormatter
 
 COLUMNS = ["dofs", "ranks", "wall_s", "modes_s", "max_rss_mb", "machine"]
@@ -69,7 +69,7 @@ def main(src, out):
     right.legend(lines[0] + more[0], lines[1] + more[1], fontsize=7, loc="upper left")
     fig.suptitle(f"beamslider: solid strip, modes + STEP (N = 5), on {machine}", fontsize=9)
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    save_figure(fig, out, dpi=120)
 
 
 if __name__ == "__main__":

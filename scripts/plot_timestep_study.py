@@ -13,7 +13,7 @@ import math
 import os
 import sys
 
-from plot_common import plt, read_rows
+from plot_common import plt, save_figure, read_rows
 
 folder = sys.argv[1]
 rows = read_rows(os.path.join(folder, "ladder.csv"))
@@ -62,4 +62,4 @@ by_step.legend(fontsize=8)
 by_step.set_title("End state against the FE's time step")
 by_wall.set_title("... and against its cost")
 figure.tight_layout()
-figure.savefig(os.path.join(folder, "timestep_study.png"), dpi=120)
+save_figure(figure, os.path.join(folder, "timestep_study.png"), dpi=120)

@@ -16,7 +16,7 @@ are complete. No input means the run ended without a chart to draw."""
 import os
 import sys
 
-from plot_common import plt  # noqa: E402
+from plot_common import plt, save_figure  # noqa: E402
 import numpy as np
 
 plot_columns = 2000
@@ -73,7 +73,7 @@ def main(folder, title, h):
     ax2.set_xlabel("t [s]")
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(folder, "trace.png"), dpi=110)
+    save_figure(fig, os.path.join(folder, "trace.png"), dpi=110)
 
 
 if __name__ == "__main__":

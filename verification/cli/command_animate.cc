@@ -62,6 +62,7 @@ namespace beamslider
     AdaptationRun run(scene, *beam, run_options);
     CsvOptions trace_options;
     trace_options.flush_every = 1000; // 1000 rows per simulated second
+    trace_options.in_place    = true;
     CsvWriter trace(dir + "/trace.csv", trace_csv_columns(), trace_options);
     run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
 

@@ -117,6 +117,8 @@ namespace beamslider
               << " relative off)\n";
     write_text_file(dir + "/summary.md", summary.str());
 
+    csv.close(); // whole files, renamed into place, before the chart reads them
+    eq4.close();
     const bool plotted = run_plot_script("plot_backbones.py", {"command", dir});
     console() << "Backbone of scene '" << scene.name << "' (" << model_text << "): " << backbone.points.size()
               << " points up to ŵ/h = " << a_max << " in " << backbone.seconds << " s; " << backbone.message << "\n";

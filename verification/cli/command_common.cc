@@ -5,6 +5,7 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>
+#include <map>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -60,10 +61,90 @@ namespace beamslider
       return command;
     }
 
+    // The result files a command writes into its folder, besides
+    // parameters.prm, command.prm and run.txt ('*' stands for any text). A
+    // new run removes them before it starts, so that none is left from
+    // another run beside the new command.prm, however the new one ends.
+    // Not here, because a re-run of the same command reuses them after its
+    // own check: member_runs.csv (its key, member_runs.h; one of other
+    // settings is moved aside to member_runs.other.csv, kept). A resumed
+    // simulate removes nothing (its checkpoint says what it continues).
+    // map keeps map.csv, map_settings.txt and timing.csv (a restart of the
+    // same map continues them); verify keeps its folder as it is (a report's
+    // sections, the studies' subfolders).
+    const std::vector<std::string> &result_files(const std::string &command)
+    {
+      static const std::vector<std::string> none;
+      static const std::map<std::string, std::vector<std::string>> files = {
+        {"simulate",
+         {"trace.csv", "periods.csv", "trace.png", "summary.md", "checkpoint.bin", "animation*.pvd", "frames.csv",
+          "beam_*.vtu", "slider_*.vtp", "contacts_*.vtp"}},
+        {"animate",
+         {"trace.csv", "frames.csv", "frames.png", "animation*.pvd", "beam_*.vtu", "slider_*.vtp", "contacts_*.vtp",
+          "solid.pvd", "solid_*.pvtu", "solid_*.vtu"}},
+        {"ensemble",
+         {"members.csv", "member_periods.csv", "statistics.csv", "comparison.csv", "ensemble.png", "summary.md"}},
+        {"ladder",
+         {"ladder.csv", "ladder_members.csv", "ladder_steps.csv", "ladder.png", "summary.md"}},
+        {"modes", {"modes.csv", "line_modes.csv", "modes.vtu", "modes.pvtu", "modes_*.vtu", "summary.md"}},
+        {"statics", {"statics.csv", "statics.vtu", "statics.pvtu", "statics_*.vtu", "summary.md"}},
+        {"coefficients", {"coefficients.csv", "quadratic_coefficients.csv", "summary.md"}},
+        {"backbone", {"backbone.csv", "eq4.csv", "backbone.png", "summary.md"}},
+        {"map",
+         {"summary.md", "published_cases.csv", "map_outcome_*.png", "map_final_position_*.png",
+          "map_late_amplitude_*.png", "map_line_*.png"}},
+        {"identify", {"facts.csv", "identification.csv", "verdicts.csv", "summary.md"}},
+        {"sweep",
+         {"pcs.csv", "runs.csv", "resonance.csv", "free_periods.csv", "pcs.png", "comparison.csv", "crossings.csv",
+          "pcs_compare.png", "summary.md"}}};
+      const auto found = files.find(command.substr(0, command.find('/')));
+      return found == files.end() ? none : found->second;
+    }
+
+    bool matches(const std::string &name, const std::string &pattern)
+    {
+      const auto star = pattern.find('*');
+      if (star == std::string::npos)
+        return name == pattern;
+      const std::string head = pattern.substr(0, star), tail = pattern.substr(star + 1);
+      return name.size() >= head.size() + tail.size() && name.compare(0, head.size(), head) == 0 &&
+             name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+    }
+
+    // Removes the previous run's results (files or links, never folders).
+    void remove_previous_results(const fs::path &dir, const std::string &command)
+    {
+      const std::vector<std::string> &patterns = result_files(command);
+      if (patterns.empty())
+        return;
+      std::error_code ec;
+      std::vector<fs::path> stale;
+      for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        {
+          const std::string name = it->path().filename().string();
+          const fs::file_type type = it->symlink_status(ec).type();
+          if (type == fs::file_type::directory)
+            continue;
+          for (const std::string &pattern : patterns)
+            if (matches(name, pattern))
+              {
+                stale.push_back(it->path());
+                break;
+              }
+        }
+      if (ec)
+        throw OutputError("output folder '" + dir.string() + "' cannot be read: " + ec.message());
+      for (const fs::path &file : stale)
+        if (!fs::remove(file, ec) && ec)
+          throw OutputError("result file '" + file.string() + "' of an earlier run cannot be removed: " + ec.message());
+    }
+
     void write_run_record(const std::string &dir, const Scene &scene, const RunRecord record)
     {
       const RecordedCommand &command = recorded_command();
-      if (!command.name.empty())
+      // A resumed run continues the run command.prm describes: it stays
+      // (parameters.prm is the same scene but for a longer end time).
+      if (record == RunRecord::replace && !command.name.empty())
         write_text_file(dir + "/command.prm",
                         "# The options of this beamslider command with their effective values (given on the command "
                         "line or default); the scene is in parameters.prm.\n" +
@@ -105,18 +186,28 @@ namespace beamslider
     recorded_command() = {command, settings};
   }
 
-  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
-                                 const RunRecord record)
+  std::string output_dir_path(const CommonOptions &common, const Scene &scene, const std::string &command)
   {
     const fs::path dir = !common.output_dir.empty() ? fs::path(common.output_dir)
                          : command.empty()           ? fs::path("reports") / scene.name
                                                      : fs::path("reports") / scene.name / command;
+    return dir.string();
+  }
+
+  std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
+                                 const RunRecord record)
+  {
+    const fs::path dir = output_dir_path(common, scene, command);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec)
       throw OutputError("output folder '" + dir.string() + "' cannot be created: " + ec.message());
     if (!fs::is_directory(dir, ec))
       throw OutputError("output folder '" + dir.string() + "' is not a folder");
+    // One run per folder: held before anything in it is touched.
+    lock_output_folder(dir.string());
+    if (record == RunRecord::replace)
+      remove_previous_results(dir, command);
     write_run_record(dir.string(), scene, record);
     return dir.string();
   }

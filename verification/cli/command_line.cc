@@ -323,6 +323,11 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
       errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
+  catch (const FolderInUseError &e)
+    {
+      errors << "error: " << e.what() << std::endl; // nothing was written: not a failed write
+      return 1;
+    }
   catch (const OutputError &e)
     {
       errors << "error: results not written: " << one_line(e.what()) << std::endl;
@@ -351,6 +356,7 @@ int run_beamslider(int argc, char **argv, std::ostream &errors)
 {
   clear_output_failures();
   int status = parse_and_run(argc, argv, errors);
+  release_output_folders(); // the command's folders are free again (the Python module lives on)
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written
   if (interruption_requested())

@@ -117,8 +117,6 @@ namespace beamslider
     std::size_t n_skipped = 0;
     if (root)
       {
-        dir     = prepare_output_dir(common, base, "map");
-        map_csv = dir + "/map.csv";
         // What this map is; a restart into the same folder must be the same map.
         std::ostringstream what;
         what << "scene " << base.name << " content " << scene_content_key(base) << "\nmodel " << options.model
@@ -133,16 +131,22 @@ namespace beamslider
               what << ' ' << v;
             what << "\n";
           }
+        // Checked before anything in the folder is written: a folder of
+        // another map is refused as it is (its parameters.prm and
+        // command.prm still describe that map).
+        const std::string planned = output_dir_path(common, base, "map");
+        if (std::filesystem::is_directory(planned))
+          lock_output_folder(planned);
+        const std::string previous = read_text_file_if_present(planned + "/map_settings.txt");
+        if (!previous.empty() && previous != what.str())
+          throw InputError("the output folder '" + planned + "' holds a map with other settings (" + planned +
+                           "/map_settings.txt); use another --output or remove that folder");
+        dir     = prepare_output_dir(common, base, "map");
+        map_csv = dir + "/map.csv";
         const std::string settings_path = dir + "/map_settings.txt";
-        const std::string previous      = read_text_file_if_present(settings_path);
         std::map<std::string, std::string> finished;
         if (!previous.empty())
-          {
-            if (previous != what.str())
-              throw InputError("the output folder '" + dir + "' holds a map with other settings (" + settings_path +
-                               "); use another --output or remove that folder");
-            finished = read_finished_cells(map_csv, columns, settings.n_members);
-          }
+          finished = read_finished_cells(map_csv, columns, settings.n_members);
         write_text_file(settings_path, what.str());
         // map.csv anew with the complete cells only (atomically: a kill now
         // leaves the old file or the new one).
@@ -155,6 +159,7 @@ namespace beamslider
         continued.append = true;
         map_rows.emplace(map_csv, columns, continued);
         CsvOptions timing_options;
+        timing_options.in_place = true; // rows as cells finish
         // A resumed map appends to the timing rows it has (its header is there).
         std::error_code no_file;
         timing_options.append = std::filesystem::file_size(dir + "/timing.csv", no_file) > 0 && !no_file;

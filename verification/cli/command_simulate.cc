@@ -16,6 +16,7 @@
 // Both CSV files are flushed as the run goes: a stopped run keeps them.
 #include "contact/adaptation_run.h"
 #include "contact/checkpoint.h"
+#include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/vtk_animation.h"
@@ -26,8 +27,13 @@
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <optional>
 #include <cmath>
 #include <iomanip>
@@ -56,7 +62,14 @@ namespace beamslider
       ModelSetting setting;
       double end_time = 0;
       std::string why;
+      // What defines the run (format 3): the command, the model and the
+      // scene as parameters.prm holds it, and its digest.
+      std::string identity, scene_text;
+      std::uint64_t identity_digest = 0;
       std::uint64_t trace_bytes = 0, period_bytes = 0; // file sizes at the checkpoint
+      // FNV-1a of those bytes (format 3): a resume checks that the files it
+      // continues are the ones the checkpoint's run wrote.
+      std::uint64_t trace_digest = 0, period_digest = 0;
       std::uint64_t n_steps     = 0;
       double wall_seconds       = 0;
       std::vector<PeriodRecord> periods;
@@ -71,6 +84,119 @@ namespace beamslider
       for (const auto &o : overrides)
         hash = fnv1a(o + '\n', hash);
       return fnv1a("case:" + case_name, hash);
+    }
+
+    // The run's identity: what a resumed run must share with the run it
+    // continues. The end time is not part of it (--resume --end-time T
+    // extends a run), the scene's other parameters, the command and the model
+    // are.
+    std::string run_identity(const std::string &command, const ModelSetting &setting, const std::string &scene_text)
+    {
+      return "command: " + command + "\nmodel: " + setting.label() + ", coefficients " + setting.coefficients +
+             ", integrator " + setting.integrator + ", axial inertia " + (setting.axial_inertia ? "1" : "0") +
+             ", damped modes " + std::to_string(setting.damped_modes) + ", theta " + CsvWriter::cell(setting.theta, 17) +
+             ", time step " + CsvWriter::cell(setting.time_step, 17) + "\n" + scene_text;
+    }
+
+    // The parameters of a scene text (parameters.prm's format) as
+    // "Section/Name" and the rest of its line, in order; not the end time.
+    std::vector<std::pair<std::string, std::string>> scene_settings(const std::string &text)
+    {
+      std::vector<std::pair<std::string, std::string>> settings;
+      std::vector<std::string> sections;
+      std::istringstream in(text);
+      for (std::string line; std::getline(in, line);)
+        {
+          const std::size_t first = line.find_first_not_of(" \t");
+          if (first == std::string::npos)
+            continue;
+          line = line.substr(first);
+          if (line.rfind("subsection ", 0) == 0)
+            sections.push_back(line.substr(11));
+          else if (line == "end" && !sections.empty())
+            sections.pop_back();
+          else if (line.rfind("set ", 0) == 0)
+            {
+              const std::size_t equals = line.find(" = ");
+              std::string name;
+              for (const std::string &s : sections)
+                name += s + "/";
+              name += line.substr(4, equals == std::string::npos ? std::string::npos : equals - 4);
+              name.erase(name.find_last_not_of(' ') + 1); // the names are padded to align the values
+              if (name != "Time stepping/End time")
+                settings.emplace_back(name, equals == std::string::npos ? std::string() : line.substr(equals + 3));
+            }
+        }
+      return settings;
+    }
+
+    // The first parameter in which two scene texts differ ("" if none).
+    std::string first_difference(const std::string &folder_text, const std::string &checkpoint_text)
+    {
+      const auto a = scene_settings(folder_text), b = scene_settings(checkpoint_text);
+      for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i)
+        {
+          if (i < a.size() && i < b.size() && a[i] == b[i])
+            continue;
+          if (i < a.size() && i < b.size() && a[i].first == b[i].first)
+            return "'" + a[i].first + "' is " + a[i].second + " in parameters.prm, " + b[i].second +
+                   " in the checkpoint's run";
+          return "'" + (i < a.size() ? a[i].first : b[i].first) + "' is in " +
+                 (i < a.size() ? "parameters.prm" : "the checkpoint's run") + " only";
+        }
+      return std::string();
+    }
+
+    // The length and FNV-1a digest of a file's first bytes, extended to its
+    // end as the run writes it: at each checkpoint only the new bytes are
+    // read.
+    struct FileDigest
+    {
+      std::uint64_t bytes = 0;
+      std::uint64_t hash  = fnv1a("");
+    };
+
+    void extend_digest(const std::string &path, FileDigest &digest, const std::uint64_t up_to)
+    {
+      const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+      if (fd < 0)
+        throw FileReadError("file '" + path + "' cannot be opened for reading: " + std::strerror(errno));
+      std::string buffer(1 << 16, '\0');
+      while (digest.bytes < up_to)
+        {
+          const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), up_to - digest.bytes));
+          const ssize_t n        = ::pread(fd, buffer.data(), want, static_cast<off_t>(digest.bytes));
+          if (n < 0 && errno == EINTR)
+            continue;
+          if (n <= 0)
+            break; // shorter than up_to: the caller compares the length
+          digest.hash = fnv1a(buffer.substr(0, static_cast<std::size_t>(n)), digest.hash);
+          digest.bytes += static_cast<std::uint64_t>(n);
+        }
+      ::close(fd);
+    }
+
+    // Before a resume appends to `file`: it must be the file the checkpoint's
+    // run wrote, at least as long as then, with the same first bytes.
+    // Never padded: a file cut short or changed is refused.
+    void check_continued_file(const std::string &dir, const std::string &name, const std::uint64_t bytes,
+                              const std::uint64_t hash)
+    {
+      const std::string file = dir + "/" + name;
+      struct stat status;
+      const bool present = ::lstat(file.c_str(), &status) == 0;
+      if (!present || !S_ISREG(status.st_mode))
+        throw InputError("--resume: '" + file + "' is " +
+                         (!present ? std::string("missing") : std::string("not a regular file (a link?)")) +
+                         "; the checkpoint in '" + dir + "' continues it, so the run cannot be resumed");
+      if (static_cast<std::uint64_t>(status.st_size) < bytes)
+        throw InputError("--resume: '" + file + "' holds " + std::to_string(status.st_size) + " bytes, fewer than the " +
+                         std::to_string(bytes) + " it had at the checkpoint (cut short since); not resumed");
+      FileDigest digest;
+      extend_digest(file, digest, bytes);
+      if (digest.bytes != bytes || digest.hash != hash)
+        throw InputError("--resume: the first " + std::to_string(bytes) + " bytes of '" + file +
+                         "' are not those the checkpoint's run wrote (changed since, or another run's); not resumed");
     }
 
     void save_description(CheckpointWriter &out, const RunDescription &d)
@@ -94,8 +220,13 @@ namespace beamslider
       out.put(d.setting.theta);
       out.put(d.end_time);
       out.put(d.why);
+      out.put(d.identity);
+      out.put(d.scene_text);
+      out.put(d.identity_digest);
       out.put(d.trace_bytes);
+      out.put(d.trace_digest);
       out.put(d.period_bytes);
+      out.put(d.period_digest);
       out.put(d.n_steps);
       out.put(d.wall_seconds);
       out.put(std::uint64_t(d.periods.size()));
@@ -123,8 +254,13 @@ namespace beamslider
       d.setting.theta         = in.get_double();
       d.end_time            = in.get_double();
       d.why                 = in.get_string();
+      d.identity            = in.get_string();
+      d.scene_text          = in.get_string();
+      d.identity_digest     = in.get_uint();
       d.trace_bytes         = in.get_uint();
+      d.trace_digest        = in.get_uint();
       d.period_bytes        = in.get_uint();
+      d.period_digest       = in.get_uint();
       d.n_steps             = in.get_uint();
       d.wall_seconds        = in.get_double();
       const std::uint64_t n = in.get_uint();
@@ -149,6 +285,10 @@ namespace beamslider
         if (options.animate)
           throw InputError("--resume cannot be combined with --animate; animate the end of the resumed run with "
                            "`beamslider animate`");
+        // Held before anything in it is read: a live run there would change
+        // the files being checked (exit 1, "in use").
+        if (std::filesystem::is_directory(options.resume_dir))
+          lock_output_folder(options.resume_dir);
         try
           {
             checkpoint.emplace(read_checkpoint_file(options.resume_dir + "/checkpoint.bin"));
@@ -179,6 +319,26 @@ namespace beamslider
           throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for another scene: '" +
                            saved.scene_file + "' or its parameters changed since; a resumed run would not continue "
                            "the same computation");
+        // The checkpoint must be of the run the folder holds (a checkpoint
+        // left by an earlier run, or copied in, is not), and the files it
+        // continues must be as that run left them. Checked before anything
+        // in the folder is touched.
+        std::string folder_scene;
+        try
+          {
+            folder_scene = read_text_file(options.resume_dir + "/parameters.prm");
+          }
+        catch (const FileReadError &e)
+          {
+            throw InputError("--resume: the folder's scene cannot be read, so the run it holds is not known: " +
+                             std::string(e.what()));
+          }
+        const std::string difference = first_difference(folder_scene, saved.scene_text);
+        if (!difference.empty())
+          throw InputError("--resume: the checkpoint in '" + options.resume_dir +
+                           "' is of another run than the folder's: " + difference + "; not resumed");
+        check_continued_file(options.resume_dir, "trace.csv", saved.trace_bytes, saved.trace_digest);
+        check_continued_file(options.resume_dir, "periods.csv", saved.period_bytes, saved.period_digest);
       }
     if (options.checkpoint_every && options.animate)
       throw InputError("--checkpoint-every cannot be combined with --animate");
@@ -210,9 +370,29 @@ namespace beamslider
           << " (about 1 GB); lower 'Time stepping/Output rate' or pass --allow-large-output";
         throw InputError(m.str());
       }
+    // What defines this run, as its checkpoints record it: the scene as
+    // parameters.prm holds it, and (for the digest) without its end time.
+    const std::string command_label = the_case ? "simulate/" + the_case->name : std::string("simulate");
+    const std::string scene_text    = scene_file_text(scene);
+    std::string timeless_scene_text;
+    {
+      Scene timeless                    = scene;
+      timeless.time_stepping.end_time = 0.;
+      timeless_scene_text               = scene_file_text(timeless);
+    }
+    if (resuming && fnv1a(run_identity(command_label, saved.setting, timeless_scene_text)) != saved.identity_digest)
+      {
+        // The scene file reads differently now (another build's defaults):
+        // the first line in which the two runs differ.
+        std::istringstream now(run_identity(command_label, saved.setting, timeless_scene_text)), then(saved.identity);
+        std::string a, b;
+        while (std::getline(now, a) && std::getline(then, b) && a == b)
+          ;
+        throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' is of another run: this run has '" +
+                         a + "' where the checkpoint's has '" + b + "'; not resumed");
+      }
     const std::string dir = outcome.dir =
-      prepare_output_dir(common, scene, the_case ? "simulate/" + the_case->name : std::string("simulate"),
-                         resuming ? RunRecord::append : RunRecord::replace);
+      prepare_output_dir(common, scene, command_label, resuming ? RunRecord::append : RunRecord::replace);
     // The chart's Python starts now and loads matplotlib while the run
     // computes; it draws once the CSV files are complete.
     EarlyPlot chart("plot_trace.py");
@@ -260,6 +440,7 @@ namespace beamslider
       }
     AdaptationRun run(scene, *beam, run_options);
     std::vector<PeriodRecord> periods;
+    FileDigest trace_digest, period_digest; // of the files' bytes up to the last checkpoint
     if (resuming)
       {
         try
@@ -280,7 +461,8 @@ namespace beamslider
             throw InputError(m.str());
           }
         // Rows written after the checkpoint by the run that stopped are
-        // dropped; the resumed run writes them again, identically.
+        // dropped; the resumed run writes them again, identically. (Only
+        // ever shorter: the files were checked to be at least this long.)
         for (const auto &[file, size] : {std::pair(dir + "/trace.csv", saved.trace_bytes),
                                          std::pair(dir + "/periods.csv", saved.period_bytes)})
           {
@@ -290,6 +472,8 @@ namespace beamslider
               throw OutputError("--resume: '" + file + "' cannot be cut back to the checkpoint: " + ec.message());
           }
         periods = saved.periods;
+        trace_digest  = {saved.trace_bytes, saved.trace_digest};
+        period_digest = {saved.period_bytes, saved.period_digest};
         console() << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
       }
     // A resumed run appends to the files it continues. The trace (1000 rows
@@ -298,6 +482,7 @@ namespace beamslider
     trace_options.append      = resuming;
     trace_options.flush_every = 1000;
     period_options.append     = resuming;
+    trace_options.in_place = period_options.in_place = true; // streams that a stopped run keeps
     CsvWriter trace(dir + "/trace.csv", trace_csv_columns(), trace_options);
     CsvWriter period_writer(dir + "/periods.csv", period_csv_columns(), period_options);
     run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
@@ -355,8 +540,15 @@ namespace beamslider
           d.setting      = setting;
           d.end_time     = end_time;
           d.why          = why;
+          d.identity        = run_identity(command_label, setting, timeless_scene_text);
+          d.identity_digest = fnv1a(d.identity);
+          d.scene_text      = scene_text;
           d.trace_bytes  = std::filesystem::file_size(trace.path());
           d.period_bytes = std::filesystem::file_size(period_writer.path());
+          extend_digest(trace.path(), trace_digest, d.trace_bytes);
+          extend_digest(period_writer.path(), period_digest, d.period_bytes);
+          d.trace_digest  = trace_digest.hash;
+          d.period_digest = period_digest.hash;
           d.n_steps      = saved.n_steps + result.n_steps;
           d.wall_seconds = saved.wall_seconds +
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -56,8 +56,10 @@ namespace beamslider
       model.reinit_vector(u);
       model.reinit_vector(F_previous);
       std::optional<CsvWriter> csv;
+      CsvOptions in_place; // each load step's row as it converges
+      in_place.in_place = true;
       if (root)
-        csv.emplace(dir + "/statics.csv", statics_csv_columns(options));
+        csv.emplace(dir + "/statics.csv", statics_csv_columns(options), in_place);
       std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
       double w_mid = 0, q_n = 0;
       for (unsigned int k = 1; k <= options.n_steps; ++k)

@@ -219,7 +219,13 @@ namespace beamslider
   //   run.txt         the command line, working directory, time (UTC),
   //                   beamslider version and source revision; a run that
   //                   continues the folder's run (simulate --resume) appends
-  //                   its record, so the folder keeps every one.
+  //                   its record, so the folder keeps every one (and
+  //                   parameters.prm and command.prm stay those of the run
+  //                   it continues).
+  // Before that it takes the folder for this run (lock_output_folder: exit 1
+  // if a live process holds it) and, for a new run, removes the result files
+  // the command writes (command_common.cc, result_files), so that no file in
+  // the folder is left from another run.
   // Throws OutputError if the folder or either file cannot be written.
   enum class RunRecord
   {
@@ -228,6 +234,9 @@ namespace beamslider
   };
   std::string prepare_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command,
                                  RunRecord record = RunRecord::replace);
+  // The folder prepare_output_dir would prepare, untouched (for a command
+  // that must check what the folder holds before it writes there).
+  std::string output_dir_path(const CommonOptions &common, const Scene &scene, const std::string &command);
 
   // This build's version and source revision ("beamslider 0.9.0 1a2b3c…"),
   // as run.txt records it: part of what a resumable study's records were

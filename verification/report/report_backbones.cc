@@ -382,6 +382,10 @@ namespace beamslider
            << fixed(fe16_all.seconds, 2) << " s with all harmonics 0…10 on every DoF.\n\n";
       }
 
+    // Whole files (renamed into place as they close) before the chart reads them.
+    curves.close();
+    diff.close();
+    hcsv.close();
     run_plot_script("plot_backbones.py", {"report", report.dir});
   }
 } // namespace beamslider

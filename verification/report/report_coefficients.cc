@@ -171,6 +171,10 @@ namespace beamslider
           "effect enters the fit as quintic and higher terms aliased into the cubic ones, so the coefficient drifts with "
           "the load at which it is identified. The default ICE level (0.03 h) keeps it below 1e-3.\n\n"
        << "![Coefficient against load level](coefficient_load_levels.png)\n\n";
+    // Whole files (renamed into place as they close) before the chart reads them.
+    csv.close();
+    cost.close();
+    levels.close();
     run_plot_script("plot_coefficients.py", {report.dir});
   }
 } // namespace beamslider

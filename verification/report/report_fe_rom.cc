@@ -149,6 +149,7 @@ namespace beamslider
          << ". The FE model integrates its smooth forces implicitly and has no such limit; the ROM with the same implicit "
             "rule (`ensemble --integrator implicit`) has none either.\n\n"
          << "![Explicit time-step limit](explicit_time_step_limit.png)\n\n";
+      limits.close(); // whole, in place, before the chart reads it
       run_plot_script("plot_explicit_limit.py", {report.dir, std::to_string(dt)});
       return md.str();
     }

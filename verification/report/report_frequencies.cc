@@ -231,6 +231,9 @@ namespace beamslider
           "modes decreases monotonically toward the FE value.\n\n";
 
     md << "![Frequency convergence](frequency_convergence.png)\n\n![Bonded slider](bonded_slider.png)\n\n";
+    // Whole files (renamed into place as they close) before the chart reads them.
+    csv.close();
+    bonded_csv.close();
     run_plot_script("plot_frequencies.py", {report.dir});
   }
 } // namespace beamslider

@@ -192,10 +192,13 @@ namespace beamslider
       (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
 
     // The tables in ladder order, from the members (read back or computed).
-    LadderFiles files(dir);
-    for (std::size_t i = 0; i < study.rungs.size(); ++i)
-      files.add_rung(study.rungs[i], i, i == reference);
-    files.write_steps(study);
+    // In a scope: each file is renamed into place as it closes, before the chart reads it.
+    {
+      LadderFiles files(dir);
+      for (std::size_t i = 0; i < study.rungs.size(); ++i)
+        files.add_rung(study.rungs[i], i, i == reference);
+      files.write_steps(study);
+    }
 
     const LadderRungResult &ref = study.rungs[reference];
     std::ostringstream md;

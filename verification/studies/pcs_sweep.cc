@@ -103,14 +103,17 @@ namespace beamslider
           }
       }
 
+    CsvOptions in_place; // rows as positions finish: kept by a stopped sweep
+    in_place.in_place = true;
     CsvWriter pcs(dir + "/pcs.csv", {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "amplitude_std_over_h",
-                                     "mean_fx_std_N", "n_periods", "t_end_s", "mean_fx_ci95_N"});
+                                     "mean_fx_std_N", "n_periods", "t_end_s", "mean_fx_ci95_N"},
+                  in_place);
     // The grid's own count (the far end is a position of its own when the
     // range is not a whole number of steps).
     const long n_positions = static_cast<long>(settings.sweep.positions(SweepDirection::up).size());
     // Whether each run reached its end: pcs.csv holds the positions a branch
     // reached, which its rows alone cannot tell from a complete branch.
-    CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"});
+    CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"}, in_place);
 
     // The two branches and the free slider are independent runs: each on its
     // own core. Rows of pcs.csv are written as positions finish (a branch's
