@@ -31,6 +31,7 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -49,8 +50,16 @@ namespace beamslider
       return happened ? CsvWriter::cell(value) : std::string();
     }
 
+    std::string fixed(const double x, const int digits)
+    {
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(digits) << x;
+      return s.str();
+    }
+
     // Outcome samples from another ensemble's members.csv (columns as
-    // written below; empty cells are events that did not happen).
+    // written below; empty cells are events that did not happen). Read and
+    // checked before any member runs: a bad file is an input error at once.
     OutcomeSamples read_members_csv(const std::string &path)
     {
       std::ifstream in(path);
@@ -61,8 +70,10 @@ namespace beamslider
       if (line.rfind("member,perturbation,status,jump_time_s,turn_x_over_L,final_x_over_L,final_amplitude_over_h", 0) != 0)
         throw InputError("--against: '" + path + "' is not an ensemble's members.csv");
       OutcomeSamples s;
+      std::size_t line_number = 1;
       while (std::getline(in, line))
         {
+          ++line_number;
           std::vector<std::string> cells;
           std::stringstream row(line);
           std::string cell;
@@ -70,24 +81,172 @@ namespace beamslider
             cells.push_back(cell);
           if (cells.size() < 7)
             continue;
-          if (!cells[3].empty())
-            s.jump_time.push_back(std::stod(cells[3]));
-          if (!cells[4].empty())
-            s.turn_position.push_back(std::stod(cells[4]));
-          if (!cells[5].empty())
-            s.final_position.push_back(std::stod(cells[5]));
-          if (!cells[6].empty())
-            s.final_amplitude.push_back(std::stod(cells[6]));
+          const auto number = [&](const std::size_t column, std::vector<double> &into) {
+            if (cells[column].empty())
+              return;
+            double x         = 0;
+            std::size_t used = 0;
+            try
+              {
+                x = std::stod(cells[column], &used);
+              }
+            catch (const std::exception &)
+              {
+                used = 0;
+              }
+            if (used != cells[column].size() || !std::isfinite(x))
+              throw InputError("--against: '" + path + "' line " + std::to_string(line_number) + ", column " +
+                               std::to_string(column + 1) + ": not a finite number");
+            into.push_back(x);
+          };
+          number(3, s.jump_time);
+          number(4, s.turn_position);
+          number(5, s.final_position);
+          number(6, s.final_amplitude);
         }
       return s;
     }
 
-    std::string fixed(const double x, const int digits)
+    // The model and its settings from the scene and the options, checked
+    // before any member runs.
+    EnsembleSettings ensemble_settings(const Scene &scene, const EnsembleOptions &options)
     {
-      std::ostringstream s;
-      s << std::fixed << std::setprecision(digits) << x;
-      return s.str();
+      EnsembleSettings settings;
+      settings.model = scene_model(scene, options.model);
+      if (options.integrator != "explicit" && options.model != "rom")
+        throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
+      settings.model.integrator = options.integrator;
+      if (!options.coefficients.empty())
+        {
+          if (options.model != "rom")
+            throw InputError("--coefficients " + options.coefficients + " applies to --model rom only");
+          const bool solid = scene.solid.enabled();
+          const std::vector<std::string> allowed =
+            solid ? solid_rom_coefficient_methods() : std::vector<std::string>{"analytic", "step-condensed", "ice"};
+          if (std::find(allowed.begin(), allowed.end(), options.coefficients) == allowed.end())
+            throw InputError("--coefficients " + options.coefficients + " is not one of " +
+                             (solid ? solid_rom_coefficient_method_list() + " (a solid scene's ROM)"
+                                    : "analytic, step-condensed, ice (a beam scene's ROM)"));
+          settings.model.coefficients = options.coefficients;
+        }
+      settings.n_members    = options.members;
+      settings.perturbation = options.perturbation;
+      return settings;
     }
+
+    // members.csv and member_periods.csv.
+    void write_member_tables(const std::string &dir, const std::vector<EnsembleMember> &members)
+    {
+      CsvWriter rows(dir + "/members.csv", {"member", "perturbation", "status", "jump_time_s", "turn_x_over_L",
+                                            "final_x_over_L", "final_amplitude_over_h", "wall_s", "outcome"});
+      for (const auto &m : members)
+        {
+          const TraceAnalysis &a = m.analysis;
+          rows.row({CsvWriter::cell(m.index), CsvWriter::cell(m.perturbation, 6), to_string(m.result.status),
+                    cell_or_empty(a.jumped, a.jump_time), cell_or_empty(a.turned, a.turn_position),
+                    cell_or_empty(a.valid, a.final_position), cell_or_empty(a.valid, a.final_amplitude),
+                    CsvWriter::cell(m.wall_seconds, 4), to_string(a.outcome)});
+        }
+      rows.close();
+      CsvWriter periods(dir + "/member_periods.csv", {"member", "t_s", "x_over_L", "amplitude_over_h"});
+      for (const auto &m : members)
+        for (const auto &p : m.periods)
+          periods.row({CsvWriter::cell(m.index), CsvWriter::cell(p.t_end, 8), CsvWriter::cell(p.slider_x_over_L, 8),
+                       CsvWriter::cell(p.amplitude_over_h, 8)});
+      periods.close();
+    }
+
+    // Rank 0's part of the ensemble's rounds (convergence_check.h): the
+    // first (the model, and its refinement when checked) into
+    // member_runs.csv, later ones into member_runs.check-r.csv.
+    ConvergenceCheck run_plan(const Scene &scene, const RefinementPlan &plan, const EnsembleSettings &settings,
+                              const MemberRunsSettings &runs)
+    {
+      const MemberGroupRunner later = check_rounds_runner(runs);
+      bool first                    = true;
+      const MemberGroupRunner runner = [&](const std::vector<MemberGroup> &g) {
+        if (!std::exchange(first, false))
+          return later(g);
+        return run_member_groups(g, runs);
+      };
+      return run_convergence_checks(scene, {plan}, {}, settings.n_members, settings.perturbation, runner,
+                                    round_sharer(runs.mpi))
+        .front();
+    }
+
+    // The evidence of the FE's check in summary.md.
+    std::string convergence_section(const ConvergenceCheck &check)
+    {
+      std::ostringstream md;
+      md << "\n## Convergence in Δt\n\nThe same members at the FE's Δt and refined (Δt/2, …, at most "
+         << reference_max_halvings
+         << " halvings); a step is accepted when its half ends within the ensembles' own spread (W₁ of the final "
+            "positions, 90 % interval against the spread) or closer than "
+         << convergence_resolution << " L. The statistics above are those of "
+         << (check.converged ? "the accepted step" : "the finest step tried, NOT CONVERGED") << " (convergence.csv).\n\n"
+         << describe_convergence({check});
+      return md.str();
+    }
+
+    using NamedSamples = std::vector<std::pair<std::string, const std::vector<double> *>>;
+
+    // statistics.csv, and its table in Markdown.
+    std::string statistics_table(const std::string &dir, const NamedSamples &outcomes)
+    {
+      std::ostringstream md;
+      md << "| outcome | members with it | median | quartiles | min … max |\n|---|---|---|---|---|\n";
+      CsvWriter csv(dir + "/statistics.csv", {"outcome", "n", "median", "q1", "q3", "min", "max"});
+      for (const auto &[name, sample] : outcomes)
+        {
+          const OutcomeStatistics s = statistics(name, *sample);
+          // No member had the event: empty cells, as in members.csv, not NaN.
+          const bool any = s.n > 0;
+          csv.row({name, std::to_string(s.n), cell_or_empty(any, s.median), cell_or_empty(any, s.q1),
+                   cell_or_empty(any, s.q3), cell_or_empty(any, s.min), cell_or_empty(any, s.max)});
+          if (any)
+            md << "| " << name << " | " << s.n << " | " << fixed(s.median, 4) << " | " << fixed(s.q1, 4) << " … "
+               << fixed(s.q3, 4) << " | " << fixed(s.min, 4) << " … " << fixed(s.max, 4) << " |\n";
+          else
+            md << "| " << name << " | 0 | – | – | – |\n";
+        }
+      csv.close();
+      return md.str();
+    }
+
+    // comparison.csv against another ensemble, and its section in Markdown.
+    std::string comparison_section(const std::string &dir, const NamedSamples &outcomes, const OutcomeSamples &other,
+                                   const std::string &against)
+    {
+      const std::vector<const std::vector<double> *> theirs = {&other.jump_time, &other.turn_position,
+                                                               &other.final_position, &other.final_amplitude};
+      CsvWriter csv(dir + "/comparison.csv", {"outcome", "n_this", "n_other", "median_shift", "wasserstein",
+                                              "wasserstein_low", "wasserstein_high", "ks", "own_spread",
+                                              "distinguishable"});
+      std::ostringstream md;
+      md << "\n## Against `" << against
+         << "`\n\nWasserstein-1 distance W between the outcome distributions (the mean distance the members must "
+            "move), a 90 % bootstrap interval, Kolmogorov–Smirnov D, and the larger W between the halves of either "
+            "ensemble (their own scatter at this size). Distinguishable when the interval's lower end exceeds that "
+            "scatter.\n\n| outcome | median shift (other − this) | W [90 % interval] | KS D | own scatter | verdict |\n"
+            "|---|---|---|---|---|---|\n";
+      for (std::size_t i = 0; i < outcomes.size(); ++i)
+        {
+          const SampleComparison c = compare_samples(*outcomes[i].second, *theirs[i]);
+          csv.row({outcomes[i].first, std::to_string(c.n_a), std::to_string(c.n_b), CsvWriter::cell(c.shift),
+                   CsvWriter::cell(c.wasserstein), CsvWriter::cell(c.interval_low), CsvWriter::cell(c.interval_high),
+                   CsvWriter::cell(c.ks), CsvWriter::cell(c.spread), c.distinguishable ? "1" : "0"});
+          md << "| " << outcomes[i].first << " | " << fixed(c.shift, 4) << " | " << fixed(c.wasserstein, 4) << " ["
+             << fixed(c.interval_low, 4) << ", " << fixed(c.interval_high, 4) << "] | " << fixed(c.ks, 2) << " | "
+             << fixed(c.spread, 4) << " | "
+             << (c.n_a == 0 || c.n_b == 0 ? "no sample"
+                 : c.distinguishable     ? "distinguishable"
+                                         : "indistinguishable at this ensemble size")
+             << " |\n";
+        }
+      csv.close();
+      return md.str();
+    }
+
   } // namespace
 
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options)
@@ -107,27 +266,11 @@ namespace beamslider
       throw InputError("--perturbation " + std::to_string(options.perturbation) +
                        " moves the last member's start beyond the beam");
 
-    EnsembleSettings settings;
-    settings.model = scene_model(scene, options.model);
-    if (options.integrator != "explicit" && options.model != "rom")
-      throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
-    settings.model.integrator = options.integrator;
-    if (!options.coefficients.empty())
-      {
-        if (options.model != "rom")
-          throw InputError("--coefficients " + options.coefficients + " applies to --model rom only");
-        const bool solid = scene.solid.enabled();
-        // Checked here, so that a bad method exits 2 before any member runs.
-        const std::vector<std::string> allowed =
-          solid ? solid_rom_coefficient_methods() : std::vector<std::string>{"analytic", "step-condensed", "ice"};
-        if (std::find(allowed.begin(), allowed.end(), options.coefficients) == allowed.end())
-          throw InputError("--coefficients " + options.coefficients + " is not one of " +
-                           (solid ? solid_rom_coefficient_method_list() + " (a solid scene's ROM)"
-                                  : "analytic, step-condensed, ice (a beam scene's ROM)"));
-        settings.model.coefficients = options.coefficients;
-      }
-    settings.n_members       = options.members;
-    settings.perturbation    = options.perturbation;
+    EnsembleSettings settings = ensemble_settings(scene, options);
+    // Another ensemble to compare with, read before any member runs.
+    std::optional<OutcomeSamples> other;
+    if (!options.against.empty())
+      other = read_members_csv(options.against + "/members.csv");
     // The FE proves itself: the same ensemble at Δt/2 beside it, then
     // halved until two steps agree (convergence_check.h). Unchecked, the
     // same code runs the model alone (a plan without refinements), so that
@@ -165,19 +308,7 @@ namespace beamslider
     std::optional<ConvergenceCheck> check;
     try
       {
-        // The first round (the model, and its refinement when checked) into
-        // member_runs.csv, later rounds into member_runs.check-r.csv.
-        const MemberGroupRunner later = check_rounds_runner(runs);
-        bool first                    = true;
-        const MemberGroupRunner runner = [&](const std::vector<MemberGroup> &g) {
-          if (!std::exchange(first, false))
-            return later(g);
-          return run_member_groups(g, runs);
-        };
-        const ConvergenceCheck result =
-          run_convergence_checks(scene, plans, {}, settings.n_members, settings.perturbation, runner,
-                                 round_sharer(&mpi))
-            .front();
+        const ConvergenceCheck result = run_plan(scene, plans.front(), settings, runs);
         members        = result.reference().members;
         settings.model = result.reference().model;
         if (checked)
@@ -190,29 +321,10 @@ namespace beamslider
       }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    {
-      CsvWriter csv(dir + "/members.csv", {"member", "perturbation", "status", "jump_time_s", "turn_x_over_L",
-                                           "final_x_over_L", "final_amplitude_over_h", "wall_s", "outcome"});
-      for (const auto &m : members)
-        {
-          const TraceAnalysis &a = m.analysis;
-          csv.row({CsvWriter::cell(m.index), CsvWriter::cell(m.perturbation, 6), to_string(m.result.status),
-                   cell_or_empty(a.jumped, a.jump_time), cell_or_empty(a.turned, a.turn_position),
-                   cell_or_empty(a.valid, a.final_position), cell_or_empty(a.valid, a.final_amplitude),
-                   CsvWriter::cell(m.wall_seconds, 4), to_string(a.outcome)});
-        }
-    }
-    {
-      CsvWriter csv(dir + "/member_periods.csv", {"member", "t_s", "x_over_L", "amplitude_over_h"});
-      for (const auto &m : members)
-        for (const auto &p : m.periods)
-          csv.row({CsvWriter::cell(m.index), CsvWriter::cell(p.t_end, 8), CsvWriter::cell(p.slider_x_over_L, 8),
-                   CsvWriter::cell(p.amplitude_over_h, 8)});
-      csv.close();
-    }
+    write_member_tables(dir, members);
 
     const OutcomeSamples samples = outcome_samples(members);
-    const std::vector<std::pair<std::string, const std::vector<double> *>> outcomes = {
+    const NamedSamples outcomes = {
       {"jump_time_s", &samples.jump_time},
       {"turn_x_over_L", &samples.turn_position},
       {"final_x_over_L", &samples.final_position},
@@ -231,36 +343,13 @@ namespace beamslider
        << fixed(trace_thresholds(scene).high_level_over_h, 2)
        << " h, where Eq. 4 lies 5 % above f1); the turn is the period-mean position farthest from the centre when the "
           "end lies 0.02 L back from it; the final state is the mean over the last 1 s.\n\n"
-       << "| outcome | members with it | median | quartiles | min … max |\n|---|---|---|---|---|\n";
-    {
-      CsvWriter csv(dir + "/statistics.csv", {"outcome", "n", "median", "q1", "q3", "min", "max"});
-      for (const auto &[name, sample] : outcomes)
-        {
-          const OutcomeStatistics s = statistics(name, *sample);
-          // No member had the event: empty cells, as in members.csv, not NaN.
-          const bool any = s.n > 0;
-          csv.row({name, std::to_string(s.n), cell_or_empty(any, s.median), cell_or_empty(any, s.q1),
-                   cell_or_empty(any, s.q3), cell_or_empty(any, s.min), cell_or_empty(any, s.max)});
-          if (any)
-            md << "| " << name << " | " << s.n << " | " << fixed(s.median, 4) << " | " << fixed(s.q1, 4) << " … "
-               << fixed(s.q3, 4) << " | " << fixed(s.min, 4) << " … " << fixed(s.max, 4) << " |\n";
-          else
-            md << "| " << name << " | 0 | – | – | – |\n";
-        }
-    }
+       << statistics_table(dir, outcomes);
     std::map<std::string, unsigned int> classes;
     for (const auto &m : members)
       ++classes[to_string(m.analysis.outcome)];
     if (check)
       {
-        md << "\n## Convergence in Δt\n\nThe same members at the FE's Δt and refined (Δt/2, …, at most "
-           << reference_max_halvings
-           << " halvings); a step is accepted when its half ends within the ensembles' own spread (W₁ of the final "
-              "positions, 90 % interval against the spread) or closer than "
-           << convergence_resolution << " L. The statistics above are those of "
-           << (check->converged ? "the accepted step" : "the finest step tried, NOT CONVERGED")
-           << " (convergence.csv).\n\n"
-           << describe_convergence({*check});
+        md << convergence_section(*check);
         write_convergence_csv(dir, {*check});
       }
     else if (options.model == "fe")
@@ -270,35 +359,8 @@ namespace beamslider
       md << " " << name << " × " << count << ";";
     md << "\n";
 
-    if (!options.against.empty())
-      {
-        const OutcomeSamples other = read_members_csv(options.against + "/members.csv");
-        const std::vector<const std::vector<double> *> theirs = {&other.jump_time, &other.turn_position,
-                                                                 &other.final_position, &other.final_amplitude};
-        CsvWriter csv(dir + "/comparison.csv", {"outcome", "n_this", "n_other", "median_shift", "wasserstein",
-                                                "wasserstein_low", "wasserstein_high", "ks", "own_spread",
-                                                "distinguishable"});
-        md << "\n## Against `" << options.against
-           << "`\n\nWasserstein-1 distance W between the outcome distributions (the mean distance the members must "
-              "move), a 90 % bootstrap interval, Kolmogorov–Smirnov D, and the larger W between the halves of either "
-              "ensemble (their own scatter at this size). Distinguishable when the interval's lower end exceeds that "
-              "scatter.\n\n| outcome | median shift (other − this) | W [90 % interval] | KS D | own scatter | verdict |\n"
-              "|---|---|---|---|---|---|\n";
-        for (std::size_t i = 0; i < outcomes.size(); ++i)
-          {
-            const SampleComparison c = compare_samples(*outcomes[i].second, *theirs[i]);
-            csv.row({outcomes[i].first, std::to_string(c.n_a), std::to_string(c.n_b), CsvWriter::cell(c.shift),
-                     CsvWriter::cell(c.wasserstein), CsvWriter::cell(c.interval_low), CsvWriter::cell(c.interval_high),
-                     CsvWriter::cell(c.ks), CsvWriter::cell(c.spread), c.distinguishable ? "1" : "0"});
-            md << "| " << outcomes[i].first << " | " << fixed(c.shift, 4) << " | " << fixed(c.wasserstein, 4) << " ["
-               << fixed(c.interval_low, 4) << ", " << fixed(c.interval_high, 4) << "] | " << fixed(c.ks, 2) << " | "
-               << fixed(c.spread, 4) << " | "
-               << (c.n_a == 0 || c.n_b == 0 ? "no sample"
-                   : c.distinguishable     ? "distinguishable"
-                                           : "indistinguishable at this ensemble size")
-               << " |\n";
-          }
-      }
+    if (other)
+      md << comparison_section(dir, outcomes, *other, options.against);
     write_text_file(dir + "/summary.md", md.str());
     run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
                                                 " (" + settings.model.label() + ")"});

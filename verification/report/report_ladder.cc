@@ -57,6 +57,37 @@ namespace beamslider
       return s.empty() ? "–" : s;
     }
 
+    // What the ladder's convergence checks compare, on the console.
+    void announce_checks(const LadderChecks &checks, const std::string &prefix)
+    {
+      for (const RefinementPlan &plan : checks.plans)
+        console() << prefix << "check: " << plan.name << ", " << plan.models[0].label() << " against "
+                  << plan.models[1].label() << " beside the rungs"
+                  << (plan.models.size() > 2 ? ", refined further until they agree (at most " +
+                                                 std::to_string(plan.models.size() - 1) + " refinements)"
+                                             : std::string())
+                  << std::endl;
+    }
+
+    // The checks' evidence under the ladder's headline table.
+    std::string ladder_convergence_paragraph(const std::vector<ConvergenceCheck> &checks)
+    {
+      const bool proven =
+        std::all_of(checks.begin(), checks.end(), [](const ConvergenceCheck &c) { return c.converged; });
+      std::ostringstream md;
+      md << "**The reference proves itself.** Every check runs the same ensemble with the model refined (the FE "
+            "reference in Δt, halved at most "
+         << reference_max_halvings
+         << " times; the ROM that claims to be converged in N against ⌈1.5 N⌉ modes) and accepts it when the "
+            "refinement ends where it ends: within the ensembles' spread (the test above), or closer than "
+         << fixed(convergence_resolution, 3) << " L, a difference no verdict here rests on. "
+         << (proven ? "Every check converged."
+                    : "**Not every check converged: the verdicts below rest on an unproven model.**")
+         << "\n\n"
+         << describe_convergence(checks);
+      return md.str();
+    }
+
     // Rough wall time of one member [s] on this machine, for the announcement
     // only (measured: ROM N=5 at 2e-5 s 0.05 s per simulated second, FE on
     // 32 elements at 1e-5 s 3.4 s per simulated second).
@@ -170,14 +201,7 @@ namespace beamslider
     runs.progress_prefix = settings.progress_prefix;
     std::size_t n_kept   = 0;
     runs.n_kept          = &n_kept;
-    const LadderChecks checks = ladder_checks(scene, rungs, reference);
-    for (const RefinementPlan &plan : checks.plans)
-      console() << settings.progress_prefix << "check: " << plan.name << ", " << plan.models[0].label() << " against "
-                << plan.models[1].label() << " beside the rungs"
-                << (plan.models.size() > 2 ? ", refined further until they agree (at most " +
-                                               std::to_string(plan.models.size() - 1) + " refinements)"
-                                           : std::string())
-                << std::endl;
+    announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
     const LadderStudy study = run_ladder(
       scene, rungs, reference, end_time, n_members,
       [&](const LadderRung &rung, const std::size_t i) {
@@ -232,16 +256,7 @@ namespace beamslider
            << " |\n";
       }
 
-    md << "\n**The reference proves itself.** Every check runs the same "
-          "ensemble with the model refined (the FE reference in Δt, halved at most "
-       << reference_max_halvings << " times; the ROM that claims to be converged in N against ⌈1.5 N⌉ modes) and "
-          "accepts it when the refinement ends where it ends: within the ensembles' spread (the test above), or "
-          "closer than "
-       << fixed(convergence_resolution, 3) << " L, a difference no verdict here rests on. "
-       << (study.proven() ? "Every check converged."
-                          : "**Not every check converged: the verdicts below rest on an unproven model.**")
-       << "\n\n"
-       << describe_convergence(study.checks) << "\n";
+    md << "\n" << ladder_convergence_paragraph(study.checks) << "\n";
 
     // The verdict in words: the published ROM, the converged ROM, and the
     // midpoint-rule FE in Δt where the ladder has it.
