@@ -38,7 +38,8 @@ namespace beamslider
   {
     double relative_tolerance  = 1e-11; // on ‖residual‖ / ‖load‖
     // ... or below round_off_factor × ε ‖|K||x| + |load|‖, the residual's
-    // round-off floor, when that is the larger (fine meshes: fe_statics.cc).
+    // round-off floor, once the residual has stalled there (fine meshes:
+    // fe_statics.cc).
     double round_off_factor    = 1;
     unsigned int max_iterations = 25;   // per load step
     double initial_load_step   = 1.0;   // fraction of the full load
