@@ -2,6 +2,8 @@
 
 #include <deal.II/lac/sparse_direct.h>
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace beamslider
@@ -30,7 +32,8 @@ namespace beamslider
     beam.assemble_mass_matrix(M, beam.constraints());
   }
 
-  std::vector<FEStatics::LoadStep> FEStatics::load_path(const Vector<double> &F, const unsigned int n_steps)
+  std::vector<FEStatics::LoadStep> FEStatics::load_path(const Vector<double> &F, const unsigned int n_steps,
+                                                        const std::function<void(const LoadStep &)> &on_step)
   {
     std::vector<LoadStep> path;
     Vector<double> x(beam.n_dofs()), F_k(beam.n_dofs()), F_previous(beam.n_dofs());
@@ -50,6 +53,8 @@ namespace beamslider
                                    " (load factor " + std::to_string(lambda) + "): " + e.what());
           }
         path.push_back({lambda, x, iterations});
+        if (on_step)
+          on_step(path.back());
         F_previous = F_k;
       }
     return path;
@@ -123,6 +128,24 @@ namespace beamslider
     return modal_coordinates(x);
   }
 
+  namespace
+  {
+    // ε ‖|K||x| + |load|‖ over the unconstrained rows: the round-off of a
+    // residual load − f(x) whose terms are of the size of K x and the load.
+    double round_off_floor(const SparseMatrix<double> &K, const Vector<double> &x, const Vector<double> &load)
+    {
+      double sum = 0;
+      for (unsigned int i = 0; i < K.m(); ++i)
+        {
+          double row = std::abs(load[i]);
+          for (auto entry = K.begin(i); entry != K.end(i); ++entry)
+            row += std::abs(entry->value() * x[entry->column()]);
+          sum += row * row;
+        }
+      return std::numeric_limits<double>::epsilon() * std::sqrt(sum);
+    }
+  } // namespace
+
   unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x, const Vector<double> *F_start)
   {
     ++static_solves;
@@ -146,7 +169,7 @@ namespace beamslider
         const double target_norm = std::max(load.l2_norm(), 1e-300 * load_norm);
         x_start             = x;
         bool converged      = false;
-        double rel_residual = 0;
+        double rel_residual = 0, previous_rel_residual = std::numeric_limits<double>::infinity();
         for (unsigned int it = 0; it < settings.max_iterations; ++it)
           {
             beam.assemble_internal_force(x, &f, &K, constraints);
@@ -154,7 +177,24 @@ namespace beamslider
             residual -= f;
             constraints.set_zero(residual);
             rel_residual = residual.l2_norm() / target_norm;
-            if (rel_residual < settings.relative_tolerance)
+            // The residual cannot fall below the round-off of the sums that
+            // form it, of the order of ε ‖|K||x| + |load|‖ (the size of f's
+            // largest terms): it grows with the stiffness K ~ EI/Δx³ of a
+            // finer mesh while ‖load‖ shrinks, and from about 50 elements on
+            // it lies above 1e-11 ‖load‖, where Newton stalled. Measured on
+            // 8–512 elements, line and modal loads, w up to 8 h: the residual
+            // stalls at 0.08–0.28 of that estimate, so a residual below it
+            // (round_off_factor = 1) is as converged as it can be, once it
+            // has stalled there (fallen less than tenfold in one iteration):
+            // a residual that is still falling fast goes on to the old test,
+            // so a solve that met the tolerance before stops where it did
+            // (the same results; ICE on 32 elements has the floor at up to
+            // 2.5e-11 of the load).
+            const double floor_ratio = round_off_floor(K, x, load) / target_norm;
+            const bool stalled       = rel_residual > 0.1 * previous_rel_residual;
+            previous_rel_residual    = rel_residual;
+            if (rel_residual < settings.relative_tolerance ||
+                (stalled && rel_residual < settings.round_off_factor * floor_ratio))
               {
                 converged = true;
                 break;

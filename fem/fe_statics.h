@@ -23,6 +23,7 @@
 
 #include <Eigen/Dense>
 
+#include <functional>
 #include <stdexcept>
 
 namespace beamslider
@@ -36,6 +37,10 @@ namespace beamslider
   struct NewtonSettings
   {
     double relative_tolerance  = 1e-11; // on ‖residual‖ / ‖load‖
+    // ... or below round_off_factor × ε ‖|K||x| + |load|‖, the residual's
+    // round-off floor, once the residual has stalled there (fine meshes:
+    // fe_statics.cc).
+    double round_off_factor    = 1;
     unsigned int max_iterations = 25;   // per load step
     double initial_load_step   = 1.0;   // fraction of the full load
     double min_load_step       = 1e-4;
@@ -77,8 +82,10 @@ namespace beamslider
     // full-order static solution a ROM is checked against. Each step's Newton
     // solve starts from the previous equilibrium (and cuts its increment
     // back as solve() does); a step that fails throws StaticSolveError with
-    // the load it stopped at.
-    std::vector<LoadStep> load_path(const dealii::Vector<double> &F, unsigned int n_steps);
+    // the load it stopped at. on_step, if given, sees each step as it
+    // converges, so that a caller keeps the steps before a failure.
+    std::vector<LoadStep> load_path(const dealii::Vector<double> &F, unsigned int n_steps,
+                                    const std::function<void(const LoadStep &)> &on_step = {});
 
     unsigned int n_linear_solves() const { return linear_solves; }
     unsigned int n_static_solves() const { return static_solves; }

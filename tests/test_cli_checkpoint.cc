@@ -19,6 +19,8 @@ namespace
 {
   const std::string scene = std::string(BEAMSLIDER_SOURCE_DIR) + "/meshes/mueller2023.prm";
 
+  std::string first_line(const std::string &text) { return text.substr(0, text.find('\n')); }
+
   void expect_same_bytes(const fs::path &a, const fs::path &b)
   {
     const std::string x = read_file(a), y = read_file(b);
@@ -119,5 +121,32 @@ TEST(Resume, CheckpointOfAnotherSceneVersionOrWithAFlippedByteIsRefused)
   std::ofstream(out / "checkpoint.bin", std::ios::binary) << good;
   run = run_beamslider({"simulate", "--resume", out.string(), "--end-time", "0.2"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
+  fs::remove_all(dir);
+}
+
+// A checkpoint interval below the time step would checkpoint each step or
+// never end: refused before the run starts (exit 2, no folder), naming the
+// option, its value and the allowed range, by the model the run uses.
+TEST(Resume, CheckpointIntervalBelowTheTimeStepIsRefusedBeforeWork)
+{
+  const fs::path dir = fresh_folder("checkpoint_below_step");
+  CliRun run = run_beamslider({"simulate", scene, "--end-time", "1", "--checkpoint-every", "1e-6", "--output",
+                               (dir / "rom").string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(first_line(run.err).rfind("error: --checkpoint-every 1e-06 s is outside the allowed range [2e-05, inf)", 0),
+            0u)
+    << run.err;
+  EXPECT_FALSE(fs::exists(dir / "rom" / "trace.csv"));
+  // The FE's bound is its own FE time step (1e-5 s); 1.5e-5 s, above it, is
+  // still below the ROM's 2e-5 s.
+  run = run_beamslider({"simulate", scene, "--model", "fe", "--end-time", "1", "--checkpoint-every", "5e-6",
+                        "--output", (dir / "fe").string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(first_line(run.err).rfind("error: --checkpoint-every 5e-06 s is outside the allowed range [1e-05, inf)", 0),
+            0u)
+    << run.err;
+  run = run_beamslider({"simulate", scene, "--end-time", "1", "--checkpoint-every", "1.5e-5", "--output",
+                        (dir / "rom").string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
   fs::remove_all(dir);
 }

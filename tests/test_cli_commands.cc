@@ -108,6 +108,36 @@ TEST(Commands, StaticsWritesTheLoadPathAndMatchesTheLinearBeamAtSmallLoad)
   EXPECT_NE(zero.err.find("--line-load"), std::string::npos) << zero.err;
 }
 
+// statics on a fine mesh converges (Newton stalled at its round-off floor
+// on 56 elements and more, exit 1); a load step that cannot converge (1e12
+// N/m, far past any beam) exits 1 and leaves statics.csv with the rows before
+// it and a last line that says where it stopped.
+TEST(Commands, StaticsConvergesOnFineMeshesAndAFailedStepLeavesAMarkedTable)
+{
+  const fs::path dir = fresh_folder("cmd_statics_fine");
+  for (const std::string n : {"64", "256"})
+    {
+      const CliRun run = run_beamslider({"statics", "--line-load", "5000", "--steps", "2", "--set",
+                                         "Discretisation/Number of elements=" + n, "--output", (dir / n).string()});
+      ASSERT_EQ(run.exit_code, 0) << n << " elements: " << run.err;
+      EXPECT_EQ(numeric_rows(dir / n / "statics.csv").size(), 2u) << n << " elements";
+    }
+
+  const CliRun run = run_beamslider({"statics", "mueller2023-ideal", "--line-load", "1e12", "--steps", "4",
+                                     "--output", (dir / "failed").string()});
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_NE(run.err.find("load step 1 of 4"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("statics.csv holds the 0 converged steps"), std::string::npos) << run.err;
+  std::ifstream in(dir / "failed" / "statics.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u) << read_file(dir / "failed" / "statics.csv");
+  EXPECT_EQ(lines[0], "line_load_n_per_m,w_mid_m,newton_iterations");
+  EXPECT_EQ(lines[1].rfind("# stopped: load step 1 of 4 (load factor 0.250000): Newton's method", 0), 0u) << lines[1];
+  fs::remove_all(dir);
+}
+
 TEST(Commands, BackboneWritesTheDocumentedColumnsUpToTheAskedAmplitude)
 {
   const fs::path dir = fresh_folder("cmd_backbone");

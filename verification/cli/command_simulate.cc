@@ -370,6 +370,31 @@ namespace beamslider
           << " (about 1 GB); lower 'Time stepping/Output rate' or pass --allow-large-output";
         throw InputError(m.str());
       }
+    // The run goes in pieces of --checkpoint-every, each ending in a
+    // checkpoint: pieces shorter than a time step hold no step, and the run
+    // writes checkpoints without getting on (it never ended). The bound is
+    // the step of the model the run uses; --model auto has not chosen yet,
+    // so it takes the larger of the ROM's and the FE's.
+    if (options.checkpoint_every)
+      {
+        const double rom_step = scene_model(scene, "rom").time_step, fe_step = scene_model(scene, "fe").time_step;
+        const double step = resuming                   ? saved.setting.time_step
+                            : options.model == "rom"   ? rom_step
+                            : options.model == "fe"    ? fe_step
+                                                       : std::max(rom_step, fe_step);
+        const std::string which =
+          resuming ? "the resumed run's time step"
+          : options.model == "rom" ? "the ROM's 'Time stepping/Time step'"
+          : options.model == "fe"  ? "the FE's 'Time stepping/FE time step'"
+                                   : "the larger of the ROM's and the FE's time steps (--model auto may run either)";
+        if (!(*options.checkpoint_every >= step))
+          {
+            std::ostringstream m;
+            m << "--checkpoint-every " << *options.checkpoint_every << " s is outside the allowed range [" << step
+              << ", inf): at least " << which << ", " << step << " s";
+            throw InputError(m.str());
+          }
+      }
     // What defines this run, as its checkpoints record it: the scene as
     // parameters.prm holds it, and (for the digest) without its end time.
     const std::string command_label = the_case ? "simulate/" + the_case->name : std::string("simulate");

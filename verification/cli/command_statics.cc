@@ -17,10 +17,12 @@
 // gravity in every scene); w_mid_m is the mid-span deflection in +w, so a
 // downward load gives w_mid_m < 0.
 #include "contact/csv_writer.h"
+#include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
 #include "fem/vtk_beam_output.h"
+#include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/console.h"
@@ -57,22 +59,41 @@ namespace beamslider
       beam.assemble_line_load(-*Q, F); // downward = -w
     else
       F = statics.modal_load(*f * Eigen::VectorXd::Unit(n, n - 1));
-    const std::vector<FEStatics::LoadStep> path = statics.load_path(F, options.n_steps);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
+    // Each step's row as it converges (in place, like the solid's), so that
+    // a failed step leaves the rows before it and a last line "# stopped: …"
+    // that says where it stopped; a normal run's file is as before.
     const double x_mid = 0.5 * scene.beam.length, load = Q ? *Q : *f;
-    CsvWriter csv(dir + "/statics.csv", statics_csv_columns(options));
+    CsvOptions in_place;
+    in_place.in_place = true;
+    CsvWriter csv(dir + "/statics.csv", statics_csv_columns(options), in_place);
     std::vector<NamedShape> shapes;
-    for (unsigned int k = 0; k < path.size(); ++k)
+    unsigned int n_converged = 0;
+    const auto write_row = [&](const FEStatics::LoadStep &step) {
+      std::vector<std::string> row{CsvWriter::cell(step.load_factor * load)};
+      if (f)
+        row.push_back(CsvWriter::cell(statics.modal_coordinates(step.x)[n - 1]));
+      row.push_back(CsvWriter::cell(beam.deflection(step.x, x_mid)));
+      row.push_back(CsvWriter::cell(step.newton_iterations));
+      csv.row(row);
+      ++n_converged;
+    };
+    std::vector<FEStatics::LoadStep> path;
+    try
       {
-        std::vector<std::string> row{CsvWriter::cell(path[k].load_factor * load)};
-        if (f)
-          row.push_back(CsvWriter::cell(statics.modal_coordinates(path[k].x)[n - 1]));
-        row.push_back(CsvWriter::cell(beam.deflection(path[k].x, x_mid)));
-        row.push_back(CsvWriter::cell(path[k].newton_iterations));
-        csv.row(row);
-        shapes.push_back({"step_" + std::to_string(k + 1), path[k].x, 1.});
+        path = statics.load_path(F, options.n_steps, write_row);
       }
+    catch (const StaticSolveError &e)
+      {
+        csv.close();
+        OutputFile tail(dir + "/statics.csv", FileMode::append);
+        tail.stream() << "# stopped: " << one_line(e.what()) << '\n';
+        tail.close();
+        throw StaticSolveError(std::string(e.what()) + "; " + dir + "/statics.csv holds the " +
+                               std::to_string(n_converged) + " converged steps before it");
+      }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (unsigned int k = 0; k < path.size(); ++k)
+      shapes.push_back({"step_" + std::to_string(k + 1), path[k].x, 1.});
     csv.close();
     write_beam_shapes_vtu(beam, shapes, dir + "/statics.vtu",
                           {{Q ? "line_load_n_per_m" : "modal_load_n_per_sqrt_kg", load}});

@@ -6,11 +6,13 @@
 // q_m_sqrt_kg (modal load) the coordinate φ_nᵀ M u. statics.pvtu holds the
 // deformed strip at every step.
 #include "contact/csv_writer.h"
+#include "contact/output_file.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
 #include "fem/solid_output.h"
 #include "fem/solid_statics.h"
+#include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
@@ -74,8 +76,19 @@ namespace beamslider
             }
           catch (const SolidStaticSolveError &e)
             {
-              throw SolidStaticSolveError("load step " + std::to_string(k) + " of " + std::to_string(options.n_steps) +
-                                          ": " + e.what());
+              const std::string where =
+                "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps) + ": " + e.what();
+              // The rows so far stay; a last line says where the path stopped
+              // (as the beam's statics.csv, command_statics.cc).
+              if (root)
+                {
+                  csv->close();
+                  OutputFile tail(dir + "/statics.csv", FileMode::append);
+                  tail.stream() << "# stopped: " << one_line(where) << '\n';
+                  tail.close();
+                }
+              throw SolidStaticSolveError(where + "; " + dir + "/statics.csv holds the " + std::to_string(k - 1) +
+                                          " converged steps before it");
             }
           F_previous = F_k;
           model.reinit_ghosted_vector(states[k - 1]);
