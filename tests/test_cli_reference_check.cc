@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 namespace
 {
   const std::string coarse_fe = "Time stepping/FE time step=1e-4";
+  // 8 s of CPU on the plain build, ~10 times that under the sanitizers.
+  const CliLimits long_enough = CliLimits().timeout(900);
 
   std::string first_line(const std::string &text) { return text.substr(0, text.find('\n')); }
 
@@ -45,7 +47,8 @@ TEST(ReferenceCheck, EnsembleOfACoarseFeSaysItDidNotConverge)
 {
   const fs::path dir = fresh_folder("reference_check_ensemble");
   const CliRun run = run_beamslider({"ensemble", "--model", "fe", "--members", "4", "--end-time", "2", "--set",
-                                     coarse_fe, "--quiet", "--output", dir.string()});
+                                     coarse_fe, "--quiet", "--output", dir.string()},
+                                   long_enough);
   EXPECT_EQ(run.exit_code, 3) << run.err;
   EXPECT_EQ(first_line(run.err).rfind("ensemble: the FE in Δt: NOT CONVERGED in Δt down to Δt = 2.5e-05 s", 0), 0u)
     << run.err;
@@ -79,7 +82,8 @@ TEST(ReferenceCheck, UncheckedEnsembleSaysSo)
 {
   const fs::path dir = fresh_folder("reference_check_unchecked");
   const CliRun run   = run_beamslider({"ensemble", "--model", "fe", "--members", "2", "--end-time", "0.2", "--set",
-                                       coarse_fe, "--unchecked", "--quiet", "--output", dir.string()});
+                                       coarse_fe, "--unchecked", "--quiet", "--output", dir.string()},
+                                      long_enough);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_FALSE(fs::exists(dir / "convergence.csv"));
   const std::string summary = read_file(dir / "summary.md");
@@ -94,7 +98,8 @@ TEST(ReferenceCheck, LadderWithACoarseReferenceSaysItDidNotConverge)
 {
   const fs::path dir = fresh_folder("reference_check_ladder");
   const CliRun run   = run_beamslider({"ladder", "--rung", "ROM N=10", "--members", "3", "--end-time", "2", "--set",
-                                       coarse_fe, "--quiet", "--output", dir.string()});
+                                       coarse_fe, "--quiet", "--output", dir.string()},
+                                      long_enough);
   EXPECT_EQ(run.exit_code, 3) << run.err;
   EXPECT_NE(run.err.find("the reference in Δt: NOT CONVERGED"), std::string::npos) << run.err;
   const auto rows = convergence_rows(dir);
