@@ -211,21 +211,20 @@ namespace beamslider
           return checks;
         // One round: the next trials of every undecided check, as one list.
         std::vector<MemberGroup> groups;
-        std::vector<std::pair<std::size_t, std::size_t>> owner; // group → (check, trial)
+        std::vector<std::size_t> owner; // the check of each group; its trials come in order
         for (std::size_t i = 0; i < plans.size(); ++i)
           if (mask & (1ul << i))
             {
               const auto [first, last] = next_trials(plans[i], done[i].size());
-              std::size_t k = first;
               for (const MemberGroup &g : trial_groups(scenes[i], plans[i], first, last, n_members, perturbation))
                 {
-                  owner.emplace_back(i, k++);
+                  owner.push_back(i);
                   groups.push_back(g);
                 }
             }
         std::vector<std::vector<EnsembleMember>> results = runner ? runner(groups) : run_groups_in_threads(groups);
         for (std::size_t g = 0; g < groups.size(); ++g)
-          done[owner[g].first].push_back(std::move(results[g]));
+          done[owner[g]].push_back(std::move(results[g]));
       }
   }
 
