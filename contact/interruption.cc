@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <string>
 
 namespace beamslider
 {
@@ -18,6 +19,17 @@ namespace beamslider
       received_signal.compare_exchange_strong(expected, signal, std::memory_order_relaxed);
     }
   } // namespace
+
+  Interrupted::Interrupted(const int signal)
+    : std::runtime_error("interrupted by signal " + std::to_string(signal))
+    , signal_(signal)
+  {}
+
+  void stop_if_interrupted()
+  {
+    if (const int signal = interruption_signal())
+      throw Interrupted(signal);
+  }
 
   void install_interruption_handlers()
   {

@@ -15,8 +15,28 @@
 // write fail rather than the run.
 #pragma once
 
+#include <stdexcept>
+
 namespace beamslider
 {
+  // Thrown where a computation that has no step of its own to finish (an
+  // eigensolver, a Newton iteration, a continuation) stops for a signal.
+  // The command layer turns it into 128 + the signal, as an interrupted
+  // time-stepping run that ends with status `interrupted`.
+  class Interrupted : public std::runtime_error
+  {
+  public:
+    explicit Interrupted(int signal);
+    int signal() const { return signal_; }
+
+  private:
+    int signal_;
+  };
+
+  // Throws Interrupted if SIGINT or SIGTERM arrived. Single-process code
+  // only: under MPI every rank must decide together (fem/mpi_interruption.h).
+  void stop_if_interrupted();
+
   void install_interruption_handlers();
 
   // True once SIGINT or SIGTERM arrived (cheap: one relaxed atomic load).

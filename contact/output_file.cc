@@ -285,6 +285,14 @@ namespace beamslider
     held_folders()[id] = fd;
   }
 
+  std::vector<std::string> held_output_folders()
+  {
+    std::vector<std::string> folders;
+    for (const auto &held : held_folders())
+      folders.push_back(held.first);
+    return folders;
+  }
+
   void release_output_folders()
   {
     for (const auto &[dir, fd] : held_folders())

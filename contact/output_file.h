@@ -26,6 +26,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace beamslider
 {
@@ -112,6 +113,8 @@ namespace beamslider
   // OutputError ("output folder 'X' is in use by process P") if another
   // process holds it; nothing else in the folder is touched then.
   void lock_output_folder(const std::string &dir);
+  // The folders this process holds (absolute, normal paths).
+  std::vector<std::string> held_output_folders();
   // Lets go of every folder this process holds (a command run in a process
   // that lives on: the Python module).
   void release_output_folders();

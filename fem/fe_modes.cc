@@ -1,13 +1,11 @@
 #include "fem/fe_modes.h"
 
 #include "fem/petsc_session.h"
+#include "fem/shift_invert_eigensolver.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
-#include <deal.II/lac/slepc_solver.h>
-#include <deal.II/lac/slepc_spectral_transformation.h>
-#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_matrix.h>
 
 #include <Eigen/Eigenvalues>
@@ -112,9 +110,8 @@ namespace beamslider
         }
     }
 
-    // Shift-invert about 0 with SLEPc's Krylov-Schur and its default solver
-    // for the spectral transformation (direct LU: MUMPS through the wrapper
-    // crashes in deal.II 9.4.1). Starts MPI/PETSc/SLEPc on first use.
+    // Shift-invert about 0 (fem/shift_invert_eigensolver.h) on one rank, with
+    // PETSc's own LU. Starts MPI/PETSc/SLEPc on first use.
     unsigned int solve_with_slepc(const FEBeam &beam, const SparseMatrix<double> &K, SparseMatrix<double> &M,
                                   const unsigned int n_modes, std::vector<double> &eigenvalues,
                                   std::vector<Vector<double>> &vectors)
@@ -135,26 +132,10 @@ namespace beamslider
       for (auto &v : petsc_vectors)
         v.reinit(MPI_COMM_SELF, beam.n_dofs(), beam.n_dofs());
 
-      SolverControl control(1000, 1e-12, false, false);
-      SLEPcWrappers::SolverKrylovSchur solver(control, MPI_COMM_SELF);
-      SLEPcWrappers::TransformationShiftInvert shift_invert(MPI_COMM_SELF,
-                                                            SLEPcWrappers::TransformationShiftInvert::AdditionalData(0.));
-      solver.set_transformation(shift_invert);
-      solver.set_problem_type(EPS_GHEP);
-      solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
-      solver.set_target_eigenvalue(0.);
-      try
-        {
-          solver.solve(K_petsc, M_petsc, eigenvalues, petsc_vectors, n_modes);
-        }
-      catch (const ExceptionBase &e)
-        {
-          std::ostringstream info;
-          e.print_info(info);
-          throw std::runtime_error("SLEPc eigensolver failed for the " + std::to_string(n_modes) +
-                                   " lowest bending modes (" + std::to_string(beam.n_elements()) +
-                                   " elements): " + info.str());
-        }
+      ShiftInvertSettings settings;
+      settings.what = "the " + std::to_string(n_modes) + " lowest bending modes (" +
+                      std::to_string(beam.n_elements()) + " elements)";
+      const unsigned int iterations = lowest_eigenpairs(K_petsc, M_petsc, n_modes, settings, eigenvalues, petsc_vectors);
       for (unsigned int i = 0; i < eigenvalues.size(); ++i)
         {
           Vector<double> phi(beam.n_dofs());
@@ -162,7 +143,7 @@ namespace beamslider
             phi[j] = petsc_vectors[i][j];
           vectors.push_back(std::move(phi));
         }
-      return control.last_step();
+      return iterations;
     }
   } // namespace
 

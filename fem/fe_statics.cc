@@ -1,5 +1,7 @@
 #include "fem/fe_statics.h"
 
+#include "contact/interruption.h"
+
 #include <deal.II/lac/sparse_direct.h>
 
 #include <cmath>
@@ -172,6 +174,7 @@ namespace beamslider
         double rel_residual = 0, previous_rel_residual = std::numeric_limits<double>::infinity();
         for (unsigned int it = 0; it < settings.max_iterations; ++it)
           {
+            stop_if_interrupted(); // Ctrl-C between iterations (one process)
             beam.assemble_internal_force(x, &f, &K, constraints);
             residual = load;
             residual -= f;

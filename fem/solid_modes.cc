@@ -1,14 +1,11 @@
 #include "fem/solid_modes.h"
 
 #include "fem/petsc_session.h"
+#include "fem/shift_invert_eigensolver.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/slepc_solver.h>
-#include <deal.II/lac/slepc_spectral_transformation.h>
-
-#include <petscsys.h>
 
 #include <algorithm>
 #include <numeric>
@@ -93,40 +90,17 @@ namespace beamslider
                               const PETScWrappers::MPI::SparseMatrix &M, const unsigned int n,
                               std::vector<double> &eigenvalues, std::vector<PETScWrappers::MPI::Vector> &vectors)
     {
-      // The shifted system (K − σM) is factorised by MUMPS, chosen through
-      // PETSc's options database: deal.II 9.4.1's set_solver with its MUMPS
-      // wrapper crashes, and PETSc's own LU works on one rank only.
-      PetscOptionsSetValue(nullptr, "-st_ksp_type", "preonly");
-      PetscOptionsSetValue(nullptr, "-st_pc_type", "lu");
-      PetscOptionsSetValue(nullptr, "-st_pc_factor_mat_solver_type", "mumps");
-
       vectors.resize(n + 2);
       for (auto &v : vectors)
         model.reinit_vector(v);
-      // 1e-14 on the relative residual: frequencies that agree to ~1e-12 whatever the
-      // partition (1 and 2 ranks factorise in different orders).
-      SolverControl control(1000, 1e-14, false, false);
-      SLEPcWrappers::SolverKrylovSchur solver(control, model.communicator());
-      SLEPcWrappers::TransformationShiftInvert shift_invert(model.communicator(),
-                                                            SLEPcWrappers::TransformationShiftInvert::AdditionalData(0.));
-      solver.set_transformation(shift_invert);
-      solver.set_problem_type(EPS_GHEP);
-      solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
-      solver.set_target_eigenvalue(0.);
-      try
-        {
-          solver.solve(K, M, eigenvalues, vectors, n);
-        }
-      catch (const ExceptionBase &e)
-        {
-          std::ostringstream info;
-          e.print_info(info);
-          throw std::runtime_error("SLEPc eigensolver failed for the " + std::to_string(n) + " lowest modes of the " +
-                                   std::to_string(dim) + "D solid (" + std::to_string(model.n_dofs()) +
-                                   " DoFs): " + info.str());
-        }
-      vectors.resize(eigenvalues.size());
-      return control.last_step();
+      ShiftInvertSettings settings;
+      // Frequencies that agree to ~1e-12 whatever the partition (1 and 2
+      // ranks factorise in different orders); MUMPS for any number of ranks.
+      settings.tolerance = 1e-14;
+      settings.mumps     = true;
+      settings.what      = "the " + std::to_string(n) + " lowest modes of the " + std::to_string(dim) + "D solid (" +
+                      std::to_string(model.n_dofs()) + " DoFs)";
+      return lowest_eigenpairs(K, M, n, settings, eigenvalues, vectors);
     }
   } // namespace
 

@@ -1,5 +1,6 @@
 #include "fem/solid_statics.h"
 
+#include "fem/mpi_interruption.h"
 #include "fem/solid_point_values.h"
 
 #include <deal.II/base/mpi.h>
@@ -74,6 +75,7 @@ namespace beamslider
         bool have_residual = false; // residual = load − f(u) kept from the line search
         for (unsigned int it = 0; it < max_iterations; ++it)
           {
+            stop_if_interrupted(model.communicator()); // every rank at the same iteration
             const bool refresh = !tangent.factorised() || contraction > slow_contraction ||
                                  iterations_on_tangent >= max_iterations_per_factorisation;
             if (refresh || !have_residual)

@@ -4,6 +4,8 @@
 
 #include "reduced/backbone_tongues.h"
 
+#include "contact/interruption.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -277,6 +279,7 @@ namespace beamslider
         p.relative_residual = std::numeric_limits<double>::infinity();
         for (unsigned int it = 1; it <= settings_.max_newton_iterations; ++it)
           {
+            stop_if_interrupted(); // Ctrl-C: compute_backbone keeps the converged points
             ++result_.n_newton_iterations;
             linearise(z, row, R, A);
             b.head(m_)              = -R(active_);
@@ -653,7 +656,25 @@ namespace beamslider
            std::to_string(2 * settings.hb.n_harmonics + 1) + " (≥ 4H+1 for exact cubic terms)");
 
     BackboneContinuation continuation(system, settings, result);
-    continuation.run();
+    try
+      {
+        continuation.run();
+      }
+    catch (const Interrupted &e)
+      {
+        // Stopped between Newton iterations: the converged points stay (none
+        // converged: nothing to keep, the caller stops).
+        if (result.points.empty())
+          throw;
+        result.interrupted = true;
+        result.completed   = false;
+        std::ostringstream s;
+        s << e.what() << " after " << result.points.size() << " converged points";
+        if (!result.points.empty())
+          s << " (last at amplitude " << result.points.back().amplitude << " m, ω " << result.points.back().omega
+            << " rad/s)";
+        result.message = s.str();
+      }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
   }

@@ -175,6 +175,7 @@ namespace beamslider
     unsigned int n_time_samples = 0;
     std::vector<BackbonePoint> points;
     bool completed = false;  // end_amplitude reached
+    bool interrupted = false; // stopped by SIGINT/SIGTERM (contact/interruption.h)
     std::string message;     // why it stopped (always set)
     std::vector<BackboneGap> gaps; // ranges jumped over (restart_past_tongues)
     unsigned int n_newton_iterations = 0; // total, all points and retries
@@ -184,7 +185,8 @@ namespace beamslider
   // Continuation of the backbone from the linear mode `mode` at start_amplitude
   // up to end_amplitude. Never throws for a Newton failure during continuation:
   // it stops, keeps the converged points and says where and why in `message`
-  // (amplitude, ω, residual). Throws std::invalid_argument for bad settings and
+  // (amplitude, ω, residual); the same when SIGINT or SIGTERM arrives
+  // (Backbone::interrupted). Throws std::invalid_argument for bad settings and
   // std::runtime_error if even the first point fails.
   Backbone compute_backbone(const ConservativeSystem &system, const BackboneSettings &settings);
 

@@ -108,7 +108,7 @@ namespace beamslider
             << " Newton iterations, HB with " << backbone.n_time_samples << " time samples\n"
             << "- wall time: " << backbone.seconds << " s (continuation), " << seconds << " s (with FE set-up)\n"
             << "- largest ŵ/h reached: " << a_max << (backbone.completed ? " (completed)" : " (not completed)") << "\n"
-            << "- stopped: " << backbone.message << "\n";
+            << "- stopped: " << backbone.message << (backbone.interrupted ? " (partial results)" : "") << "\n";
     for (const auto &g : backbone.gaps)
       summary << "- jumped over an internal-resonance tongue between ŵ/h = " << g.last_amplitude / h << " (f = "
               << g.last_omega / (2 * pi) << " Hz, ω/ω₁ = " << g.last_omega / omega_1 << ") and ŵ/h = "
@@ -119,6 +119,14 @@ namespace beamslider
 
     csv.close(); // whole files, renamed into place, before the chart reads them
     eq4.close();
+    if (backbone.interrupted)
+      {
+        // The converged points are written; no chart of a partial curve.
+        // main() turns the interruption into 130/143.
+        console() << "Backbone of scene '" << scene.name << "' stopped: " << backbone.message << "; wrote the "
+                  << backbone.points.size() << " converged points to " << dir << "/backbone.csv (partial)\n";
+        return 0;
+      }
     const bool plotted = run_plot_script("plot_backbones.py", {"command", dir});
     console() << "Backbone of scene '" << scene.name << "' (" << model_text << "): " << backbone.points.size()
               << " points up to ŵ/h = " << a_max << " in " << backbone.seconds << " s; " << backbone.message << "\n";

@@ -1,4 +1,5 @@
 #include "contact/output_file.h"
+#include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/child_process.h"
 #include "verification/cli/commands.h"
@@ -175,6 +176,43 @@ namespace beamslider
       file.close();
     }
   } // namespace
+
+  bool record_run_end(const int status, const std::string &messages, std::ostream &errors)
+  {
+    const std::time_t now = std::time(nullptr);
+    char when[32];
+    std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    std::ostringstream how;
+    how << "ended:     " << when << ", ";
+    if (status == 0)
+      how << "completed (exit 0)";
+    else
+      {
+        const std::string first = messages.substr(0, messages.find('\n'));
+        how << (status >= 128 ? "interrupted" : status == 2 ? "refused" : "failed") << " (exit " << status << ")"
+            << (first.empty() ? "" : ": " + one_line(first))
+            << "\n           the results in this folder are partial (run the command again, or --resume it)";
+      }
+    bool written = true;
+    for (const std::string &dir : held_output_folders())
+      {
+        std::error_code ec;
+        if (!fs::exists(fs::path(dir) / "run.txt", ec))
+          continue; // a folder locked but never prepared
+        try
+          {
+            OutputFile file(dir + "/run.txt", FileMode::append);
+            file.stream() << how.str() << '\n';
+            file.close();
+          }
+        catch (const OutputError &e)
+          {
+            errors << "error: results not written: " << one_line(e.what()) << std::endl;
+            written = false;
+          }
+      }
+    return written;
+  }
 
   void record_command_line(const int argc, const char *const *argv)
   {

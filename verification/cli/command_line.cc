@@ -21,6 +21,7 @@
 #include <cerrno>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 
 namespace beamslider
 {
@@ -323,6 +324,12 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
       errors << "error: " << one_line(e.what()) << std::endl;
       return 2;
     }
+  catch (const Interrupted &)
+    {
+      // A solver, Newton loop or continuation stopped for Ctrl-C or kill;
+      // run_beamslider says so and gives 128 + the signal.
+      return interruption_exit_code();
+    }
   catch (const FolderInUseError &e)
     {
       errors << "error: " << e.what() << std::endl; // nothing was written: not a failed write
@@ -355,15 +362,19 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
 int run_beamslider(int argc, char **argv, std::ostream &errors)
 {
   clear_output_failures();
-  int status = parse_and_run(argc, argv, errors);
-  release_output_folders(); // the command's folders are free again (the Python module lives on)
+  std::ostringstream messages; // also the first line of run.txt's `ended:` record
+  int status = parse_and_run(argc, argv, messages);
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written
   if (interruption_requested())
     {
-      errors << "interrupted by signal " << interruption_signal() << std::endl;
+      messages << "interrupted by signal " << interruption_signal() << std::endl;
       status = interruption_exit_code();
     }
+  errors << messages.str() << std::flush;
+  if (!record_run_end(status, messages.str(), errors) && status == 0)
+    status = 1;
+  release_output_folders(); // the command's folders are free again (the Python module lives on)
   return status;
 }
 } // namespace beamslider

@@ -17,6 +17,7 @@
 // gravity in every scene); w_mid_m is the mid-span deflection in +w, so a
 // downward load gives w_mid_m < 0.
 #include "contact/csv_writer.h"
+#include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
@@ -81,6 +82,15 @@ namespace beamslider
     try
       {
         path = statics.load_path(F, options.n_steps, write_row);
+      }
+    catch (const Interrupted &e)
+      {
+        csv.close();
+        OutputFile tail(dir + "/statics.csv", FileMode::append);
+        tail.stream() << "# stopped: load step " << n_converged + 1 << " of " << options.n_steps << ": " << e.what()
+                      << '\n';
+        tail.close();
+        throw;
       }
     catch (const StaticSolveError &e)
       {

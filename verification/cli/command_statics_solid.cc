@@ -6,6 +6,7 @@
 // q_m_sqrt_kg (modal load) the coordinate φ_nᵀ M u. statics.pvtu holds the
 // deformed strip at every step.
 #include "contact/csv_writer.h"
+#include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
@@ -69,6 +70,18 @@ namespace beamslider
           const double lambda = double(k) / options.n_steps;
           F_k                 = F;
           F_k *= lambda;
+          // The rows so far stay; a last line says where the path stopped
+          // (as the beam's statics.csv, command_statics.cc).
+          const auto mark_stopped = [&](const std::string &where) {
+            if (root)
+              {
+                csv->close();
+                OutputFile tail(dir + "/statics.csv", FileMode::append);
+                tail.stream() << "# stopped: " << one_line(where) << '\n';
+                tail.close();
+              }
+          };
+          const std::string step = "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps);
           unsigned int iterations = 0;
           try
             {
@@ -76,19 +89,14 @@ namespace beamslider
             }
           catch (const SolidStaticSolveError &e)
             {
-              const std::string where =
-                "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps) + ": " + e.what();
-              // The rows so far stay; a last line says where the path stopped
-              // (as the beam's statics.csv, command_statics.cc).
-              if (root)
-                {
-                  csv->close();
-                  OutputFile tail(dir + "/statics.csv", FileMode::append);
-                  tail.stream() << "# stopped: " << one_line(where) << '\n';
-                  tail.close();
-                }
-              throw SolidStaticSolveError(where + "; " + dir + "/statics.csv holds the " + std::to_string(k - 1) +
-                                          " converged steps before it");
+              mark_stopped(step + ": " + e.what());
+              throw SolidStaticSolveError(step + ": " + e.what() + "; " + dir + "/statics.csv holds the " +
+                                          std::to_string(k - 1) + " converged steps before it");
+            }
+          catch (const Interrupted &e)
+            {
+              mark_stopped(step + ": " + e.what());
+              throw;
             }
           F_previous = F_k;
           model.reinit_ghosted_vector(states[k - 1]);

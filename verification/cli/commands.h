@@ -243,6 +243,12 @@ namespace beamslider
   // computed with (member_runs.h).
   std::string build_revision();
 
+  // Appends to run.txt in every folder the command wrote into how it ended:
+  // completed, or failed / refused / interrupted with its exit status, the
+  // first line of `messages` and that the folder's results are partial.
+  // Returns false (and says why on `errors`) if a record could not be written.
+  bool record_run_end(int status, const std::string &messages, std::ostream &errors);
+
   // The process's command line, for run.txt (main() records it first).
   void record_command_line(int argc, const char *const *argv);
   // The sub-command's options with their effective values, for command.prm
