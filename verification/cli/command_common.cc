@@ -2,6 +2,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/child_process.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>
@@ -240,7 +241,8 @@ namespace beamslider
 
   void note_output_failure(const std::string &what)
   {
-    std::cerr << "error: " << what << std::endl;
+    if (launch_rank() == 0) // once, not per rank of an mpirun launch
+      std::cerr << "error: " << what << std::endl;
     failed_outputs().push_back(what);
   }
 

@@ -12,6 +12,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/exceptions.h>
@@ -354,14 +355,19 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
 
 int run_beamslider(int argc, char **argv, std::ostream &errors)
 {
+  // Under mpirun every rank runs the command and meets the same error
+  // (errors that arise on some ranks only are shared, fem/collective_failure.h):
+  // rank 0 says it once, the others exit with the same status and say nothing.
+  std::ostream silent(nullptr);
+  std::ostream &shown = launch_rank() == 0 ? errors : silent;
   clear_output_failures();
-  int status = parse_and_run(argc, argv, errors);
+  int status = parse_and_run(argc, argv, shown);
   release_output_folders(); // the command's folders are free again (the Python module lives on)
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written
   if (interruption_requested())
     {
-      errors << "interrupted by signal " << interruption_signal() << std::endl;
+      shown << "interrupted by signal " << interruption_signal() << std::endl;
       status = interruption_exit_code();
     }
   return status;
