@@ -130,8 +130,13 @@ namespace beamslider
 
   void OutputFile::flush()
   {
-    errno = 0;
-    out_.flush();
+    // A stream that failed already keeps the errno of its failed write (a
+    // full disk, a file-size limit): it is the reason check() gives.
+    if (out_)
+      {
+        errno = 0;
+        out_.flush();
+      }
     check();
   }
 
