@@ -93,7 +93,7 @@ namespace beamslider
                 tail.close();
               });
               throw SolidStaticSolveError(where + "; " + dir + "/statics.csv holds the " + std::to_string(k - 1) +
-                                          " converged steps before it");
+                                          " converged steps before it; statics.pvtu not written");
             }
           F_previous = F_k;
           model.reinit_ghosted_vector(states[k - 1]);
