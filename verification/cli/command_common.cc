@@ -1,4 +1,5 @@
 #include "contact/output_file.h"
+#include "fem/petsc_session.h"
 #include "meshes/scene.h"
 #include "verification/cli/child_process.h"
 #include "verification/cli/commands.h"
@@ -241,7 +242,7 @@ namespace beamslider
 
   void note_output_failure(const std::string &what)
   {
-    if (launch_rank() == 0) // once, not per rank of an mpirun launch
+    if (launch_rank() == 0 || !mpi_started()) // once, not per rank of a command on MPI
       std::cerr << "error: " << what << std::endl;
     failed_outputs().push_back(what);
   }

@@ -8,6 +8,7 @@
 
 #include "contact/interruption.h"
 #include "contact/output_file.h"
+#include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
@@ -22,6 +23,7 @@
 #include <cerrno>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 
 namespace beamslider
 {
@@ -355,21 +357,29 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
 
 int run_beamslider(int argc, char **argv, std::ostream &errors)
 {
-  // Under mpirun every rank runs the command and meets the same error
-  // (errors that arise on some ranks only are shared, fem/collective_failure.h):
-  // rank 0 says it once, the others exit with the same status and say nothing.
-  std::ostream silent(nullptr);
-  std::ostream &shown = launch_rank() == 0 ? errors : silent;
+  // Under mpirun every rank runs the command; rank 0 says what went wrong,
+  // once. Another rank keeps its message where rank 0 meets the same error:
+  // bad input (every rank reads the same), an interruption (mpirun passes
+  // the signal to all), or any error of a command that runs on MPI (an
+  // error that arises on some ranks only is shared, fem/collective_failure.h).
+  // A command without MPI runs on each rank alone, so that rank's own error
+  // (its folder in use by the other rank) is said, with its rank.
+  const unsigned int rank = launch_rank();
+  std::ostringstream own;
+  std::ostream &said = rank == 0 ? errors : own;
   clear_output_failures();
-  int status = parse_and_run(argc, argv, shown);
+  int status = parse_and_run(argc, argv, said);
   release_output_folders(); // the command's folders are free again (the Python module lives on)
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written
   if (interruption_requested())
     {
-      shown << "interrupted by signal " << interruption_signal() << std::endl;
-      status = interruption_exit_code();
+      if (rank == 0)
+        errors << "interrupted by signal " << interruption_signal() << std::endl;
+      return interruption_exit_code();
     }
+  if (rank != 0 && status != 2 && !mpi_started() && !own.str().empty())
+    errors << "rank " << rank << ": " << own.str() << std::flush;
   return status;
 }
 } // namespace beamslider
