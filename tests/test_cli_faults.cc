@@ -153,6 +153,19 @@ TEST(FaultsFullDisk, TheBeamsVtuFilesFailNamingTheFileAndLeaveNoPart)
   fs::remove_all(dir);
 }
 
+// A full disk at a checkpoint (written atomically: a temporary renamed over
+// the last one): exit 1 naming checkpoint.bin, not its hidden temporary, and
+// no part of either left.
+TEST(FaultsFullDisk, ACheckpointFailsNamingTheFileAndLeavesNoPart)
+{
+  const fs::path dir = fresh_folder("faults_disk_checkpoint");
+  const CliRun run = run_beamslider(
+    {"simulate", "--end-time", "0.02", "--checkpoint-every", "0.01", "--output", dir.string(), "-q"},
+    CliLimits().file_size(12288)); // the checkpoint: 17 kB, the folder's records and the CSV files below
+  expect_refused_write(run, dir, (dir / "checkpoint.bin").string(), "checkpoint");
+  fs::remove_all(dir);
+}
+
 // A full disk at the solid's pieces on two ranks: every rank learns that a
 // piece failed, removes its own, and exits 1; rank 0 says which file failed,
 // once; neither the record nor a piece stays, and rank 0 writes nothing
