@@ -170,13 +170,14 @@ TEST(FaultsFullDisk, ACheckpointFailsNamingTheFileAndLeavesNoPart)
 // piece failed, removes its own, and exits 1; rank 0 says which file failed,
 // once; neither the record nor a piece stays, and rank 0 writes nothing
 // after it. The limit holds for the ranks only (prlimit): mpirun's own
-// shared memory files are larger, and so are those of Open MPI's
-// shared-memory transport, hence TCP between the ranks.
+// shared memory files are larger, and so are the files behind Open MPI's
+// shared memory between the ranks, hence System V shared memory, which is no
+// file.
 TEST(FaultsFullDisk, TheSolidsPiecesFailOnEveryRankAndLeaveNoPart)
 {
   const fs::path dir = fresh_folder("faults_disk_solid");
   std::vector<std::string> launcher = two_ranks;
-  launcher.insert(launcher.end(), {"--mca", "btl", "self,tcp", "prlimit", "--fsize=12288"});
+  launcher.insert(launcher.end(), {"--mca", "shmem", "sysv", "prlimit", "--fsize=12288"});
   const CliRun run =
     run_beamslider(small_solid({"modes", "mueller2023-ideal-solid", "--modes", "4", "--output", dir.string()}),
                    CliLimits().timeout(120).launched_by(launcher));
