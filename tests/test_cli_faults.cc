@@ -9,14 +9,18 @@
 // converge leaves the converged rows and no statics.vtu / statics.pvtu, on
 // the beam and on the solid alike, and says so.
 #include "contact/checkpoint.h"
+#include "contact/output_file.h"
 #include "tests/cli_runner.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/file.h>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -25,7 +29,25 @@ using namespace beamslider::testing;
 
 namespace
 {
-  const std::vector<std::string> two_ranks = {"mpirun", "-np", "2", "--oversubscribe"};
+  // Two ranks, each of which must end by itself: mpirun does not stop the
+  // others when one exits with an error (as it would by default, which would
+  // hide a rank left waiting), and each rank's exit status is recorded in
+  // `statuses`/rank_<r>. `before` goes before the program (e.g. prlimit).
+  std::vector<std::string> two_ranks(const fs::path &statuses, const std::vector<std::string> &before = {})
+  {
+    std::vector<std::string> launcher = {
+      "mpirun", "-np", "2", "--oversubscribe", "--mca", "orte_abort_on_non_zero_status", "0", "sh", "-c",
+      "\"$@\"; status=$?; echo $status > '" + statuses.string() + "'/rank_$OMPI_COMM_WORLD_RANK; exit $status", "sh"};
+    launcher.insert(launcher.end(), before.begin(), before.end());
+    return launcher;
+  }
+
+  // Both ranks exited by themselves with `status`.
+  void expect_ranks_exited_with(const fs::path &statuses, const int status)
+  {
+    for (const char *rank : {"rank_0", "rank_1"})
+      EXPECT_EQ(read_file(statuses / rank), std::to_string(status) + "\n") << rank;
+  }
 
   // The plane-stress strip on a coarse mesh: a solid scene that takes a
   // second, not minutes (its four modes' .vtu pieces on two ranks: 16 kB each).
@@ -56,14 +78,19 @@ namespace
     return found;
   }
 
-  // A run that a full disk stopped: exit 1, one line naming `file` and the
+  // A run that a full disk stopped: exit 1 (unless `check_exit`, where the
+  // ranks' statuses are checked instead), one line naming `file` and the
   // reason, no "Wrote" line, and nothing left of the files named `stem`
   // (result or temporary) in `dir`.
-  void expect_refused_write(const CliRun &run, const fs::path &dir, const std::string &file, const std::string &stem)
+  void expect_refused_write(const CliRun &run, const fs::path &dir, const std::string &file, const std::string &stem,
+                            const bool check_exit = true)
   {
     EXPECT_FALSE(run.timed_out) << "hangs";
     EXPECT_EQ(run.signal, 0) << run.err;
-    EXPECT_EQ(run.exit_code, 1) << run.err;
+    if (check_exit)
+      {
+        EXPECT_EQ(run.exit_code, 1) << run.err;
+      }
     EXPECT_EQ(count(run.err, "error: results not written: result file '"), 1u) << run.err;
     EXPECT_NE(run.err.find(file + "' could not be written: File too large"), std::string::npos) << run.err;
     EXPECT_EQ(run.out.find("Wrote"), std::string::npos) << run.out;
@@ -82,9 +109,11 @@ TEST(FaultsUnderMpi, AnInputErrorIsSaidOnceByRankZero)
         std::vector<std::string>{"modes", "mueller2023", "--set", "Beam/Length=-1", "--output",
                                  (dir / "beam").string()}})
     {
-      const CliRun run = run_beamslider(args, CliLimits().timeout(60).launched_by(two_ranks));
+      const fs::path statuses = dir / ("statuses_" + args[1]);
+      fs::create_directories(statuses);
+      const CliRun run = run_beamslider(args, CliLimits().timeout(60).launched_by(two_ranks(statuses)));
       EXPECT_FALSE(run.timed_out) << args[1];
-      EXPECT_EQ(run.exit_code, 2) << args[1] << ": " << run.err;
+      expect_ranks_exited_with(statuses, 2);
       EXPECT_EQ(count(run.err, "error: "), 1u) << args[1] << ": " << run.err;
     }
   fs::remove_all(dir);
@@ -96,13 +125,13 @@ TEST(FaultsUnderMpi, AnInputErrorIsSaidOnceByRankZero)
 // line, and no statics.pvtu or piece is written.
 TEST(FaultsUnderMpi, AFailedSolidLoadStepIsSaidOnceAndLeavesTheMarkedTableOnly)
 {
-  const fs::path dir = fresh_folder("faults_mpi_statics");
+  const fs::path dir = fresh_folder("faults_mpi_statics"), statuses = fresh_folder("faults_mpi_statics_ranks");
   const CliRun run =
     run_beamslider(small_solid({"statics", "mueller2023-ideal-solid", "--line-load", "1e12", "--steps", "4",
                                 "--output", dir.string()}),
-                   CliLimits().timeout(120).launched_by(two_ranks));
+                   CliLimits().timeout(120).launched_by(two_ranks(statuses)));
   ASSERT_FALSE(run.timed_out) << "a rank was left waiting";
-  EXPECT_EQ(run.exit_code, 1) << run.err;
+  expect_ranks_exited_with(statuses, 1);
   EXPECT_EQ(count(run.err, "beamslider failed: "), 1u) << run.err;
   EXPECT_NE(run.err.find("load step 1 of 4"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("statics.csv holds the 0 converged steps before it; statics.pvtu not written"),
@@ -114,6 +143,29 @@ TEST(FaultsUnderMpi, AFailedSolidLoadStepIsSaidOnceAndLeavesTheMarkedTableOnly)
   EXPECT_EQ(files_with(dir, "statics.pvtu"), std::vector<std::string>());
   EXPECT_EQ(files_with(dir, ".vtu"), std::vector<std::string>());
   fs::remove_all(dir);
+  fs::remove_all(statuses);
+}
+
+// A failure of rank 0 alone: it cannot prepare the output folder (another
+// process holds it), and the other rank, which waits for the folder's name
+// from rank 0, learns of the failure instead and exits 1 too; said once.
+// (Before fail_together, rank 1 spun in the broadcast until its CPU limit.)
+TEST(FaultsUnderMpi, AFolderInUseOnRankZeroEndsEveryRank)
+{
+  const fs::path dir = fresh_folder("faults_mpi_held"), statuses = fresh_folder("faults_mpi_held_ranks");
+  // Held as a run holds it: the lock file flock()ed (output_file.h).
+  const int lock = open((dir / output_folder_lock_name()).c_str(), O_RDWR | O_CREAT, 0644);
+  ASSERT_EQ(flock(lock, LOCK_EX), 0);
+  const CliRun run =
+    run_beamslider(small_solid({"modes", "mueller2023-ideal-solid", "--output", dir.string()}),
+                   CliLimits().timeout(60).launched_by(two_ranks(statuses)));
+  close(lock);
+  ASSERT_FALSE(run.timed_out) << "a rank was left waiting";
+  expect_ranks_exited_with(statuses, 1);
+  EXPECT_EQ(count(run.err, "error: "), 1u) << run.err;
+  EXPECT_NE(run.err.find("is in use by process"), std::string::npos) << run.err;
+  fs::remove_all(dir);
+  fs::remove_all(statuses);
 }
 
 // The beam's statics alike: a failed step leaves the marked table, says that
@@ -175,15 +227,17 @@ TEST(FaultsFullDisk, ACheckpointFailsNamingTheFileAndLeavesNoPart)
 // file.
 TEST(FaultsFullDisk, TheSolidsPiecesFailOnEveryRankAndLeaveNoPart)
 {
-  const fs::path dir = fresh_folder("faults_disk_solid");
-  std::vector<std::string> launcher = two_ranks;
-  launcher.insert(launcher.end(), {"--mca", "shmem", "sysv", "prlimit", "--fsize=12288"});
+  const fs::path dir = fresh_folder("faults_disk_solid"), statuses = fresh_folder("faults_disk_solid_ranks");
+  std::vector<std::string> launcher = two_ranks(statuses, {"prlimit", "--fsize=12288"});
+  launcher.insert(launcher.begin() + 4, {"--mca", "shmem", "sysv"});
   const CliRun run =
     run_beamslider(small_solid({"modes", "mueller2023-ideal-solid", "--modes", "4", "--output", dir.string()}),
                    CliLimits().timeout(120).launched_by(launcher));
-  expect_refused_write(run, dir, (dir / "modes_0000.vtu").string(), "modes");
+  expect_refused_write(run, dir, (dir / "modes_0000.vtu").string(), "modes", false);
+  expect_ranks_exited_with(statuses, 1);
   EXPECT_FALSE(fs::exists(dir / "modes.csv")) << "rank 0 went on after the failed write";
   fs::remove_all(dir);
+  fs::remove_all(statuses);
 }
 
 // A checkpoint whose count of overrides says more than its bytes can hold
