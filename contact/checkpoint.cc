@@ -3,6 +3,7 @@
 
 #include "contact/output_file.h"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
@@ -92,6 +93,17 @@ namespace beamslider
     std::string x = bytes_.substr(position_, n);
     position_ += n;
     return x;
+  }
+
+  std::uint64_t CheckpointReader::get_count(const std::size_t bytes_per_item)
+  {
+    const std::uint64_t n = get_uint();
+    const std::size_t left = bytes_.size() - position_;
+    if (n > left / std::max<std::size_t>(bytes_per_item, 1))
+      throw CheckpointError("checkpoint records " + std::to_string(n) + " entries of at least " +
+                            std::to_string(bytes_per_item) + " bytes where only " + std::to_string(left) +
+                            " bytes are left (corrupt)");
+    return n;
   }
 
   Eigen::VectorXd CheckpointReader::get_vector(const Eigen::Index size)

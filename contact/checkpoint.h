@@ -62,6 +62,10 @@ namespace beamslider
     std::uint64_t get_uint();
     bool get_bool();
     std::string get_string();
+    // A count of items that take at least `bytes_per_item` bytes each,
+    // refused (CheckpointError) if the rest of the checkpoint cannot hold
+    // them: a corrupt count must not size an allocation.
+    std::uint64_t get_count(std::size_t bytes_per_item);
     // A vector of exactly `size` entries (CheckpointError otherwise).
     Eigen::VectorXd get_vector(Eigen::Index size);
     template <int R, int C>

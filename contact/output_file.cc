@@ -130,8 +130,13 @@ namespace beamslider
 
   void OutputFile::flush()
   {
-    errno = 0;
-    out_.flush();
+    // A stream that failed already keeps the errno of its failed write (a
+    // full disk, a file-size limit): it is the reason check() gives.
+    if (out_)
+      {
+        errno = 0;
+        out_.flush();
+      }
     check();
   }
 
@@ -164,7 +169,7 @@ namespace beamslider
   {
     const auto [fd, tmp] = create_temporary(path);
     if (fd < 0)
-      throw OutputError("file '" + tmp + "' cannot be opened for writing: " + reason());
+      throw OutputError("result file '" + path + "' cannot be opened for writing (as '" + tmp + "'): " + reason());
     std::size_t done = 0;
     while (done < bytes.size())
       {
@@ -176,7 +181,7 @@ namespace beamslider
             const std::string why = reason();
             ::close(fd);
             ::unlink(tmp.c_str());
-            throw OutputError("file '" + tmp + "' could not be written: " + why);
+            throw OutputError("result file '" + path + "' could not be written: " + why);
           }
         done += static_cast<std::size_t>(n);
       }
@@ -186,13 +191,13 @@ namespace beamslider
     if (!synced || !closed)
       {
         ::unlink(tmp.c_str());
-        throw OutputError("file '" + tmp + "' could not be flushed to disk: " + why);
+        throw OutputError("result file '" + path + "' could not be flushed to disk: " + why);
       }
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
       {
         const std::string why = reason();
         ::unlink(tmp.c_str());
-        throw OutputError("file '" + tmp + "' could not be renamed to '" + path + "': " + why);
+        throw OutputError("result file '" + path + "' could not be renamed into place (from '" + tmp + "'): " + why);
       }
   }
 

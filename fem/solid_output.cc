@@ -1,12 +1,13 @@
 #include "fem/solid_output.h"
 
 #include "contact/output_file.h"
+#include "fem/collective_failure.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
-#include <fstream>
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 
@@ -30,7 +31,15 @@ namespace beamslider
       // A checked OutputFile: whole (a temporary renamed into place), never
       // written through a link.
       OutputFile out(path);
-      write(out.stream());
+      try
+        {
+          write(out.stream());
+        }
+      catch (const std::exception &)
+        {
+          out.check(); // a failed write (deal.II's ExcIO): the file and the system's reason
+          throw;
+        }
       out.close();
     }
   } // namespace
@@ -67,16 +76,26 @@ namespace beamslider
     // hypercubes); a hex cell of degree p as p^dim sub-cells.
     data_out.build_patches(model.mapping(), model.simplex() ? 1 : model.get_dof_handler().get_fe().degree);
 
-
-
-    write_checked(folder + "/" + piece_name(basename, rank), [&](std::ostream &out) { data_out.write_vtu(out); });
-    const std::string record = folder + "/" + basename + ".pvtu";
-    if (rank == 0)
+    // Each rank its piece, then rank 0 the record that lists them. A piece
+    // that fails on one rank (a full disk) fails the write on every rank:
+    // all remove their pieces, so no record or piece of a broken set stays.
+    const std::string piece = folder + "/" + piece_name(basename, rank), record = folder + "/" + basename + ".pvtu";
+    try
       {
-        std::vector<std::string> pieces;
-        for (unsigned int r = 0; r < n_ranks; ++r)
-          pieces.push_back(piece_name(basename, r));
-        write_checked(record, [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+        fail_together(comm, [&] { write_checked(piece, [&](std::ostream &out) { data_out.write_vtu(out); }); });
+        fail_together(comm, [&] {
+          if (rank != 0)
+            return;
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            pieces.push_back(piece_name(basename, r));
+          write_checked(record, [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+        });
+      }
+    catch (...)
+      {
+        std::remove(piece.c_str());
+        throw;
       }
     return record;
   }

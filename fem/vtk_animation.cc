@@ -2,6 +2,7 @@
 #include "fem/vtk_animation.h"
 
 #include "contact/output_file.h"
+#include "fem/vtk_xml_file.h"
 
 #include <deal.II/base/data_out_base.h>
 
@@ -49,19 +50,6 @@ namespace beamslider
       a->SetName(name);
       a->SetNumberOfComponents(components);
       return a;
-    }
-
-    template <class Writer, class Data>
-    void write_xml(Data &data, const std::string &filename)
-    {
-      // In memory, then whole into the folder: never through a link.
-      vtkNew<Writer> writer;
-      writer->WriteToOutputStringOn();
-      writer->SetInputData(&data);
-      writer->SetDataModeToAppended();
-      if (writer->Write() != 1)
-        throw std::runtime_error("cannot write VTK file '" + filename + "'");
-      write_text_file(filename, writer->GetOutputString());
     }
   } // namespace
 
@@ -200,7 +188,7 @@ namespace beamslider
       add_field(*grid, "TimeValue", frame.t);
       add_field(*grid, "magnification", m);
       add_field(*grid, "base_displacement", b.base_displacement);
-      write_xml<vtkXMLUnstructuredGridWriter>(*grid, directory_ + "/" + frame_file("beam", index, ".vtu"));
+      write_vtk_xml<vtkXMLUnstructuredGridWriter>(*grid, directory_ + "/" + frame_file("beam", index, ".vtu"));
 
       for (const auto &[part, line] : {std::pair{"beam_top", &top}, std::pair{"beam_bottom", &bottom}})
         for (const auto &p : *line)
@@ -252,7 +240,7 @@ namespace beamslider
       add_field(*poly, "x_C", s.s[0]);
       add_field(*poly, "z_C", s.s[1]);
       add_field(*poly, "beta", s.s[2]);
-      write_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("slider", index, ".vtp"));
+      write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("slider", index, ".vtp"));
     }
 
     // Contacts: the four window corners (drawn) with the force on the slider.
@@ -280,7 +268,7 @@ namespace beamslider
       poly->GetPointData()->SetActiveVectors("contact_force");
       add_field(*poly, "TimeValue", frame.t);
       add_field(*poly, "magnification", m);
-      write_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("contacts", index, ".vtp"));
+      write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("contacts", index, ".vtp"));
     }
 
     times_.push_back(frame.t);

@@ -1,6 +1,6 @@
 #include "fem/vtk_beam_output.h"
 
-#include "contact/output_file.h"
+#include "fem/vtk_xml_file.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -12,7 +12,6 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
-#include <stdexcept>
 #include <vector>
 
 namespace beamslider
@@ -80,14 +79,8 @@ namespace beamslider
         grid->GetFieldData()->AddArray(a);
       }
 
-    // Into memory, then whole into the folder (a temporary renamed into
-    // place): VTK's own file writing would follow a link at `filename`.
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->WriteToOutputStringOn();
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    if (writer->Write() != 1)
-      throw std::runtime_error("Cannot write VTK file '" + filename + "'");
-    write_text_file(filename, writer->GetOutputString());
+    // Into memory, then whole into the folder: VTK's own file writing would
+    // follow a link at `filename`.
+    write_vtk_xml<vtkXMLUnstructuredGridWriter>(*grid, filename);
   }
 } // namespace beamslider

@@ -1,7 +1,7 @@
 // Runs the built `beamslider` executable as a user would, for end-to-end
 // tests: its own process (fork + exec with an argument vector), stdout and
 // stderr captured to files, an optional file-size limit, an optional signal
-// sent once a file appears, and a limit on the CPU time the child may use
+// sent once a file appears, an optional launcher (mpirun), and a limit on the CPU time the child may use
 // after which it is stopped (so a test that would hang fails instead).
 // The limit is on CPU time, not on the wall clock: a loaded machine stretches
 // a run's wall time (in one of five whole-suite runs beside two compiler
@@ -12,6 +12,7 @@
 
 #include "tests/fresh_folder.h"
 #include "tests/read_text_file.h"
+#include "verification/cli/child_process.h"
 
 #include <atomic>
 #include <chrono>
@@ -27,6 +28,8 @@
 #include <unistd.h>
 #include <fcntl.h>
 #include <vector>
+
+extern char **environ;
 
 namespace beamslider::testing
 {
@@ -48,6 +51,11 @@ namespace beamslider::testing
     int send_signal = 0;
     std::string signal_after_file;
     std::string working_directory; // "" = the test's
+    // A launcher before the program, e.g. {"mpirun", "-np", "2",
+    // "--oversubscribe"}: started with an environment without this test
+    // process's MPI variables (its MPI is a singleton, clean_mpi_program.h)
+    // and with Open MPI's opt-in for root. The limits hold for every rank.
+    std::vector<std::string> launcher;
 
     // Named settings for a call site, e.g. CliLimits().timeout(60)
     // (designated initializers would need C++20).
@@ -61,6 +69,7 @@ namespace beamslider::testing
       return *this;
     }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
+    CliLimits &launched_by(const std::vector<std::string> &command) { launcher = command; return *this; }
   };
 
   // A CSV file as rows of text cells, the header row first.
@@ -86,12 +95,25 @@ namespace beamslider::testing
     static std::atomic<unsigned int> n_runs{0};
     const auto scratch  = fresh_folder("cli_io_" + std::to_string(n_runs++));
     const auto out_file = scratch / "stdout", err_file = scratch / "stderr";
-    std::vector<std::string> argv = {BEAMSLIDER_EXECUTABLE};
+    std::vector<std::string> argv = limits.launcher;
+    argv.push_back(BEAMSLIDER_EXECUTABLE);
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char *> c_argv;
     for (auto &a : argv)
       c_argv.push_back(a.data());
     c_argv.push_back(nullptr);
+    std::vector<std::string> env;
+    for (char **e = environ; *e; ++e)
+      if (limits.launcher.empty() ||
+          (!is_mpi_launch_variable(*e) && std::string_view(*e).rfind("OMPI_ALLOW_RUN_AS_ROOT", 0) != 0))
+        env.push_back(*e);
+    if (!limits.launcher.empty())
+      for (const char *v : {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"})
+        env.push_back(v);
+    std::vector<char *> c_env;
+    for (auto &v : env)
+      c_env.push_back(v.data());
+    c_env.push_back(nullptr);
 
     const pid_t pid = fork();
     if (pid == 0)
@@ -115,7 +137,7 @@ namespace beamslider::testing
         const rlim_t cpu_seconds = static_cast<rlim_t>(std::ceil(limits.timeout_seconds));
         const rlimit cpu{cpu_seconds, cpu_seconds + 1};
         setrlimit(RLIMIT_CPU, &cpu);
-        execv(c_argv[0], c_argv.data());
+        execvpe(c_argv[0], c_argv.data(), c_env.data());
         _exit(127);
       }
 

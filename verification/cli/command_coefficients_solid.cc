@@ -57,8 +57,10 @@ namespace beamslider
       const CubicFit fit = solid_cubic_fit(coefficients, method, scene.beam.thickness);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-      if (root)
-        {
+      // Rank 0 writes and prints; a failure there is every rank's (exit 1 on all).
+      fail_together(comm, [&] {
+        if (!root)
+          return;
           write_coefficients_csv(dir + "/coefficients.csv", fit.cubic);
           write_quadratic_coefficients_csv(dir + "/quadratic_coefficients.csv", fit.quadratic);
           std::ostringstream summary;
@@ -84,7 +86,7 @@ namespace beamslider
                     << "' by " << method << " (N = " << N << ", " << model.n_dofs() << " DoFs): b_111 = "
                     << fit.cubic.front().value << ", " << seconds << " s\n"
                     << "Wrote " << dir << "/coefficients.csv, quadratic_coefficients.csv and summary.md\n";
-        }
+      });
       return 0;
     }
   } // namespace

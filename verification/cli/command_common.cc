@@ -1,8 +1,10 @@
 #include "contact/output_file.h"
+#include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/child_process.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>
@@ -278,7 +280,8 @@ namespace beamslider
 
   void note_output_failure(const std::string &what)
   {
-    std::cerr << "error: " << what << std::endl;
+    if (launch_rank() == 0 || !mpi_started()) // once, not per rank of a command on MPI
+      std::cerr << "error: " << what << std::endl;
     failed_outputs().push_back(what);
   }
 

@@ -8,10 +8,12 @@
 
 #include "contact/interruption.h"
 #include "contact/output_file.h"
+#include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/exceptions.h>
@@ -361,6 +363,14 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
 
 int run_beamslider(int argc, char **argv, std::ostream &errors)
 {
+  // Under mpirun every rank runs the command; rank 0 says what went wrong,
+  // once. Another rank keeps its message where rank 0 meets the same error:
+  // bad input (every rank reads the same), an interruption (mpirun passes
+  // the signal to all), or any error of a command that runs on MPI (an
+  // error that arises on some ranks only is shared, fem/collective_failure.h).
+  // A command without MPI runs on each rank alone, so that rank's own error
+  // (its folder in use by the other rank) is said, with its rank.
+  const unsigned int rank = launch_rank();
   clear_output_failures();
   std::ostringstream messages; // also the first line of run.txt's `ended:` record
   int status = parse_and_run(argc, argv, messages);
@@ -371,7 +381,10 @@ int run_beamslider(int argc, char **argv, std::ostream &errors)
       messages << "interrupted by signal " << interruption_signal() << std::endl;
       status = interruption_exit_code();
     }
-  errors << messages.str() << std::flush;
+  if (rank == 0)
+    errors << messages.str() << std::flush;
+  else if (status != 2 && status < 128 && !mpi_started() && !messages.str().empty())
+    errors << "rank " << rank << ": " << messages.str() << std::flush;
   if (!record_run_end(status, messages.str(), errors) && status == 0)
     status = 1;
   release_output_folders(); // the command's folders are free again (the Python module lives on)

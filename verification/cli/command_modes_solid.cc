@@ -61,8 +61,10 @@ namespace beamslider
       if (scene.solid.arch_rise == 0)
         line = make_solid_modal_basis(model, modes, modes.bending.size(), scene);
 
-      if (root)
-        {
+      // Rank 0 writes and prints; a failure there is every rank's (exit 1 on all).
+      fail_together(comm, [&] {
+        if (!root)
+          return;
           CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "shape", "bending_index", "energy_x",
                                              "energy_y", "energy_z", "twist_correlation", "width_order",
                                              "vtu_scale"});
@@ -107,7 +109,7 @@ namespace beamslider
             console() << "  mode " << k + 1 << ": " << modes.all[k].omega / (2 * M_PI) << " Hz, "
                       << modes.all[k].shape << "\n";
           console() << "Wrote " << dir << "/modes.csv, " << (line ? "line_modes.csv and " : "") << record << "\n";
-        }
+      });
       return 0;
     }
   } // namespace

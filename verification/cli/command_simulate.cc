@@ -239,7 +239,7 @@ namespace beamslider
       RunDescription d;
       d.scene_file = in.get_string();
       d.scene_hash = in.get_uint();
-      d.overrides.resize(in.get_uint());
+      d.overrides.resize(in.get_count(sizeof(std::uint64_t))); // each a length and its text
       for (auto &o : d.overrides)
         o = in.get_string();
       d.case_name           = in.get_string();
@@ -263,7 +263,7 @@ namespace beamslider
       d.period_digest       = in.get_uint();
       d.n_steps             = in.get_uint();
       d.wall_seconds        = in.get_double();
-      const std::uint64_t n = in.get_uint();
+      const std::uint64_t n = in.get_count(17 * sizeof(std::uint64_t)); // a period record's 17 numbers
       for (std::uint64_t i = 0; i < n; ++i)
         d.periods.push_back(load_period(in));
       return d;
@@ -289,14 +289,22 @@ namespace beamslider
         // the files being checked (exit 1, "in use").
         if (std::filesystem::is_directory(options.resume_dir))
           lock_output_folder(options.resume_dir);
+        const std::string checkpoint_file = options.resume_dir + "/checkpoint.bin";
         try
           {
-            checkpoint.emplace(read_checkpoint_file(options.resume_dir + "/checkpoint.bin"));
-            saved = load_description(*checkpoint);
+            checkpoint.emplace(read_checkpoint_file(checkpoint_file));
           }
         catch (const CheckpointError &e)
           {
             throw InputError(std::string("--resume: ") + e.what());
+          }
+        try
+          {
+            saved = load_description(*checkpoint);
+          }
+        catch (const CheckpointError &e)
+          {
+            throw InputError("--resume: '" + checkpoint_file + "': " + e.what());
           }
         common.scene_file  = saved.scene_file;
         common.overrides   = saved.overrides;

@@ -99,7 +99,7 @@ namespace beamslider
         tail.stream() << "# stopped: " << one_line(e.what()) << '\n';
         tail.close();
         throw StaticSolveError(std::string(e.what()) + "; " + dir + "/statics.csv holds the " +
-                               std::to_string(n_converged) + " converged steps before it");
+                               std::to_string(n_converged) + " converged steps before it; statics.vtu not written");
       }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for (unsigned int k = 0; k < path.size(); ++k)

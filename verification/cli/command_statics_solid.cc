@@ -61,8 +61,12 @@ namespace beamslider
       std::optional<CsvWriter> csv;
       CsvOptions in_place; // each load step's row as it converges
       in_place.in_place = true;
-      if (root)
-        csv.emplace(dir + "/statics.csv", statics_csv_columns(options), in_place);
+      // Rank 0 writes; a failure there is every rank's, so that none waits in
+      // the next solve for a rank that left.
+      fail_together(comm, [&] {
+        if (root)
+          csv.emplace(dir + "/statics.csv", statics_csv_columns(options), in_place);
+      });
       std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
       double w_mid = 0, q_n = 0;
       for (unsigned int k = 1; k <= options.n_steps; ++k)
@@ -73,13 +77,14 @@ namespace beamslider
           // The rows so far stay; a last line says where the path stopped
           // (as the beam's statics.csv, command_statics.cc).
           const auto mark_stopped = [&](const std::string &where) {
-            if (root)
-              {
-                csv->close();
-                OutputFile tail(dir + "/statics.csv", FileMode::append);
-                tail.stream() << "# stopped: " << one_line(where) << '\n';
-                tail.close();
-              }
+            fail_together(comm, [&] {
+              if (!root)
+                return;
+              csv->close();
+              OutputFile tail(dir + "/statics.csv", FileMode::append);
+              tail.stream() << "# stopped: " << one_line(where) << '\n';
+              tail.close();
+            });
           };
           const std::string step = "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps);
           unsigned int iterations = 0;
@@ -91,7 +96,7 @@ namespace beamslider
             {
               mark_stopped(step + ": " + e.what());
               throw SolidStaticSolveError(step + ": " + e.what() + "; " + dir + "/statics.csv holds the " +
-                                          std::to_string(k - 1) + " converged steps before it");
+                                          std::to_string(k - 1) + " converged steps before it; statics.pvtu not written");
             }
           catch (const Interrupted &e)
             {
@@ -104,18 +109,21 @@ namespace beamslider
           w_mid         = statics.mid_span_deflection(states[k - 1]);
           if (f)
             q_n = basis->modal_coordinates(u)[n - 1]; // collective
-          if (root)
-            {
-              std::vector<std::string> row{CsvWriter::cell(lambda * load)};
-              if (f)
-                row.push_back(CsvWriter::cell(q_n));
-              row.push_back(CsvWriter::cell(w_mid));
-              row.push_back(CsvWriter::cell(iterations));
-              csv->row(row);
-            }
+          fail_together(comm, [&] {
+            if (!root)
+              return;
+            std::vector<std::string> row{CsvWriter::cell(lambda * load)};
+            if (f)
+              row.push_back(CsvWriter::cell(q_n));
+            row.push_back(CsvWriter::cell(w_mid));
+            row.push_back(CsvWriter::cell(iterations));
+            csv->row(row);
+          });
         }
-      if (root)
-        csv->close();
+      fail_together(comm, [&] {
+        if (root)
+          csv->close();
+      });
       std::vector<SolidField> fields;
       for (unsigned int k = 0; k < states.size(); ++k)
         fields.push_back({"step_" + std::to_string(k + 1), &states[k], 1.});

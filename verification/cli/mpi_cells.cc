@@ -50,6 +50,14 @@ namespace beamslider
     return false;
   }
 
+  unsigned int launch_rank()
+  {
+    for (const char *name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+      if (const char *rank = std::getenv(name))
+        return static_cast<unsigned int>(std::strtoul(rank, nullptr, 10));
+    return 0;
+  }
+
   struct MpiSession::Impl
   {
     int argc            = 1;

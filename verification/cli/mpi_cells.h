@@ -22,6 +22,11 @@ namespace beamslider
   // Whether this process was started by mpirun/srun (their environment).
   bool launched_by_mpi_launcher();
 
+  // This process's rank in the launch, from the launcher's environment (0
+  // without one): known before MPI starts and after it ends, for what only
+  // rank 0 says (the error message of a command every rank runs).
+  unsigned int launch_rank();
+
   // MPI for the lifetime of the object (deal.II's MPI_InitFinalize, which
   // also starts PETSc/SLEPc), or nothing when `use_mpi` is false.
   class MpiSession

@@ -3,6 +3,7 @@
 // output folder prepared by rank 0 and known to every rank.
 #pragma once
 
+#include "fem/collective_failure.h"
 #include "fem/petsc_session.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
@@ -25,12 +26,15 @@ namespace beamslider
   }
 
   // The command's output folder: prepared (parameters.prm, run.txt, ...) by
-  // rank 0 alone, its path broadcast to every rank.
+  // rank 0 alone, its path broadcast to every rank; if rank 0 cannot
+  // prepare it (in use, not writable), every rank throws its error.
   inline std::string solid_output_dir(const CommonOptions &common, const Scene &scene, const std::string &command)
   {
     std::string dir;
-    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-      dir = prepare_output_dir(common, scene, command);
+    fail_together(MPI_COMM_WORLD, [&] {
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        dir = prepare_output_dir(common, scene, command);
+    });
     return dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, dir, 0);
   }
 } // namespace beamslider
