@@ -1,8 +1,9 @@
 // Runs the built `beamslider` executable as a user would, for end-to-end
 // tests: its own process (fork + exec with an argument vector), stdout and
 // stderr captured to files, an optional file-size limit, an optional signal
-// sent once a file appears, and a limit on the CPU time the child may use
-// after which it is stopped (so a test that would hang fails instead).
+// sent once a file appears or the child has used so much CPU time, and a
+// limit on the CPU time the child may use after which it is stopped (so a
+// test that would hang fails instead).
 // The limit is on CPU time, not on the wall clock: a loaded machine stretches
 // a run's wall time (in one of five whole-suite runs beside two compiler
 // processes, 2026-11-28, a 3 s run took over 120 s) but not the CPU time it needs, so
@@ -13,6 +14,7 @@
 #include "tests/fresh_folder.h"
 #include "tests/read_text_file.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -36,6 +38,15 @@ namespace beamslider::testing
     int signal     = 0;  // when a signal ended it
     bool timed_out = false;
     std::string out, err;
+    // CPU seconds of the child with the processes it waited for (charts):
+    // in all (its rusage), when the signal was sent (-1: not sent), and of
+    // its own threads when last seen running (polled every 20 ms).
+    double cpu_seconds       = 0;
+    double cpu_at_signal     = -1;
+    double own_cpu_last_seen = 0;
+    // How long the child computed after the signal: the test of a prompt
+    // stop, in CPU time because a loaded machine stretches the wall time.
+    double cpu_after_signal() const { return cpu_seconds - cpu_at_signal; }
   };
 
   struct CliLimits
@@ -47,6 +58,10 @@ namespace beamslider::testing
     // run however fast or loaded the machine is, where a delay would not.
     int send_signal = 0;
     std::string signal_after_file;
+    // ... and once the child's own threads have used this much CPU time
+    // (both conditions when both are given): a moment in the run's own
+    // progress, whatever the load, e.g. a random fraction of a whole run's.
+    double signal_after_cpu_seconds = -1;
     std::string working_directory; // "" = the test's
 
     // Named settings for a call site, e.g. CliLimits().timeout(60)
@@ -60,8 +75,40 @@ namespace beamslider::testing
       signal_after_file = path;
       return *this;
     }
+    // The signal once the child's own CPU time reaches `seconds`.
+    CliLimits &signal_after_cpu(const int sig, const double seconds)
+    {
+      send_signal              = sig;
+      signal_after_cpu_seconds = seconds;
+      return *this;
+    }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
   };
+
+  // CPU seconds of a running process from /proc/<pid>/stat: its own threads
+  // (utime + stime), and with `waited_children` those of the children it has
+  // waited for too (cutime + cstime), as wait4's rusage counts them. -1 when
+  // it cannot be read (the process is gone).
+  inline double process_cpu_seconds(const pid_t pid, const bool waited_children)
+  {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string stat;
+    if (!std::getline(in, stat))
+      return -1;
+    // The command name may hold spaces and parentheses: fields after the last ')'.
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));
+    std::string field;
+    std::vector<std::string> f;
+    while (fields >> field)
+      f.push_back(field);
+    if (f.size() < 15)
+      return -1;
+    // f[0] is field 3 (state): utime, stime, cutime, cstime are fields 14-17.
+    double ticks = std::stod(f[11]) + std::stod(f[12]);
+    if (waited_children)
+      ticks += std::stod(f[13]) + std::stod(f[14]);
+    return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
+  }
 
   // A CSV file as rows of text cells, the header row first.
   inline std::vector<std::vector<std::string>> read_csv_cells(const std::filesystem::path &path)
@@ -132,13 +179,20 @@ namespace beamslider::testing
             // Stopped by its CPU limit: SIGXCPU, or SIGKILL after it.
             const double cpu = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
                                1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+            run.cpu_seconds = cpu;
             run.timed_out = WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU ||
                                                     (WTERMSIG(status) == SIGKILL && cpu >= limits.timeout_seconds));
             break;
           }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (limits.send_signal && !signalled && std::filesystem::exists(limits.signal_after_file))
+        const double own_cpu = process_cpu_seconds(pid, false);
+        run.own_cpu_last_seen = std::max(run.own_cpu_last_seen, own_cpu);
+        if (limits.send_signal && !signalled &&
+            (limits.signal_after_file.empty() || std::filesystem::exists(limits.signal_after_file)) &&
+            own_cpu >= limits.signal_after_cpu_seconds)
           {
+            // Read before the signal, so that all the child does after it counts.
+            run.cpu_at_signal = process_cpu_seconds(pid, true);
             kill(pid, limits.send_signal);
             signalled = true;
           }
