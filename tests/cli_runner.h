@@ -110,6 +110,16 @@ namespace beamslider::testing
     return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
   }
 
+  // A text's lines, without their line breaks.
+  inline std::vector<std::string> split_lines(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
+
   // A CSV file as rows of text cells, the header row first.
   inline std::vector<std::vector<std::string>> read_csv_cells(const std::filesystem::path &path)
   {

@@ -24,7 +24,6 @@
 #include <functional>
 #include <iostream>
 #include <random>
-#include <sstream>
 
 namespace fs = std::filesystem;
 using namespace beamslider::testing;
@@ -94,20 +93,11 @@ namespace
     return out;
   }
 
-  std::vector<std::string> lines(const std::string &text)
-  {
-    std::vector<std::string> out;
-    std::istringstream in(text);
-    for (std::string l; std::getline(in, l);)
-      out.push_back(l);
-    return out;
-  }
-
   // A CSV file's text without the given columns (named in its header; '#'
   // lines are kept as they are), its rows sorted if asked.
   std::string comparable(const fs::path &file, const ResultFile &r)
   {
-    std::vector<std::string> rows = lines(read_file(file)), out;
+    std::vector<std::string> rows = split_lines(read_file(file)), out;
     std::vector<bool> keep;
     for (const std::string &row : rows)
       {
@@ -154,7 +144,7 @@ namespace
           continue;
         EXPECT_EQ(bytes.back(), '\n') << entry.path() << ": the last row is cut";
         std::size_t n_cells = 0;
-        for (const std::string &row : lines(bytes))
+        for (const std::string &row : split_lines(bytes))
           {
             if (row.empty() || row[0] == '#')
               continue;
@@ -215,8 +205,8 @@ namespace
       limits.signal_after_file = (dir / "stopped" / c.signal_after_file).string();
     const CliRun stopped = run_beamslider(with_output(c.args, dir / "stopped"), limits);
     std::cout << c.name << ": whole run " << whole.own_cpu_last_seen << " s of CPU (" << loading
-              << " s of it loading); SIGINT at " << fraction << " of the rest, at " << stopped.cpu_at_signal << " s; " << stopped.cpu_after_signal()
-              << " s of CPU after it; exit " << stopped.exit_code << std::endl;
+              << " s of it loading); SIGINT at " << fraction << " of the rest, at " << stopped.cpu_at_signal
+              << " s; " << stopped.cpu_after_signal() << " s of CPU after it; exit " << stopped.exit_code << std::endl;
     ASSERT_GE(stopped.cpu_at_signal, 0) << "the run ended before the signal: " << stopped.out;
     EXPECT_EQ(stopped.exit_code, 130) << stopped.err;
     EXPECT_EQ(first_line(stopped.err).rfind(c.first_error, 0), 0u) << stopped.err;
@@ -225,9 +215,10 @@ namespace
     expect_clean_folder(dir / "stopped");
     c.check_partial(dir / "stopped");
 
-    const CliRun again = run_beamslider(c.resume ? std::vector<std::string>{"simulate", "--resume", (dir / "stopped").string()}
-                                                 : with_output(c.args, dir / "stopped"),
-                                        CliLimits().timeout(c.cpu_limit));
+    const std::vector<std::string> continued =
+      c.resume ? std::vector<std::string>{"simulate", "--resume", (dir / "stopped").string()}
+               : with_output(c.args, dir / "stopped");
+    const CliRun again = run_beamslider(continued, CliLimits().timeout(c.cpu_limit));
     ASSERT_EQ(again.exit_code, 0) << again.err;
     for (const ResultFile &r : c.results)
       {
@@ -235,15 +226,15 @@ namespace
         ASSERT_TRUE(fs::exists(a)) << a;
         ASSERT_TRUE(fs::exists(b)) << b;
         const std::string x = comparable(a, r), y = comparable(b, r);
-        EXPECT_GT(lines(x).size(), 1u) << a << " holds no rows";
+        EXPECT_GT(split_lines(x).size(), 1u) << a << " holds no rows";
         EXPECT_TRUE(x == y) << r.name << " differs from the whole run's";
       }
     expect_clean_folder(dir / "stopped");
     fs::remove_all(dir);
   }
 
-  // The CSV files of a stopped run end with the last complete row, and
-  // summary.md names the stop.
+  // A stopped simulate: summary.md names the stop, and the checkpoint to
+  // resume from is there.
   void expect_stopped_run(const fs::path &dir)
   {
     expect_contains(dir / "summary.md", "Status: interrupted");
@@ -266,7 +257,7 @@ namespace
       // Continued by the same command: the finished members are read back
       // from member_runs.csv. A stopped ensemble writes no tables at all.
       {"ensemble", {"ensemble", scene, "--members", "2", "--end-time", "15", "--quiet"},
-       {{"members.csv", false, {"wall_s"}}, {"statistics.csv"}, {"member_periods.csv"}}, "ensemble: ",
+       {{"members.csv", false, {"wall_s"}}, {"statistics.csv"}, {"member_periods.csv"}}, "ensemble: stopped after ",
        [](const fs::path &dir) {
          expect_absent(dir, {"summary.md", "members.csv", "statistics.csv", "member_periods.csv", "ensemble.png"});
        }},
@@ -293,7 +284,7 @@ namespace
         {"ladder_members.csv", false, {"wall_s"}},
         {"ladder_steps.csv"},
         {"convergence.csv", false, {"wall_s_per_member"}}},
-       "ladder: ",
+       "ladder: stopped after ",
        [](const fs::path &dir) { expect_absent(dir, {"summary.md", "ladder.csv", "ladder_members.csv", "ladder.png"}); }},
       // Two candidates of one fact; run again from the start.
       {"identify",
