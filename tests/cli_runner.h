@@ -44,6 +44,7 @@ namespace beamslider::testing
     double cpu_seconds       = 0;
     double cpu_at_signal     = -1;
     double own_cpu_last_seen = 0;
+    double own_cpu_at_watched_file = -1; // when CliLimits::watched_file first appeared (-1: never)
     // How long the child computed after the signal: the test of a prompt
     // stop, in CPU time because a loaded machine stretches the wall time.
     double cpu_after_signal() const { return cpu_seconds - cpu_at_signal; }
@@ -62,6 +63,12 @@ namespace beamslider::testing
     // (both conditions when both are given): a moment in the run's own
     // progress, whatever the load, e.g. a random fraction of a whole run's.
     double signal_after_cpu_seconds = -1;
+    // The signal to the child's whole process group, as a terminal's Ctrl-C
+    // reaches the run and the chart processes it started.
+    bool signal_process_group = false;
+    // A file whose first appearance is noted with the child's own CPU time
+    // then (CliRun::own_cpu_at_watched_file), e.g. where a run's work ends.
+    std::string watched_file;
     std::string working_directory; // "" = the test's
 
     // Named settings for a call site, e.g. CliLimits().timeout(60)
@@ -82,6 +89,8 @@ namespace beamslider::testing
       signal_after_cpu_seconds = seconds;
       return *this;
     }
+    CliLimits &to_process_group() { signal_process_group = true; return *this; }
+    CliLimits &watch_file(const std::string &path) { watched_file = path; return *this; }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
   };
 
@@ -190,6 +199,10 @@ namespace beamslider::testing
             const double cpu = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
                                1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
             run.cpu_seconds = cpu;
+            // Written in its last moments, between two looks: when last seen.
+            if (!limits.watched_file.empty() && run.own_cpu_at_watched_file < 0 &&
+                std::filesystem::exists(limits.watched_file))
+              run.own_cpu_at_watched_file = run.own_cpu_last_seen;
             run.timed_out = WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU ||
                                                     (WTERMSIG(status) == SIGKILL && cpu >= limits.timeout_seconds));
             break;
@@ -197,13 +210,16 @@ namespace beamslider::testing
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double own_cpu = process_cpu_seconds(pid, false);
         run.own_cpu_last_seen = std::max(run.own_cpu_last_seen, own_cpu);
+        if (!limits.watched_file.empty() && run.own_cpu_at_watched_file < 0 &&
+            std::filesystem::exists(limits.watched_file))
+          run.own_cpu_at_watched_file = own_cpu;
         if (limits.send_signal && !signalled &&
             (limits.signal_after_file.empty() || std::filesystem::exists(limits.signal_after_file)) &&
             own_cpu >= limits.signal_after_cpu_seconds)
           {
             // Read before the signal, so that all the child does after it counts.
             run.cpu_at_signal = process_cpu_seconds(pid, true);
-            kill(pid, limits.send_signal);
+            kill(limits.signal_process_group ? -pid : pid, limits.send_signal);
             signalled = true;
           }
         if (elapsed > 20 * limits.timeout_seconds)

@@ -65,6 +65,9 @@ namespace
     // The signal only once this file is in the folder too (the first
     // checkpoint, without which there is nothing to resume).
     std::string signal_after_file = "";
+    // The file a whole run writes once its work is done ("" = the whole
+    // run): the moments lie before it, where there is something to stop.
+    std::string done_file = "";
     double cpu_limit = 600; // per run, for the sanitizer build's ~10x
   };
 
@@ -189,23 +192,32 @@ namespace
   void check_interruption(const InterruptCase &c)
   {
     const fs::path dir = fresh_folder("interrupt_" + c.name);
-    const CliRun whole = run_beamslider(with_output(c.args, dir / "whole"), CliLimits().timeout(c.cpu_limit));
+    CliLimits whole_limits = CliLimits().timeout(c.cpu_limit);
+    if (!c.done_file.empty())
+      whole_limits.watch_file((dir / "whole" / c.done_file).string());
+    const CliRun whole = run_beamslider(with_output(c.args, dir / "whole"), whole_limits);
     ASSERT_EQ(whole.exit_code, 0) << whole.err;
+    const double work_done = c.done_file.empty() ? whole.own_cpu_last_seen : whole.own_cpu_at_watched_file;
+    ASSERT_GT(work_done, 0) << c.done_file << " was not seen";
 
     // Seeded by the case's name too: a case added to the table moves no other's moment.
     std::vector<unsigned int> seeds = {seed};
     seeds.insert(seeds.end(), c.name.begin(), c.name.end());
     std::seed_seq case_seed(seeds.begin(), seeds.end());
     std::mt19937 random(case_seed);
-    const double fraction = std::uniform_real_distribution<double>(0.1, 0.9)(random);
+    const double fraction = std::uniform_real_distribution<double>(0.1, 0.8)(random);
     const double loading  = loading_cpu_seconds();
-    const double moment   = loading + fraction * std::max(0., whole.own_cpu_last_seen - loading);
-    CliLimits limits      = CliLimits().timeout(c.cpu_limit).signal_after_cpu(SIGINT, moment);
+    const double moment   = loading + fraction * std::max(0., work_done - loading);
+    // To the program alone (kill -INT): a terminal's Ctrl-C, to the whole
+    // process group, would reach a chart's process too, which the test
+    // below shows.
+    CliLimits limits = CliLimits().timeout(c.cpu_limit).signal_after_cpu(SIGINT, moment);
     if (!c.signal_after_file.empty())
       limits.signal_after_file = (dir / "stopped" / c.signal_after_file).string();
     const CliRun stopped = run_beamslider(with_output(c.args, dir / "stopped"), limits);
     std::cout << c.name << ": whole run " << whole.own_cpu_last_seen << " s of CPU (" << loading
-              << " s of it loading); SIGINT at " << fraction << " of the rest, at " << stopped.cpu_at_signal
+              << " s of it loading, its work done at " << work_done << " s); SIGINT at " << fraction
+              << " of the work, at " << stopped.cpu_at_signal
               << " s; " << stopped.cpu_after_signal() << " s of CPU after it; exit " << stopped.exit_code << std::endl;
     ASSERT_GE(stopped.cpu_at_signal, 0) << "the run ended before the signal: " << stopped.out;
     EXPECT_EQ(stopped.exit_code, 130) << stopped.err;
@@ -248,19 +260,20 @@ namespace
   {
     static const std::vector<InterruptCase> cases = {
       // Resumed from its last checkpoint; the rows after it are written again.
-      {"simulate_rom", {"simulate", scene, "--end-time", "15", "--checkpoint-every", "0.5", "--quiet"},
+      {"simulate_rom", {"simulate", scene, "--end-time", "40", "--checkpoint-every", "1", "--quiet"},
        {{"trace.csv"}, {"periods.csv"}}, "simulate: interrupted: interrupted by signal 2 at t = ",
-       expect_stopped_run, true, "checkpoint.bin"},
-      {"simulate_fe", {"simulate", scene, "--model", "fe", "--end-time", "1", "--checkpoint-every", "0.05", "--quiet"},
+       expect_stopped_run, true, "checkpoint.bin", "summary.md"},
+      {"simulate_fe", {"simulate", scene, "--model", "fe", "--end-time", "1.5", "--checkpoint-every", "0.05", "--quiet"},
        {{"trace.csv"}, {"periods.csv"}}, "simulate: interrupted: interrupted by signal 2 at t = ",
-       expect_stopped_run, true, "checkpoint.bin"},
+       expect_stopped_run, true, "checkpoint.bin", "summary.md"},
       // Continued by the same command: the finished members are read back
       // from member_runs.csv. A stopped ensemble writes no tables at all.
       {"ensemble", {"ensemble", scene, "--members", "2", "--end-time", "15", "--quiet"},
        {{"members.csv", false, {"wall_s"}}, {"statistics.csv"}, {"member_periods.csv"}}, "ensemble: stopped after ",
        [](const fs::path &dir) {
          expect_absent(dir, {"summary.md", "members.csv", "statistics.csv", "member_periods.csv", "ensemble.png"});
-       }},
+       },
+       false, "", "members.csv"},
       // Run again from the start; runs.csv and summary.md say which
       // branches stopped early. The two branches run at once and append
       // their rows to pcs.csv as they finish, in any order (so in a whole
@@ -272,11 +285,12 @@ namespace
        [](const fs::path &dir) {
          expect_contains(dir / "runs.csv", ",interrupted,");
          expect_contains(dir / "summary.md", "stopped early (interrupted)");
-       }},
+       },
+       false, "", "summary.md"},
       // Continued by the same command: map.csv keeps the finished cells.
       {"map", {"map", scene, "--frequency", "115:125:10", "--acceleration", "10:14:4", "--end-time", "6", "--quiet"},
        {{"map.csv", true}, {"published_cases.csv"}}, "map: stopped after ",
-       [](const fs::path &dir) { expect_absent(dir, {"summary.md"}); }},
+       [](const fs::path &dir) { expect_absent(dir, {"summary.md"}); }, false, "", "summary.md"},
       // The reference (the FE, checked in Δt) and one rung; continued by the
       // same command from member_runs.csv.
       {"ladder", {"ladder", scene, "--rung", "ROM N=10", "--members", "2", "--end-time", "0.3", "--quiet"},
@@ -285,7 +299,8 @@ namespace
         {"ladder_steps.csv"},
         {"convergence.csv", false, {"wall_s_per_member"}}},
        "ladder: stopped after ",
-       [](const fs::path &dir) { expect_absent(dir, {"summary.md", "ladder.csv", "ladder_members.csv", "ladder.png"}); }},
+       [](const fs::path &dir) { expect_absent(dir, {"summary.md", "ladder.csv", "ladder_members.csv", "ladder.png"}); },
+       false, "", "ladder.csv"},
       // Two candidates of one fact; run again from the start.
       {"identify",
        {"identify", "system1", "--fact", "fig6", "--axis", "Contact/Friction coefficient=0.15:0.25:0.1", "--quiet"},
@@ -293,7 +308,8 @@ namespace
        [](const fs::path &dir) {
          expect_contains(dir / "summary.md", "**Interrupted**");
          expect_contains(dir / "verdicts.csv", "not run (interrupted)");
-       }},
+       },
+       false, "", "identification.csv"},
       // Between sections: the section in progress finishes, the report
       // says the rest was not run.
       {"verify", {"verify", scene, "--section", "1", "--section", "2", "--quiet"},
@@ -302,7 +318,7 @@ namespace
        [](const fs::path &dir) { expect_contains(dir / "report.md", "**Interrupted** (signal 2)"); }},
       {"backbone_rom",
        {"backbone", scene, "--model", "rom", "--modes", "10", "--harmonics", "40", "--max-amplitude", "10", "--quiet"},
-       {{"backbone.csv"}, {"eq4.csv"}}, "interrupted by signal 2", [](const fs::path &) {}},
+       {{"backbone.csv"}, {"eq4.csv"}}, "interrupted by signal 2", [](const fs::path &) {}, false, "", "backbone.csv"},
       // The solid's commands (modes, statics, coefficients on a solid scene)
       // and `backbone --model fe` are added here once they stop on a signal.
     };
@@ -325,17 +341,37 @@ INSTANTIATE_TEST_SUITE_P(Commands, Interrupt, ::testing::Range<std::size_t>(0, i
 
 // SIGINT while the program loads, before main() can catch it: the default
 // action ends the process (a shell reports 130 for it all the same), and it
-// has written nothing, not even its folder. A machine fast enough to load
-// within the first 20 ms poll catches it: then exit 130.
+// has written nothing, not even its folder. Sent after 0.02 s of CPU, when
+// the child has exec'd the program (which takes ~0.2 s to load); a machine
+// fast enough to load by then catches it: then exit 130.
 TEST(LoadingProgram, SigintEndsItBeforeItWritesAnything)
 {
   const fs::path dir = fresh_folder("interrupt_loading") / "out";
   const CliRun run   = run_beamslider({"simulate", scene, "--end-time", "1", "--quiet", "--output", dir.string()},
-                                      CliLimits().signal_after_cpu(SIGINT, 0));
+                                      CliLimits().signal_after_cpu(SIGINT, 0.02));
   ASSERT_GE(run.cpu_at_signal, 0);
   if (run.signal == SIGINT)
     EXPECT_FALSE(fs::exists(dir)) << "killed by the signal after it began to write";
   else
     EXPECT_EQ(run.exit_code, 130) << run.err;
   fs::remove_all(dir.parent_path());
+}
+
+// Ctrl-C in a terminal goes to the whole process group: while a chart is
+// drawn (backbone.png, once backbone.csv is written) it reaches the chart's
+// Python process too. DISABLED: today Python prints its KeyboardInterrupt
+// traceback (~40 lines) on stderr, then the run says the chart was not
+// drawn; the one-message contract wants neither. The chart's process would
+// need a process group of its own, as EarlyChild's has
+// (verification/cli/child_process.cc, run_child), not a change to a command.
+TEST(TerminalCtrlC, DISABLED_WhileAChartIsDrawnGivesOneMessage)
+{
+  const fs::path dir = fresh_folder("interrupt_chart");
+  const CliRun run =
+    run_beamslider({"backbone", scene, "--quiet", "--output", dir.string()},
+                   CliLimits().signal_when_file_exists(SIGINT, (dir / "backbone.csv").string()).to_process_group());
+  EXPECT_EQ(run.exit_code, 130) << run.err;
+  EXPECT_EQ(run.err.find("Traceback"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err, "interrupted by signal 2\n");
+  fs::remove_all(dir);
 }
