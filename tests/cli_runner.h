@@ -1,7 +1,8 @@
 // Runs the built `beamslider` executable as a user would, for end-to-end
 // tests: its own process (fork + exec with an argument vector), stdout and
 // stderr captured to files, an optional file-size limit, an optional signal
-// sent once a file appears, an optional launcher (mpirun), and a limit on the CPU time the child may use
+// sent once a file appears or the child has used so much CPU time, an
+// optional launcher (mpirun), and a limit on the CPU time the child may use
 // after which it is stopped (so a test that would hang fails instead).
 // The limit is on CPU time, not on the wall clock: a loaded machine stretches
 // a run's wall time (in one of five whole-suite runs beside two compiler
@@ -14,6 +15,7 @@
 #include "tests/read_text_file.h"
 #include "verification/cli/child_process.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -39,6 +41,16 @@ namespace beamslider::testing
     int signal     = 0;  // when a signal ended it
     bool timed_out = false;
     std::string out, err;
+    // CPU seconds of the child with the processes it waited for (charts):
+    // in all (its rusage), when the signal was sent (-1: not sent), and of
+    // its own threads when last seen running (polled every 20 ms).
+    double cpu_seconds       = 0;
+    double cpu_at_signal     = -1;
+    double own_cpu_last_seen = 0;
+    double own_cpu_at_watched_file = -1; // when CliLimits::watched_file first appeared (-1: never)
+    // How long the child computed after the signal: the test of a prompt
+    // stop, in CPU time because a loaded machine stretches the wall time.
+    double cpu_after_signal() const { return cpu_seconds - cpu_at_signal; }
   };
 
   struct CliLimits
@@ -50,6 +62,16 @@ namespace beamslider::testing
     // run however fast or loaded the machine is, where a delay would not.
     int send_signal = 0;
     std::string signal_after_file;
+    // ... and once the child's own threads have used this much CPU time
+    // (both conditions when both are given): a moment in the run's own
+    // progress, whatever the load, e.g. a random fraction of a whole run's.
+    double signal_after_cpu_seconds = -1;
+    // The signal to the child's whole process group, as a terminal's Ctrl-C
+    // reaches the run and the chart processes it started.
+    bool signal_process_group = false;
+    // A file whose first appearance is noted with the child's own CPU time
+    // then (CliRun::own_cpu_at_watched_file), e.g. where a run's work ends.
+    std::string watched_file;
     std::string working_directory; // "" = the test's
     // A launcher before the program, e.g. {"mpirun", "-np", "2",
     // "--oversubscribe"}: started with an environment without this test
@@ -68,9 +90,53 @@ namespace beamslider::testing
       signal_after_file = path;
       return *this;
     }
+    // The signal once the child's own CPU time reaches `seconds`.
+    CliLimits &signal_after_cpu(const int sig, const double seconds)
+    {
+      send_signal              = sig;
+      signal_after_cpu_seconds = seconds;
+      return *this;
+    }
+    CliLimits &to_process_group() { signal_process_group = true; return *this; }
+    CliLimits &watch_file(const std::string &path) { watched_file = path; return *this; }
     CliLimits &in_directory(const std::string &dir) { working_directory = dir; return *this; }
     CliLimits &launched_by(const std::vector<std::string> &command) { launcher = command; return *this; }
   };
+
+  // CPU seconds of a running process from /proc/<pid>/stat: its own threads
+  // (utime + stime), and with `waited_children` those of the children it has
+  // waited for too (cutime + cstime), as wait4's rusage counts them. -1 when
+  // it cannot be read (the process is gone).
+  inline double process_cpu_seconds(const pid_t pid, const bool waited_children)
+  {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string stat;
+    if (!std::getline(in, stat))
+      return -1;
+    // The command name may hold spaces and parentheses: fields after the last ')'.
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));
+    std::string field;
+    std::vector<std::string> f;
+    while (fields >> field)
+      f.push_back(field);
+    if (f.size() < 15)
+      return -1;
+    // f[0] is field 3 (state): utime, stime, cutime, cstime are fields 14-17.
+    double ticks = std::stod(f[11]) + std::stod(f[12]);
+    if (waited_children)
+      ticks += std::stod(f[13]) + std::stod(f[14]);
+    return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
+  }
+
+  // A text's lines, without their line breaks.
+  inline std::vector<std::string> split_lines(const std::string &text)
+  {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+      lines.push_back(line);
+    return lines;
+  }
 
   // A CSV file as rows of text cells, the header row first.
   inline std::vector<std::vector<std::string>> read_csv_cells(const std::filesystem::path &path)
@@ -154,14 +220,28 @@ namespace beamslider::testing
             // Stopped by its CPU limit: SIGXCPU, or SIGKILL after it.
             const double cpu = usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
                                1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+            run.cpu_seconds = cpu;
+            // Written in its last moments, between two looks: when last seen.
+            if (!limits.watched_file.empty() && run.own_cpu_at_watched_file < 0 &&
+                std::filesystem::exists(limits.watched_file))
+              run.own_cpu_at_watched_file = run.own_cpu_last_seen;
             run.timed_out = WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU ||
                                                     (WTERMSIG(status) == SIGKILL && cpu >= limits.timeout_seconds));
             break;
           }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (limits.send_signal && !signalled && std::filesystem::exists(limits.signal_after_file))
+        const double own_cpu = process_cpu_seconds(pid, false);
+        run.own_cpu_last_seen = std::max(run.own_cpu_last_seen, own_cpu);
+        if (!limits.watched_file.empty() && run.own_cpu_at_watched_file < 0 &&
+            std::filesystem::exists(limits.watched_file))
+          run.own_cpu_at_watched_file = own_cpu;
+        if (limits.send_signal && !signalled &&
+            (limits.signal_after_file.empty() || std::filesystem::exists(limits.signal_after_file)) &&
+            own_cpu >= limits.signal_after_cpu_seconds)
           {
-            kill(pid, limits.send_signal);
+            // Read before the signal, so that all the child does after it counts.
+            run.cpu_at_signal = process_cpu_seconds(pid, true);
+            kill(limits.signal_process_group ? -pid : pid, limits.send_signal);
             signalled = true;
           }
         if (elapsed > 20 * limits.timeout_seconds)

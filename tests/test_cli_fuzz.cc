@@ -54,15 +54,6 @@ namespace
     "clamped", "elastic", "=", "1 2", "1e+308e2", std::string("1\0" "2", 3), "\x01\x7f\xff", "\xc3\xa9", "#",
     std::string(400, '9')};
 
-  std::vector<std::string> split_lines(const std::string &text)
-  {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-      lines.push_back(line);
-    return lines;
-  }
-
   std::string join_lines(const std::vector<std::string> &lines)
   {
     std::string text;
