@@ -321,14 +321,29 @@ namespace
        {{"frequency_convergence.csv"}, {"bonded_slider.csv"}, {"coefficients_n3.csv"}, {"coefficient_load_levels.csv"}},
        "interrupted by signal 2",
        [](const fs::path &dir) { expect_contains(dir / "report.md", "**Interrupted** (signal 2)"); }},
-      // It does not stop (the continuation never looks for the signal):
-      // the run, 0.3 s of CPU at the largest options, ends, writes every
-      // result and exits 130.
+      // The continuation stops at its next Newton iteration and writes the
+      // points it has (summary.md: "stopped: interrupted … (partial
+      // results)"); a signal before its first point leaves no results.
       {"backbone_rom",
        {"backbone", scene, "--model", "rom", "--modes", "10", "--harmonics", "40", "--max-amplitude", "10", "--quiet"},
        {{"backbone.csv"}, {"eq4.csv"}}, "interrupted by signal 2", [](const fs::path &) {}, false, "", "backbone.csv"},
-      // The solid's commands (modes, statics, coefficients on a solid scene)
-      // and `backbone --model fe` are added here once they stop on a signal.
+      {"backbone_fe",
+       {"backbone", scene, "--model", "fe", "--set", "Discretisation/Number of elements=16", "--harmonics", "5",
+        "--max-amplitude", "3", "--quiet"},
+       {{"backbone.csv"}, {"eq4.csv"}}, "interrupted by signal 2", [](const fs::path &) {}, false, "", "backbone.csv"},
+      // The solid's statics stops between Newton iterations: statics.csv
+      // keeps the converged load steps and says where it stopped.
+      {"statics_solid",
+       {"statics", "mueller2023-solid", "--line-load", "20", "--steps", "8", "--quiet"},
+       {{"statics.csv"}}, "interrupted by signal 2",
+       [](const fs::path &dir) {
+         if (fs::exists(dir / "statics.csv"))
+           expect_contains(dir / "statics.csv", "# stopped: load step ");
+         expect_absent(dir, {"statics.pvtu"});
+       },
+       false, "", "statics.pvtu"},
+      // Not here: the solid's `modes` (and what starts with them) spends
+      // most of its time in MUMPS's factorisation, which no signal stops.
     };
     return cases;
   }

@@ -227,6 +227,15 @@ namespace beamslider
             // The ladder stopped with a signal: its finished members are kept.
             report.text << "\n_The error ladder " << e.what() << "._\n";
           }
+        catch (const Interrupted &e)
+          {
+            // A solver inside the section stopped (a Newton iteration, the
+            // eigensolver, a continuation): what it wrote above is partial.
+            report.text << "\n---\n**Interrupted** (signal " << e.signal() << ") in section " << k + 1
+                        << ", which is incomplete above; the rest was not run.\n";
+            flush();
+            return interruption_exit_code();
+          }
         if (seconds < 0)
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - section_start).count();
         section_seconds.emplace_back(k, seconds);
