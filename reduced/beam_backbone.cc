@@ -33,6 +33,7 @@ namespace beamslider
     s.max_step                = beam.max_step;
     s.initial_step            = std::min(s.initial_step, s.max_step);
     s.restart_past_tongues    = beam.restart_past_tongues;
+    s.keep_points_when_interrupted = beam.keep_points_when_interrupted;
     s.tongue_frequency_deviation = 0.03;
     s.normalise_by_mode          = true;
     for (const double r : beam.landing_over_h)

@@ -27,6 +27,7 @@ namespace beamslider
     bool restart_past_tongues = true;
     double max_step = 0.05;        // largest arclength step (fraction of the end amplitude)
     std::vector<double> landing_over_h; // ŵ/h at which points are solved for exactly
+    bool keep_points_when_interrupted = false; // BackboneSettings' (the `backbone` command)
   };
 
   // The generic settings for a beam's mode-1 backbone with output functional

@@ -664,7 +664,7 @@ namespace beamslider
       {
         // Stopped between Newton iterations: the converged points stay (none
         // converged: nothing to keep, the caller stops).
-        if (result.points.empty())
+        if (result.points.empty() || !settings.keep_points_when_interrupted)
           throw;
         result.interrupted = true;
         result.completed   = false;

@@ -135,6 +135,10 @@ namespace beamslider
     // prediction; then the arclength continuation goes on from there as a new
     // segment. The skipped amplitude range is recorded in Backbone::gaps.
     bool restart_past_tongues = false;
+    // On SIGINT/SIGTERM: keep the converged points and return them
+    // (Backbone::interrupted; the `backbone` command), or throw Interrupted
+    // (a study that needs the whole curve).
+    bool keep_points_when_interrupted = false;
     unsigned int max_restarts = 3;
     // Arclength: amplitudes [m] (ascending) at which extra points are solved
     // for exactly (amplitude-controlled Newton from the interpolated step)

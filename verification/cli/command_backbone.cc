@@ -54,6 +54,7 @@ namespace beamslider
     settings.n_harmonics = options.n_harmonics;
     settings.thickness   = h;
     settings.end_over_h  = options.max_amplitude_over_h;
+    settings.keep_points_when_interrupted = true; // Ctrl-C: the converged points are written
 
     Backbone backbone;
     std::string model_text;
