@@ -669,10 +669,8 @@ namespace beamslider
         result.interrupted = true;
         result.completed   = false;
         std::ostringstream s;
-        s << e.what() << " after " << result.points.size() << " converged points";
-        if (!result.points.empty())
-          s << " (last at amplitude " << result.points.back().amplitude << " m, ω " << result.points.back().omega
-            << " rad/s)";
+        s << e.what() << " after " << result.points.size() << " converged points (last at amplitude "
+          << result.points.back().amplitude << " m, ω " << result.points.back().omega << " rad/s)";
         result.message = s.str();
       }
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -142,6 +142,15 @@ namespace beamslider
           throw OutputError("result file '" + file.string() + "' of an earlier run cannot be removed: " + ec.message());
     }
 
+    // The time now as run.txt records it (ISO 8601, UTC).
+    std::string utc_now()
+    {
+      const std::time_t now = std::time(nullptr);
+      char when[32];
+      std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+      return when;
+    }
+
     void write_run_record(const std::string &dir, const Scene &scene, const RunRecord record)
     {
       const RecordedCommand &command = recorded_command();
@@ -157,9 +166,7 @@ namespace beamslider
                       "beamslider. Repeat the run with the command line in run.txt and this file as the scene.\n" +
                         scene_file_text(scene));
       std::ostringstream run;
-      const std::time_t now = std::time(nullptr);
-      char when[32];
-      std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+      const std::string when = utc_now();
       std::error_code ec;
       run << "command:   ";
       for (std::size_t i = 0; i < command_line().size(); ++i)
@@ -181,11 +188,8 @@ namespace beamslider
 
   bool record_run_end(const int status, const std::string &messages, std::ostream &errors)
   {
-    const std::time_t now = std::time(nullptr);
-    char when[32];
-    std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
     std::ostringstream how;
-    how << "ended:     " << when << ", ";
+    how << "ended:     " << utc_now() << ", ";
     if (status == 0)
       how << "completed (exit 0)";
     else

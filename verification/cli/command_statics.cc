@@ -78,6 +78,13 @@ namespace beamslider
       csv.row(row);
       ++n_converged;
     };
+    // The rows so far stay; a last line says where the path stopped.
+    const auto mark_stopped = [&](const std::string &where) {
+      csv.close();
+      OutputFile tail(dir + "/statics.csv", FileMode::append);
+      tail.stream() << "# stopped: " << one_line(where) << '\n';
+      tail.close();
+    };
     std::vector<FEStatics::LoadStep> path;
     try
       {
@@ -85,19 +92,13 @@ namespace beamslider
       }
     catch (const Interrupted &e)
       {
-        csv.close();
-        OutputFile tail(dir + "/statics.csv", FileMode::append);
-        tail.stream() << "# stopped: load step " << n_converged + 1 << " of " << options.n_steps << ": " << e.what()
-                      << '\n';
-        tail.close();
+        mark_stopped("load step " + std::to_string(n_converged + 1) + " of " + std::to_string(options.n_steps) + ": " +
+                     e.what());
         throw;
       }
     catch (const StaticSolveError &e)
       {
-        csv.close();
-        OutputFile tail(dir + "/statics.csv", FileMode::append);
-        tail.stream() << "# stopped: " << one_line(e.what()) << '\n';
-        tail.close();
+        mark_stopped(e.what());
         throw StaticSolveError(std::string(e.what()) + "; " + dir + "/statics.csv holds the " +
                                std::to_string(n_converged) + " converged steps before it; statics.vtu not written");
       }

@@ -67,6 +67,18 @@ namespace beamslider
         if (root)
           csv.emplace(dir + "/statics.csv", statics_csv_columns(options), in_place);
       });
+      // The rows so far stay; a last line says where the path stopped (as the
+      // beam's statics.csv, command_statics.cc).
+      const auto mark_stopped = [&](const std::string &where) {
+        fail_together(comm, [&] {
+          if (!root)
+            return;
+          csv->close();
+          OutputFile tail(dir + "/statics.csv", FileMode::append);
+          tail.stream() << "# stopped: " << one_line(where) << '\n';
+          tail.close();
+        });
+      };
       std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
       double w_mid = 0, q_n = 0;
       for (unsigned int k = 1; k <= options.n_steps; ++k)
@@ -74,18 +86,6 @@ namespace beamslider
           const double lambda = double(k) / options.n_steps;
           F_k                 = F;
           F_k *= lambda;
-          // The rows so far stay; a last line says where the path stopped
-          // (as the beam's statics.csv, command_statics.cc).
-          const auto mark_stopped = [&](const std::string &where) {
-            fail_together(comm, [&] {
-              if (!root)
-                return;
-              csv->close();
-              OutputFile tail(dir + "/statics.csv", FileMode::append);
-              tail.stream() << "# stopped: " << one_line(where) << '\n';
-              tail.close();
-            });
-          };
           const std::string step = "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps);
           unsigned int iterations = 0;
           try
