@@ -3,7 +3,7 @@
 // meshes (fem/fe_modes.cc) and the solid (fem/solid_modes.cc) solve their
 // eigenproblems.
 //
-// It stops between Krylov–Schur iterations when SIGINT or SIGTERM arrives,
+// It stops after the linear solve in progress when SIGINT or SIGTERM arrives,
 // on every rank together (fem/mpi_interruption.h), by throwing Interrupted;
 // the factorisation of K − σM before the first iteration runs to its end.
 #pragma once

@@ -13,6 +13,9 @@
 //                         passing, the total
 //   verdicts.csv          one row per candidate and fact: score, pass, reason
 //   summary.md            the search, the best candidate and its verdicts
+// After Ctrl-C, a fact whose map did not reach a candidate has empty score
+// and pass cells there ("not run (interrupted)"), that candidate no total,
+// and summary.md names the leading candidate so far.
 //
 // Not restartable (unlike `map`): a search of this size runs in minutes.
 #include "contact/csv_writer.h"
@@ -113,14 +116,19 @@ namespace beamslider
         std::vector<std::string> row;
         for (const double v : unknowns.cell_values(c))
           row.push_back(CsvWriter::cell(v, 9));
+        // A fact not run (interrupted) has empty cells, and the candidate no total.
+        bool all_judged = true;
         for (std::size_t i = 0; i < result.fact_ids.size(); ++i)
           {
-            row.push_back(CsvWriter::cell(result.scores[c][i], 4));
-            row.push_back(CsvWriter::cell(result.passes[c][i]));
-            verdicts.row({CsvWriter::cell(c), result.fact_ids[i], CsvWriter::cell(result.scores[c][i], 4),
-                          CsvWriter::cell(result.passes[c][i]), result.reasons[c][i]});
+            const bool judged = result.judged[c][i];
+            all_judged        = all_judged && judged;
+            const std::string score = judged ? CsvWriter::cell(result.scores[c][i], 4) : "";
+            const std::string pass  = judged ? CsvWriter::cell(result.passes[c][i]) : "";
+            row.push_back(score);
+            row.push_back(pass);
+            verdicts.row({CsvWriter::cell(c), result.fact_ids[i], score, pass, result.reasons[c][i]});
           }
-        row.push_back(CsvWriter::cell(result.total(c), 4));
+        row.push_back(all_judged ? CsvWriter::cell(result.total(c), 4) : "");
         table.row(row);
       }
     table.close();
@@ -139,7 +147,8 @@ namespace beamslider
     for (const std::string &o : common.overrides)
       summary << "- Held at (`--set`): " << o << "\n";
     if (!complete)
-      summary << "- **Interrupted**: the facts not run score 0.\n";
+      summary << "- **Interrupted**: the facts not run have no verdict (empty cells in the CSV files); the "
+                 "candidate below leads only on what ran.\n";
     summary << std::setprecision(6) << "\n## Unknowns\n\n| parameter | values |\n|---|---|\n";
     for (const MapAxis &a : unknowns.axes)
       {
@@ -148,15 +157,18 @@ namespace beamslider
           summary << " " << v;
         summary << " |\n";
       }
-    summary << "\n## Best candidate (total " << std::setprecision(3) << result.total(b) << " of " << facts.size()
-            << ")\n\n";
+    summary << "\n## " << (complete ? "Best candidate" : "Leading candidate so far") << " (total "
+            << std::setprecision(3) << result.total(b) << " of " << facts.size() << ")\n\n";
     const std::vector<double> best_values = unknowns.cell_values(b);
     for (std::size_t k = 0; k < unknowns.axes.size(); ++k)
       summary << "- " << unknowns.axes[k].parameter << " = " << best_values[k] << "\n";
     summary << "\n| fact | score | members passing | reason (member 0) |\n|---|---|---|---|\n";
     for (std::size_t i = 0; i < result.fact_ids.size(); ++i)
-      summary << "| " << system1_fact(result.fact_ids[i]).name << " | " << result.scores[b][i] << " | "
-              << result.passes[b][i] << "/" << options.members << " | " << result.reasons[b][i] << " |\n";
+      if (result.judged[b][i])
+        summary << "| " << system1_fact(result.fact_ids[i]).name << " | " << result.scores[b][i] << " | "
+                << result.passes[b][i] << "/" << options.members << " | " << result.reasons[b][i] << " |\n";
+      else
+        summary << "| " << system1_fact(result.fact_ids[i]).name << " | — | — | " << result.reasons[b][i] << " |\n";
     // How often each fact passes over all candidates: a fact no candidate
     // passes is a result too.
     summary << "\n## Each fact over all candidates\n\n| fact | candidates passing | best score |\n|---|---|---|\n";
@@ -174,7 +186,7 @@ namespace beamslider
       }
     summary << "\nFiles: identification.csv, verdicts.csv, facts.csv, <fact>/map.csv.\n";
     write_text_file(dir + "/summary.md", summary.str());
-    console() << "identify: best candidate " << b << " (total " << result.total(b) << " of " << facts.size()
+    console() << "identify: " << (complete ? "best" : "leading (interrupted)") << " candidate " << b << " (total " << result.total(b) << " of " << facts.size()
               << "); " << dir << "/summary.md" << std::endl;
     return 0; // after Ctrl-C, main() turns the interruption into 130/143
   }

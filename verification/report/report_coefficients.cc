@@ -2,6 +2,7 @@
 // STEP, condensed STEP and ICE on the FE model; the membrane over-prediction
 // of plain STEP explained by a number; cost; ICE against its load level.
 #include "contact/csv_writer.h"
+#include "contact/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
@@ -153,6 +154,10 @@ namespace beamslider
                 const double err = r.fit.cubic_coefficient(0, 0, 0, 0) / analytic[0].value - 1;
                 md << " " << sci(err, 2) << " |";
                 levels.row({CsvWriter::cell(s), method, CsvWriter::cell(basis->n_modes()), CsvWriter::cell(err, 6), "ok"});
+              }
+            catch (const Interrupted &)
+              {
+                throw;
               }
             catch (const std::exception &e)
               {

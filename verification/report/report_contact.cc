@@ -7,6 +7,7 @@
 // Quick mode: the signature move to its end time (60 s, ~7 s wall) and every
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
 #include "contact/csv_writer.h"
+#include "contact/interruption.h"
 #include "verification/cli/commands.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
@@ -86,6 +87,7 @@ namespace beamslider
         try
           {
             const SimulationOutcome o = run_simulation(common, options, false);
+            stop_if_interrupted(); // the case stopped: no row for it, no further case
             const std::string differs = disagreements(o.verdict, c.expected);
             console() << " " << o.wall_seconds << " s: " << o.verdict.line << std::endl;
             md << "| `" << c.name << "` | " << c.description << " | " << c.published << " | " << o.verdict.line << " | "
@@ -100,6 +102,10 @@ namespace beamslider
             pictures.push_back(c.name);
             if (c.name == "signature-move")
               energy = energy_check(o.periods);
+          }
+        catch (const Interrupted &)
+          {
+            throw;
           }
         catch (const std::exception &e)
           {

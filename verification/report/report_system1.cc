@@ -81,16 +81,18 @@ namespace beamslider
         std::string scenario;
         for (const std::string &o : f.overrides)
           scenario += (scenario.empty() ? "" : ", ") + o;
-        const bool pass = r.passes[0][i] == 1;
+        const bool judged = r.judged[0][i];
+        const bool pass   = judged && r.passes[0][i] == 1;
         n_pass += pass;
-        out << "| " << f.name << " | " << scenario << ", " << f.end_time << " s | " << (pass ? "reproduced" : "**not reproduced**")
-            << " | " << fixed(r.scores[0][i], 2) << " | " << r.reasons[0][i] << " |\n";
-        csv.row({f.id, f.name, scenario, CsvWriter::cell(f.end_time, 6), pass ? "1" : "0",
-                 CsvWriter::cell(r.scores[0][i], 4), r.reasons[0][i]});
+        out << "| " << f.name << " | " << scenario << ", " << f.end_time << " s | "
+            << (!judged ? "not run" : pass ? "reproduced" : "**not reproduced**") << " | "
+            << (judged ? fixed(r.scores[0][i], 2) : "—") << " | " << r.reasons[0][i] << " |\n";
+        csv.row({f.id, f.name, scenario, CsvWriter::cell(f.end_time, 6), judged ? (pass ? "1" : "0") : "",
+                 judged ? CsvWriter::cell(r.scores[0][i], 4) : "", r.reasons[0][i]});
       }
     csv.close();
     out << "\n" << n_pass << " of " << r.fact_ids.size() << " facts reproduced; total score "
-        << fixed(r.total(0), 2) << " of " << r.fact_ids.size() << (complete ? "" : " (interrupted: facts not run score 0)")
+        << fixed(r.total(0), 2) << " of " << r.fact_ids.size() << (complete ? "" : " (interrupted: the facts not run have no verdict)")
         << ". Section time " << seconds_since(start) << ". Files: system1/facts.csv, system1/<fact>/map.csv.\n\n";
   }
 } // namespace beamslider

@@ -1,6 +1,7 @@
 #include "verification/studies/fe_rom_study.h"
 
 #include "contact/beam_system.h"
+#include "contact/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
@@ -179,6 +180,10 @@ namespace beamslider
         run.result = adaptation.run();
         run.ok     = run.result.status == RunStatus::completed;
         run.message = run.result.message;
+      }
+    catch (const Interrupted &)
+      {
+        throw;
       }
     catch (const std::exception &e)
       {

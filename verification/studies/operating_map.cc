@@ -221,6 +221,10 @@ namespace beamslider
           {
             throw;
           }
+        catch (const Interrupted &)
+          {
+            result.status = RunStatus::interrupted;
+          }
         catch (const std::exception &e)
           {
             result.status  = RunStatus::beam_solver_failure;

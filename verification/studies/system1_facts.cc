@@ -400,7 +400,8 @@ namespace beamslider
       result.fact_ids.push_back(f->id);
     result.scores.assign(n_candidates, std::vector<double>(facts.size(), 0.));
     result.passes.assign(n_candidates, std::vector<unsigned int>(facts.size(), 0));
-    result.reasons.assign(n_candidates, std::vector<std::string>(facts.size()));
+    result.reasons.assign(n_candidates, std::vector<std::string>(facts.size(), "not run (interrupted)"));
+    result.judged.assign(n_candidates, std::vector<bool>(facts.size(), false));
     complete = true;
 
     for (std::size_t i = 0; i < facts.size(); ++i)
@@ -434,9 +435,9 @@ namespace beamslider
             if (members.empty())
               {
                 complete = false;
-                result.reasons[c][i] = "not run (interrupted)";
                 continue;
               }
+            result.judged[c][i] = true;
             double sum = 0;
             for (const MapMember &m : members)
               {

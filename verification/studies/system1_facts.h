@@ -108,6 +108,9 @@ namespace beamslider
     std::vector<std::vector<double>> scores;
     std::vector<std::vector<unsigned int>> passes; // members that pass
     std::vector<std::vector<std::string>> reasons; // member 0's reason
+    // False where the fact's map did not reach the candidate (interrupted):
+    // its score there is 0 by default, not a verdict.
+    std::vector<std::vector<bool>> judged;
     std::vector<double> wall_seconds;              // per fact map
     std::size_t best = 0;                          // the candidate with the largest total
     double total(std::size_t candidate) const;
