@@ -94,7 +94,8 @@ namespace beamslider
     return entry.rfind("OMPI_", 0) == 0 || entry.rfind("PMIX_", 0) == 0 || entry.rfind("PMI_", 0) == 0;
   }
 
-  ChildResult run_child(const std::vector<std::string> &argv, const ChildEnvironment environment)
+  ChildResult run_child(const std::vector<std::string> &argv, const ChildEnvironment environment,
+                        const ChildGroup group)
   {
     ChildResult result;
     if (argv.empty())
@@ -103,7 +104,7 @@ namespace beamslider
         return result;
       }
     pid_t pid        = 0;
-    const int status = spawn(argv, -1, false, pid, environment);
+    const int status = spawn(argv, -1, group == ChildGroup::own, pid, environment);
     if (status != 0)
       {
         result.error = "cannot start '" + argv[0] + "': " + std::strerror(status);

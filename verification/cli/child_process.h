@@ -41,10 +41,21 @@ namespace beamslider
   // launcher set for this process (see without_mpi_launch).
   bool is_mpi_launch_variable(std::string_view entry);
 
+  // Whether a terminal's Ctrl-C (sent to the whole foreground process group)
+  // reaches the child.
+  enum class ChildGroup
+  {
+    shared, // yes: a beamslider of its own, which stops as this one does
+    own     // no: a chart, which this run lets finish (about a second) and
+            // then stops itself; Python would print a KeyboardInterrupt
+            // traceback
+  };
+
   // Runs argv[0] (an absolute path, or a name looked up in PATH) with the
   // arguments argv[1...], waits for it, and says how it ended.
   ChildResult run_child(const std::vector<std::string> &argv,
-                        ChildEnvironment environment = ChildEnvironment::inherited);
+                        ChildEnvironment environment = ChildEnvironment::inherited,
+                        ChildGroup group             = ChildGroup::shared);
 
   // A child started before its input exists, so that its own start-up (for
   // the charts: Python importing matplotlib, ~0.35 s) overlaps the work

@@ -61,31 +61,31 @@ namespace beamslider
       fail_together(comm, [&] {
         if (!root)
           return;
-          write_coefficients_csv(dir + "/coefficients.csv", fit.cubic);
-          write_quadratic_coefficients_csv(dir + "/quadratic_coefficients.csv", fit.quadratic);
-          std::ostringstream summary;
-          summary << "# Modal coefficients of a solid: scene `" << scene.name << "`, method `" << method
-                  << "`, N = " << N << "\n\n"
-                  << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", "
-                  << model.element_name() << ", " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
-                  << dealii::Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
-                  << "- modes kept, n = 1 ... N of coefficients.csv (index in modes.csv, shape, Hz):";
-          for (unsigned int k = 0; k < N; ++k)
-            summary << (k ? "; " : " ") << kept[k] + 1 << " " << modes.all[kept[k]].shape << " "
-                    << omega[k] / (2 * M_PI);
-          summary << "\n- b_111 (= c^(1)_111) = " << fit.cubic.front().value << " 1/(s^2 m^2 kg)\n"
-                  << "- largest quadratic coefficient (0 for a flat strip): " << fit.max_abs_quadratic() << "\n"
-                  << "- nonlinear static solves: " << coefficients.n_static_solves()
-                  << " (modified Newton: " << coefficients.n_linear_solves() << " back-substitutions on "
-                  << coefficients.n_factorisations() << " MUMPS factorisations)\n";
-          if (method == "ice")
-            summary << "- relative fit residual: " << fit.relative_fit_residual << "\n";
-          summary << "- wall time: " << seconds << " s (modes " << modes_seconds << " s)\n";
-          write_text_file(dir + "/summary.md", summary.str());
-          console() << "Coefficients of the " << scene.solid.continuum << " solid of scene '" << scene.name
-                    << "' by " << method << " (N = " << N << ", " << model.n_dofs() << " DoFs): b_111 = "
-                    << fit.cubic.front().value << ", " << seconds << " s\n"
-                    << "Wrote " << dir << "/coefficients.csv, quadratic_coefficients.csv and summary.md\n";
+        write_coefficients_csv(dir + "/coefficients.csv", fit.cubic);
+        write_quadratic_coefficients_csv(dir + "/quadratic_coefficients.csv", fit.quadratic);
+        std::ostringstream summary;
+        summary << "# Modal coefficients of a solid: scene `" << scene.name << "`, method `" << method
+                << "`, N = " << N << "\n\n"
+                << "- solid: " << scene.solid.continuum << ", nu = " << scene.solid.poissons_ratio << ", "
+                << model.element_name() << ", " << model.n_cells() << " cells, " << model.n_dofs() << " DoFs, "
+                << dealii::Utilities::MPI::n_mpi_processes(comm) << " MPI rank(s)\n"
+                << "- modes kept, n = 1 ... N of coefficients.csv (index in modes.csv, shape, Hz):";
+        for (unsigned int k = 0; k < N; ++k)
+          summary << (k ? "; " : " ") << kept[k] + 1 << " " << modes.all[kept[k]].shape << " "
+                  << omega[k] / (2 * M_PI);
+        summary << "\n- b_111 (= c^(1)_111) = " << fit.cubic.front().value << " 1/(s^2 m^2 kg)\n"
+                << "- largest quadratic coefficient (0 for a flat strip): " << fit.max_abs_quadratic() << "\n"
+                << "- nonlinear static solves: " << coefficients.n_static_solves()
+                << " (modified Newton: " << coefficients.n_linear_solves() << " back-substitutions on "
+                << coefficients.n_factorisations() << " MUMPS factorisations)\n";
+        if (method == "ice")
+          summary << "- relative fit residual: " << fit.relative_fit_residual << "\n";
+        summary << "- wall time: " << seconds << " s (modes " << modes_seconds << " s)\n";
+        write_text_file(dir + "/summary.md", summary.str());
+        console() << "Coefficients of the " << scene.solid.continuum << " solid of scene '" << scene.name
+                  << "' by " << method << " (N = " << N << ", " << model.n_dofs() << " DoFs): b_111 = "
+                  << fit.cubic.front().value << ", " << seconds << " s\n"
+                  << "Wrote " << dir << "/coefficients.csv, quadratic_coefficients.csv and summary.md\n";
       });
       return 0;
     }

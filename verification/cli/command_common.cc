@@ -299,7 +299,7 @@ namespace beamslider
     // and every argument go to it as separate strings, never through a shell.
     std::vector<std::string> argv = {BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script};
     argv.insert(argv.end(), arguments.begin(), arguments.end());
-    const ChildResult result = run_child(argv);
+    const ChildResult result = run_child(argv, ChildEnvironment::inherited, ChildGroup::own);
     if (!result.succeeded())
       note_output_failure("the chart of " + script + " was not drawn (" + result.error +
                           "); the CSV files beside it are complete");

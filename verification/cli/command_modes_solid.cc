@@ -65,50 +65,50 @@ namespace beamslider
       fail_together(comm, [&] {
         if (!root)
           return;
-          CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "shape", "bending_index", "energy_x",
-                                             "energy_y", "energy_z", "twist_correlation", "width_order",
-                                             "vtu_scale"});
-          for (unsigned int k = 0; k < modes.all.size(); ++k)
-            {
-              const SolidMode &m = modes.all[k];
-              const auto b       = std::find(modes.bending.begin(), modes.bending.end(), k);
-              csv.row({CsvWriter::cell(k + 1), CsvWriter::cell(m.omega / (2 * M_PI)), m.shape,
-                       b == modes.bending.end() ? "" : CsvWriter::cell(unsigned(b - modes.bending.begin() + 1)),
-                       CsvWriter::cell(m.energy_share[0]), CsvWriter::cell(m.energy_share[1]),
-                       CsvWriter::cell(m.energy_share[2]), CsvWriter::cell(m.twist_correlation),
-                       CsvWriter::cell(m.width_order),
-                       CsvWriter::cell(scales[k])});
-            }
-          csv.close();
-          if (line)
-            {
-              std::vector<std::string> columns{"x_m"};
-              const unsigned int N = line->n_modes();
-              for (unsigned int n = 1; n <= N; ++n)
-                columns.push_back("phi_" + std::to_string(n));
-              for (unsigned int n = 1; n <= N; ++n)
-                columns.push_back("dphi_" + std::to_string(n));
-              CsvWriter line_csv(dir + "/line_modes.csv", columns);
-              Eigen::VectorXd phi, dphi;
-              for (unsigned int i = 0; i <= 200; ++i)
-                {
-                  const double x = line->length * i / 200;
-                  line->evaluate(x, phi, dphi);
-                  std::vector<double> row{x};
-                  row.insert(row.end(), phi.data(), phi.data() + N);
-                  row.insert(row.end(), dphi.data(), dphi.data() + N);
-                  line_csv.numbers(row, 10);
-                }
-              line_csv.close();
-            }
-          console() << "Modes of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
-                    << model.n_cells() << " cells, " << model.element_name() << ", " << model.n_dofs()
-                    << " DoFs, nu = " << scene.solid.poissons_ratio << ", "
-                    << dealii::Utilities::MPI::n_mpi_processes(comm) << " rank(s)): " << seconds << " s\n";
-          for (unsigned int k = 0; k < modes.all.size(); ++k)
-            console() << "  mode " << k + 1 << ": " << modes.all[k].omega / (2 * M_PI) << " Hz, "
-                      << modes.all[k].shape << "\n";
-          console() << "Wrote " << dir << "/modes.csv, " << (line ? "line_modes.csv and " : "") << record << "\n";
+        CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "shape", "bending_index", "energy_x",
+                                           "energy_y", "energy_z", "twist_correlation", "width_order",
+                                           "vtu_scale"});
+        for (unsigned int k = 0; k < modes.all.size(); ++k)
+          {
+            const SolidMode &m = modes.all[k];
+            const auto b       = std::find(modes.bending.begin(), modes.bending.end(), k);
+            csv.row({CsvWriter::cell(k + 1), CsvWriter::cell(m.omega / (2 * M_PI)), m.shape,
+                     b == modes.bending.end() ? "" : CsvWriter::cell(unsigned(b - modes.bending.begin() + 1)),
+                     CsvWriter::cell(m.energy_share[0]), CsvWriter::cell(m.energy_share[1]),
+                     CsvWriter::cell(m.energy_share[2]), CsvWriter::cell(m.twist_correlation),
+                     CsvWriter::cell(m.width_order),
+                     CsvWriter::cell(scales[k])});
+          }
+        csv.close();
+        if (line)
+          {
+            std::vector<std::string> columns{"x_m"};
+            const unsigned int N = line->n_modes();
+            for (unsigned int n = 1; n <= N; ++n)
+              columns.push_back("phi_" + std::to_string(n));
+            for (unsigned int n = 1; n <= N; ++n)
+              columns.push_back("dphi_" + std::to_string(n));
+            CsvWriter line_csv(dir + "/line_modes.csv", columns);
+            Eigen::VectorXd phi, dphi;
+            for (unsigned int i = 0; i <= 200; ++i)
+              {
+                const double x = line->length * i / 200;
+                line->evaluate(x, phi, dphi);
+                std::vector<double> row{x};
+                row.insert(row.end(), phi.data(), phi.data() + N);
+                row.insert(row.end(), dphi.data(), dphi.data() + N);
+                line_csv.numbers(row, 10);
+              }
+            line_csv.close();
+          }
+        console() << "Modes of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("
+                  << model.n_cells() << " cells, " << model.element_name() << ", " << model.n_dofs()
+                  << " DoFs, nu = " << scene.solid.poissons_ratio << ", "
+                  << dealii::Utilities::MPI::n_mpi_processes(comm) << " rank(s)): " << seconds << " s\n";
+        for (unsigned int k = 0; k < modes.all.size(); ++k)
+          console() << "  mode " << k + 1 << ": " << modes.all[k].omega / (2 * M_PI) << " Hz, "
+                    << modes.all[k].shape << "\n";
+        console() << "Wrote " << dir << "/modes.csv, " << (line ? "line_modes.csv and " : "") << record << "\n";
       });
       return 0;
     }
