@@ -168,6 +168,32 @@ TEST(FaultsUnderMpi, AFolderInUseOnRankZeroEndsEveryRank)
   fs::remove_all(statuses);
 }
 
+// A command that runs on one process, started by mpirun on two: each rank
+// would run it alone into the same folder. Refused on both ranks before the
+// folder exists (exit 2, said once), for a command of its own and for the
+// beam's branch of one that runs the solid on MPI.
+TEST(FaultsUnderMpi, ACommandOfOneProcessIsRefusedOnSeveral)
+{
+  const fs::path dir = fresh_folder("faults_mpi_one");
+  for (const auto &args : {std::vector<std::string>{"simulate", "--end-time", "0.01"},
+                           std::vector<std::string>{"modes", "mueller2023"}})
+    {
+      const fs::path statuses = dir / ("statuses_" + args[0]), out = dir / args[0];
+      fs::create_directories(statuses);
+      std::vector<std::string> command = args;
+      command.insert(command.end(), {"--output", out.string()});
+      const CliRun run = run_beamslider(command, CliLimits().timeout(60).launched_by(two_ranks(statuses)));
+      ASSERT_FALSE(run.timed_out) << args[0];
+      expect_ranks_exited_with(statuses, 2);
+      EXPECT_EQ(count(run.err, "error: "), 1u) << run.err;
+      EXPECT_NE(run.err.find("error: '" + args[0] + "' runs on one process, and this launch started 2"),
+                std::string::npos)
+        << run.err;
+      EXPECT_FALSE(fs::exists(out)) << args[0];
+    }
+  fs::remove_all(dir);
+}
+
 // The beam's statics alike: a failed step leaves the marked table, says that
 // statics.vtu is not written, and no statics.vtu of an earlier run in the
 // folder stays beside the new table.

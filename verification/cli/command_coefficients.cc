@@ -8,6 +8,7 @@
 #include "fem/fe_modes.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/studies/console.h"
 
@@ -24,6 +25,7 @@ namespace beamslider
     if (scene.solid.enabled())
       return run_solid_coefficients(common, scene, options.method == "analytic" ? "exact" : options.method, N,
                                     options.mode_indices);
+    require_one_process("coefficients");
     if (!options.mode_indices.empty())
       throw InputError("--mode-indices is for a scene with a Solid: a beam's modes are all bending modes, chosen "
                        "by --modes N");

@@ -276,6 +276,9 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
         return run_coefficients(common, coefficients);
       if (*statics_cmd)
         return run_statics(common, statics);
+      for (const CLI::App *one : {backbone_cmd, simulate_cmd, sweep_cmd, animate_cmd, identify_cmd})
+        if (*one)
+          require_one_process(one->get_name());
       if (*backbone_cmd)
         return run_backbone(common, backbone);
       if (*simulate_cmd)

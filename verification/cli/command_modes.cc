@@ -6,6 +6,7 @@
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <chrono>
@@ -25,6 +26,7 @@ namespace beamslider
                            "' (the solid's mesh is set in its subsection Solid)");
         return run_solid_modes(common, scene, options.n_modes);
       }
+    require_one_process("modes");
     if (options.slider_at)
       {
         // A bonded body is a point mass and inertia: any x_C on the beam is admissible.

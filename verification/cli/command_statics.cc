@@ -26,6 +26,7 @@
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <chrono>
@@ -47,6 +48,7 @@ namespace beamslider
                          "finite and non-zero");
     if (scene.solid.enabled())
       return run_solid_statics(common, scene, options);
+    require_one_process("statics");
     const std::string dir = prepare_output_dir(common, scene, "statics");
 
     const auto start = std::chrono::steady_clock::now();

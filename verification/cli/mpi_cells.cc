@@ -1,6 +1,7 @@
 // Manager–worker distribution of cells over MPI, see mpi_cells.h.
 #include "verification/cli/mpi_cells.h"
 
+#include "meshes/scene.h"
 #include "verification/studies/parallel_for.h"
 
 #include <deal.II/base/mpi.h>
@@ -56,6 +57,18 @@ namespace beamslider
       if (const char *rank = std::getenv(name))
         return static_cast<unsigned int>(std::strtoul(rank, nullptr, 10));
     return 0;
+  }
+
+  void require_one_process(const std::string &command)
+  {
+    // Open MPI and MPICH/Hydra say the launch's size; a PMIx launcher alone
+    // does not (then nothing is refused).
+    for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+      if (const char *size = std::getenv(name))
+        if (std::strtoul(size, nullptr, 10) > 1)
+          throw InputError("'" + command + "' runs on one process, and this launch started " + size +
+                           " (mpirun -n " + size + "): run it without mpirun. On MPI run ensemble, ladder, map, "
+                           "verify, and modes, statics and coefficients of a solid scene");
   }
 
   struct MpiSession::Impl

@@ -27,6 +27,11 @@ namespace beamslider
   // rank 0 says (the error message of a command every rank runs).
   unsigned int launch_rank();
 
+  // Refuses (InputError, exit 2 on every rank) a command that runs on one
+  // process when mpirun/srun started several: each rank would run it alone,
+  // into the same folder. Names the commands that use MPI.
+  void require_one_process(const std::string &command);
+
   // MPI for the lifetime of the object (deal.II's MPI_InitFinalize, which
   // also starts PETSc/SLEPc), or nothing when `use_mpi` is false.
   class MpiSession
