@@ -37,6 +37,8 @@ def read_columns(path, names):
         return {n: np.empty(0) for n in names}
     with open(path) as f:
         header = f.readline().strip().split(",")
+        if not f.readline().strip():  # no row: a run that ended before its first period
+            return {n: np.empty(0) for n in names}
     index = [header.index(n) for n in names]
     data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=index, ndmin=2)
     return {n: data[:, k] for k, n in enumerate(names)}
@@ -57,7 +59,8 @@ def main(folder, title, h):
     trace = read_columns(os.path.join(folder, "trace.csv"), ["t_s", "slider_x_over_L", "w_center_m"])
     periods = read_columns(os.path.join(folder, "periods.csv"), ["t_end_s", "amplitude_over_h"])
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(9, 6), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
-    t_w, w = envelope(trace["t_s"], trace["w_center_m"] / h, plot_columns)
+    with np.errstate(divide="ignore", invalid="ignore"):  # a run that failed may hold nan
+        t_w, w = envelope(trace["t_s"], trace["w_center_m"] / h, plot_columns)
     ax1.plot(t_w, w, color="k", lw=0.3, label=r"$w(L/2)/h$")
     t_p, a = envelope(periods["t_end_s"], periods["amplitude_over_h"], plot_columns)
     ax1.plot(t_p, a, color="tab:grey", lw=1.0, label="amplitude per period")
