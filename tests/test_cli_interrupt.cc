@@ -320,6 +320,13 @@ namespace
        {{"frequency_convergence.csv"}, {"bonded_slider.csv"}, {"coefficients_n3.csv"}, {"coefficient_load_levels.csv"}},
        "interrupted by signal 2",
        [](const fs::path &dir) { expect_contains(dir / "report.md", "**Interrupted** (signal 2)"); }},
+      // Section 3, the backbones: the continuation in progress stops at its
+      // next Newton iteration; 3.9 s of CPU.
+      {"verify_backbones", {"verify", scene, "--section", "3", "--quiet"},
+       {{"backbone_curves.csv"}, {"backbone_differences.csv"}, {"backbone_harmonics.csv"},
+        {"backbone_ideal_curves.csv"}},
+       "interrupted by signal 2",
+       [](const fs::path &dir) { expect_contains(dir / "report.md", "**Interrupted** (signal 2)"); }},
       // The continuation stops at its next Newton iteration and writes the
       // points it has (summary.md: "stopped: interrupted … (partial
       // results)"); a signal before its first point leaves no results.
