@@ -41,6 +41,7 @@ namespace beamslider
   {
     RunOptions o;
     o.end_time    = scene.time_stepping.end_time;
+    o.time_step   = scene.time_stepping.time_step;
     o.output_rate = scene.time_stepping.output_rate;
     o.solver.method = scene.contact.solver == "exact-local" ? ProxSolverSettings::Method::exact_local
                                                             : ProxSolverSettings::Method::projected;
@@ -54,7 +55,7 @@ namespace beamslider
     , options_(options)
     , thickness_(beam.thickness())
     , stepper_(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene),
-               BaseExcitation::from_scene(scene.excitation), scene.time_stepping.time_step, options.solver)
+               BaseExcitation::from_scene(scene.excitation), options.time_step, options.solver)
   {
     const BaseExcitation base = BaseExcitation::from_scene(scene.excitation);
     period_ = std::isfinite(base.period()) ? base.period() : options_.period_without_excitation;

@@ -101,6 +101,10 @@ namespace beamslider
   struct RunOptions
   {
     double end_time    = 60.;   // [s]
+    // The model's time step [s]: from_scene gives the ROM's ('Time stepping/
+    // Time step'); a run of another model sets its own (the FE's is 'FE time
+    // step'). The scene's value is never overwritten for it.
+    double time_step = 0.;
     double output_rate = 1000.; // trace rows per second [1/s]; 0: every step
     double probe_position_over_L = 4. / 7.;
     bool prescribed_slider_position = false; // hold x_C (seed §4.2)

@@ -98,7 +98,7 @@ namespace beamslider
     return s;
   }
 
-  PcsBranch run_pcs_branch(const Scene &scene, BeamSystem &beam, const PcsSweepSettings &settings,
+  PcsBranch run_pcs_branch(const Scene &scene, BeamSystem &beam, const PcsSweepSettings &settings, const double time_step,
                            const SweepDirection direction, const std::function<void(const PcsPoint &)> &on_point)
   {
     settings.validate(scene);
@@ -110,6 +110,7 @@ namespace beamslider
     Scene start_scene                          = scene;
     start_scene.initial.slider_position_over_L = positions.front();
     RunOptions options                         = RunOptions::from_scene(scene);
+    options.time_step                          = time_step;
     options.prescribed_slider_position         = true;
     options.output_rate                        = 1.; // no trace rows needed
     options.progress_interval                  = 1e300;

@@ -82,7 +82,8 @@ namespace beamslider
   // `on_point` is called after every position (for writing and progress).
   // A contact-solver failure or a non-finite state stops the branch: the
   // points reached are kept and last_run says when, where and why.
-  PcsBranch run_pcs_branch(const Scene &scene, BeamSystem &beam, const PcsSweepSettings &settings,
+  // `time_step` is the model's [s].
+  PcsBranch run_pcs_branch(const Scene &scene, BeamSystem &beam, const PcsSweepSettings &settings, double time_step,
                            SweepDirection direction,
                            const std::function<void(const PcsPoint &)> &on_point = {});
 

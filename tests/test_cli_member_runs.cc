@@ -1,5 +1,5 @@
 // Ensembles and the error ladder as persisted, distributed member runs
-// (verification/cli/member_runs.h), end to end: a ladder killed with
+// (verification/studies/member_runs.h), end to end: a ladder killed with
 // SIGKILL and started again ends with the files of an uninterrupted run; a
 // members file cut short is resumed, its complete rows kept (not run
 // again); a members file of other settings is not reused; two MPI ranks give

@@ -154,12 +154,12 @@ TEST(PcsSweep, MirroredBranchesAgree)
   s.low_over_L  = 0.20;
   s.high_over_L = 0.23;
   RomBeamSystem left_beam = RomBeamSystem::from_scene(scene, beam.modes(5).basis);
-  const PcsBranch left    = run_pcs_branch(scene, left_beam, s, SweepDirection::up);
+  const PcsBranch left    = run_pcs_branch(scene, left_beam, s, scene.time_stepping.time_step, SweepDirection::up);
 
   s.low_over_L             = 0.77;
   s.high_over_L            = 0.80;
   RomBeamSystem right_beam = RomBeamSystem::from_scene(scene, beam.modes(5).basis);
-  const PcsBranch right    = run_pcs_branch(scene, right_beam, s, SweepDirection::down);
+  const PcsBranch right    = run_pcs_branch(scene, right_beam, s, scene.time_stepping.time_step, SweepDirection::down);
 
   ASSERT_EQ(left.last_run.status, RunStatus::completed) << left.last_run.message;
   ASSERT_EQ(right.last_run.status, RunStatus::completed) << right.last_run.message;

@@ -36,14 +36,13 @@ namespace beamslider
     if (options.model != "fe" && options.model != "rom")
       throw InputError("--model '" + options.model + "' is not one of fe, rom");
     Scene scene = read_command_scene(common, options.case_name);
-    const ModelSetting setting    = scene_model(scene, options.model);
-    scene.time_stepping.time_step = setting.time_step; // the FE runs at the scene's FE time step
+    const ModelSetting setting = scene_model(scene, options.model); // the FE at the scene's FE time step
     const double end_time = options.end_time.value_or(0.2);
     if (!(options.start_time < end_time))
       throw InputError("--start-time " + std::to_string(options.start_time) + " s must lie before the end time " +
                        std::to_string(end_time) + " s");
     const double frame_interval = 1. / options.frame_rate;
-    const double dt             = scene.time_stepping.time_step;
+    const double dt             = setting.time_step;
     const double n_frames       = std::floor((end_time - options.start_time) / frame_interval + 1e-9) + 1;
     if (n_frames > 20000)
       throw InputError("animate would write " + std::to_string(static_cast<long>(n_frames)) +
@@ -57,6 +56,7 @@ namespace beamslider
               << dir << std::endl;
 
     RunOptions run_options        = RunOptions::from_scene(scene);
+    run_options.time_step         = dt;
     run_options.end_time          = end_time;
     run_options.progress_interval = 1e9;
     AdaptationRun run(scene, *beam, run_options);

@@ -8,7 +8,7 @@
 #include "fem/fe_modes.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/studies/console.h"
 

@@ -2,9 +2,10 @@
 #include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
-#include "verification/cli/child_process.h"
+#include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/build_info.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>
@@ -172,9 +173,9 @@ namespace beamslider
       for (std::size_t i = 0; i < command_line().size(); ++i)
         run << (i ? " " : "") << shell_quoted(command_line()[i]);
       run << "\nworking directory: " << fs::current_path(ec).string() << "\nstarted:   " << when
-          << "\nversion:   beamslider " << BEAMSLIDER_VERSION_STRING << "\nrevision:  " << BEAMSLIDER_REVISION
+          << "\nversion:   beamslider " << build_info().version << "\nrevision:  " << build_info().revision
           << " (git describe of the source tree when the build was configured)\n"
-          << "built for: " << BEAMSLIDER_BUILT_FOR
+          << "built for: " << build_info().built_for
           << " (results depend on the instruction set in their last bits; CMake option BEAMSLIDER_NATIVE)\n"
           << "scene:     parameters.prm (the scene '" << scene.name << "' with its overrides)\n";
       if (!command.name.empty())
@@ -273,55 +274,4 @@ namespace beamslider
                        std::to_string(n_elements));
   }
 
-  namespace
-  {
-    std::vector<std::string> &failed_outputs()
-    {
-      static std::vector<std::string> failures;
-      return failures;
-    }
-  } // namespace
-
-  void note_output_failure(const std::string &what)
-  {
-    if (launch_rank() == 0 || !mpi_started()) // once, not per rank of a command on MPI
-      std::cerr << "error: " << what << std::endl;
-    failed_outputs().push_back(what);
-  }
-
-  const std::vector<std::string> &output_failures() { return failed_outputs(); }
-
-  void clear_output_failures() { failed_outputs().clear(); }
-
-  bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments)
-  {
-    // The interpreter was found once, at configure time (CMake); the script
-    // and every argument go to it as separate strings, never through a shell.
-    std::vector<std::string> argv = {BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script};
-    argv.insert(argv.end(), arguments.begin(), arguments.end());
-    const ChildResult result = run_child(argv, ChildEnvironment::inherited, ChildGroup::own);
-    if (!result.succeeded())
-      note_output_failure("the chart of " + script + " was not drawn (" + result.error +
-                          "); the CSV files beside it are complete");
-    return result.succeeded();
-  }
-
-  EarlyPlot::EarlyPlot(const std::string &script)
-    : script_(script)
-    , child_({BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script, "--arguments-from-stdin"})
-  {}
-
-  bool EarlyPlot::draw(const std::vector<std::string> &arguments)
-  {
-    const ChildResult result = child_.finish(arguments);
-    if (!result.succeeded())
-      note_output_failure("the chart of " + script_ + " was not drawn (" + result.error +
-                          "); the CSV files beside it are complete");
-    return result.succeeded();
-  }
-
-  std::string build_revision()
-  {
-    return std::string("beamslider ") + BEAMSLIDER_VERSION_STRING + " " + BEAMSLIDER_REVISION;
-  }
 } // namespace beamslider

@@ -1,7 +1,7 @@
 // `beamslider ensemble [SCENE] --model rom|fe [--case NAME] [--members K]
 // [--perturbation EPS] [--end-time S] [--against DIR]`: K runs that differ
 // only by the start x_C/L + m·EPS (verification/studies/ensemble.h), in
-// threads, or under `mpirun -n P` on P ranks (verification/cli/member_runs.h).
+// threads, or under `mpirun -n P` on P ranks (verification/studies/member_runs.h).
 //
 // Writes into the output folder:
 //   member_runs.csv    every finished member, appended as it finishes (all
@@ -24,7 +24,7 @@
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/member_runs.h"
+#include "verification/studies/member_runs.h"
 #include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"
 #include "verification/studies/ensemble.h"

@@ -6,10 +6,10 @@
 // (the same tables and verdict as the report). Under `mpirun -n P` the
 // members run on P ranks; stopped and started again the same way into the
 // same folder, it runs only the members not yet in member_runs.csv
-// (verification/cli/member_runs.h).
+// (verification/studies/member_runs.h).
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/member_runs.h"
+#include "verification/studies/member_runs.h"
 #include "verification/report/report_ladder.h"
 #include "verification/studies/console.h"
 #include "verification/studies/error_ladder.h"

@@ -13,7 +13,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <deal.II/base/exceptions.h>

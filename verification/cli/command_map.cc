@@ -2,7 +2,7 @@
 // A:B:STEP [--start A:B:STEP] [--axis "Section/Name=A:B:STEP"]... [--members K]
 // [--model rom|fe] [--end-time S]`: the adaptation on every cell of a grid
 // (verification/studies/operating_map.h), spread over MPI ranks
-// (verification/cli/mpi_cells.h).
+// (verification/studies/mpi_cells.h).
 //
 // Writes into the output folder:
 //   map.csv               one row per cell and member, the grid values first;
@@ -23,7 +23,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"

@@ -6,7 +6,7 @@
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

@@ -433,14 +433,12 @@ namespace beamslider
     // The model: as asked, or the cheapest whose ensemble end state the
     // scene's error ladder puts within the tolerance of the FE reference's.
     ModelSetting &setting = outcome.setting;
-    setting = scene_model(scene, options.model == "fe" ? "fe" : "rom");
-    scene.time_stepping.time_step = setting.time_step; // the FE runs at the scene's FE time step
+    setting = scene_model(scene, options.model == "fe" ? "fe" : "rom"); // the FE at the scene's FE time step
     std::string &why = outcome.why;
     if (resuming)
       {
         setting = saved.setting;
         why     = saved.why;
-        scene.time_stepping.time_step = setting.time_step;
       }
     else if (options.model == "auto")
       {
@@ -452,21 +450,22 @@ namespace beamslider
         const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
         setting = choose_model(scene, *options.tolerance, cache, why);
         console() << why << std::endl;
-        scene.time_stepping.time_step = setting.time_step;
       }
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, setting);
 
     const double end_time = scene.time_stepping.end_time;
     console() << "simulate " << scene.name << (the_case ? " --case " + the_case->name : std::string()) << ": "
-              << setting.label() << ", " << end_time << " s (" << std::llround(end_time / scene.time_stepping.time_step)
+              << setting.label() << ", " << end_time << " s (" << std::llround(end_time / setting.time_step)
               << " steps), output in " << dir << std::endl;
 
     RunOptions run_options        = RunOptions::from_scene(scene);
+    run_options.time_step         = setting.time_step;
     run_options.progress_interval = std::max(1., end_time / 20.);
-    if (!(scene.time_stepping.time_step <= beam->max_stable_time_step()))
+    if (!(setting.time_step <= beam->max_stable_time_step()))
       {
         std::ostringstream m;
-        m << "Parameter 'Time stepping/Time step' = " << scene.time_stepping.time_step
+        m << "Parameter 'Time stepping/" << (setting.family == "fe" ? "FE time step" : "Time step")
+          << "' = " << setting.time_step
           << " s is not allowed: the " << setting.label() << " is stable only for time steps up to "
           << beam->max_stable_time_step() << " s (explicit scheme: 2/omega_max)";
         throw InputError(m.str());
@@ -591,7 +590,7 @@ namespace beamslider
           run.save(out);
           write_file_atomically(dir + "/checkpoint.bin", checkpoint_file_bytes(out.bytes()));
         };
-        const double eps = 1e-9 * scene.time_stepping.time_step;
+        const double eps = 1e-9 * setting.time_step;
         double t_stop    = every > 0. ? (std::floor(run.state().t / every + 1e-9) + 1.) * every : end_time;
         while (true)
           {

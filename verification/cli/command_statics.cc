@@ -26,7 +26,7 @@
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
 
 #include <chrono>

@@ -4,6 +4,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
@@ -73,7 +74,8 @@ namespace beamslider
               << " s wall), into " << dir << std::endl;
 
     const PcsStudy study = run_pcs_sweep(scene, settings, dir);
-    std::string text = describe(study, scene);
+    const bool plotted   = run_plot_script("plot_pcs.py", {dir, scene.name});
+    std::string text     = describe(study, scene);
     if (!options.against.empty())
       {
         std::vector<PcsPoint> points = study.up.points;
@@ -87,7 +89,7 @@ namespace beamslider
       }
     write_text_file(dir + "/summary.md",
                     "# PCS sweep: scene `" + scene.name + "`, model " + settings.model + "\n\n" + text);
-    console() << text << "wrote " << dir << "/pcs.csv" << (study.plotted ? " and pcs.png" : "") << std::endl;
+    console() << text << "wrote " << dir << "/pcs.csv" << (plotted ? " and pcs.png" : "") << std::endl;
     const bool complete = study.up.last_run.status == RunStatus::completed &&
                           study.down.last_run.status == RunStatus::completed;
     for (const auto *branch : {&study.up, &study.down})

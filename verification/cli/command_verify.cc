@@ -14,10 +14,11 @@
 #include "contact/interruption.h"
 #include "contact/output_file.h"
 #include "meshes/scene.h"
-#include "verification/cli/child_process.h"
+#include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/member_runs.h"
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/member_runs.h"
+#include "verification/studies/build_info.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/report/report_ladder.h"
 #include "verification/report/report_region.h"
 #include "verification/report/report.h"
@@ -144,6 +145,18 @@ namespace beamslider
     report.overrides  = common.overrides;
     report.ladder_diagnostics = options.diagnostics;
     const auto start = std::chrono::steady_clock::now();
+    // Section 4's cases, each as `simulate <scene> --case <name>` runs it.
+    const CaseRunner run_case = [&](const CaseRun &c) {
+      CommonOptions case_common;
+      case_common.scene_file = report.scene_file.empty() ? scene.name : report.scene_file;
+      case_common.overrides  = report.overrides;
+      case_common.output_dir = c.output_dir;
+      SimulateOptions simulate;
+      simulate.model     = "rom";
+      simulate.case_name = c.case_name;
+      simulate.end_time  = c.end_time;
+      return run_simulation(case_common, simulate, false);
+    };
 
     // The sections in order; --section picks some (a section alone takes
     // what it needs from the scene, none reads another's results).
@@ -155,7 +168,7 @@ namespace beamslider
       [&] { add_frequency_section(report, scene); },
       [&] { add_coefficient_section(report, scene, options.full); },
       [&] { add_backbone_section(report, scene, options.full); },
-      [&] { add_contact_section(report, scene, options.full); },
+      [&] { add_contact_section(report, scene, options.full, run_case); },
       [&] { add_fe_rom_section(report, scene, options.full); },
       [&] { add_map_section(report, scene, options.full); },
       [&] { add_system1_section(report, scene, options.full); },

@@ -3,7 +3,7 @@
 // the process exit code. User errors are thrown as InputError.
 #pragma once
 
-#include "verification/cli/child_process.h"
+#include "verification/report/charts.h"
 
 #include <optional>
 #include <stdexcept>
@@ -110,6 +110,9 @@ namespace beamslider
     static constexpr double max_trace_rows = 1e7;
   };
   int run_simulate(const CommonOptions &common, const SimulateOptions &options);
+  // simulate's run, returning what happened (SimulationOutcome: studies/simulation_cases.h).
+  struct SimulationOutcome;
+  SimulationOutcome run_simulation(const CommonOptions &common, const SimulateOptions &options, bool verbose = true);
 
   struct SweepOptions
   {
@@ -238,11 +241,6 @@ namespace beamslider
   // that must check what the folder holds before it writes there).
   std::string output_dir_path(const CommonOptions &common, const Scene &scene, const std::string &command);
 
-  // This build's version and source revision ("beamslider 0.9.0 1a2b3c…"),
-  // as run.txt records it: part of what a resumable study's records were
-  // computed with (member_runs.h).
-  std::string build_revision();
-
   // Appends to run.txt in every folder the command wrote into how it ended:
   // completed, or failed / refused / interrupted with its exit status, the
   // first line of `messages` and that the folder's results are partial.
@@ -254,33 +252,4 @@ namespace beamslider
   // The sub-command's options with their effective values, for command.prm
   // (main() records them once the command line is parsed).
   void record_command_settings(const std::string &command, const std::vector<CommandSetting> &settings);
-  // Runs a plotting script from scripts/ with Debian's python3 + matplotlib,
-  // as a child process with an argument vector (no shell). A chart that could
-  // not be drawn is a result not written: it is recorded (note_output_failure)
-  // and the command exits with status 1 at its end; returns whether it worked.
-  bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments);
-
-  // The same script started before its data exist, so that Python and
-  // matplotlib load (~0.35 s) while the run computes: the script is started
-  // with --arguments-from-stdin and waits; draw() hands it the arguments and
-  // waits for the chart, with run_plot_script's failure handling. Destroyed
-  // without draw() (a failed or interrupted run), the script exits without
-  // drawing.
-  class EarlyPlot
-  {
-  public:
-    explicit EarlyPlot(const std::string &script);
-    bool draw(const std::vector<std::string> &arguments);
-
-  private:
-    std::string script_;
-    EarlyChild child_;
-  };
-
-  // A result that could not be written but need not stop the command (a
-  // chart): printed on stderr at once and remembered; main() exits with 1.
-  void note_output_failure(const std::string &what);
-  const std::vector<std::string> &output_failures();
-  // Forgets them: a new command starts (the Python module runs many in one process).
-  void clear_output_failures();
 } // namespace beamslider

@@ -4,9 +4,10 @@
 #pragma once
 
 #include "meshes/scene.h"
+#include "verification/studies/number_text.h"
+#include "verification/studies/pcs_sweep.h"
+#include "verification/studies/simulation_cases.h"
 
-#include <chrono>
-#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,30 +25,6 @@ namespace beamslider
     // Section 5's error ladder with its diagnostic rungs (`--diagnostics`).
     bool ladder_diagnostics = false;
   };
-
-  // Numbers in report text: scientific (1.23e-04) or fixed (0.123) notation.
-  inline std::string sci(const double x, const int digits = 3)
-  {
-    std::ostringstream s;
-    s << std::scientific << std::setprecision(digits) << x;
-    return s.str();
-  }
-  inline std::string fixed(const double x, const int digits = 3)
-  {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(digits) << x;
-    return s.str();
-  }
-  // Wall time since `start`, as "12 s", for the report's timing lines.
-  inline std::string seconds_since(const std::chrono::steady_clock::time_point &start)
-  {
-    return fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0) + " s";
-  }
-  // With its sign always written: a shift or a difference.
-  inline std::string signed_fixed(const double x, const int digits = 3)
-  {
-    return (x >= 0 ? "+" : "") + fixed(x, digits);
-  }
 
   // "2 cores, <CPU model>": the machine a report's wall times were measured
   // on (report_map.cc).
@@ -68,7 +45,8 @@ namespace beamslider
 
   // Section 4: slider contact dynamics on the ROM: published cases and
   // ablations, PCS sweeps (report_contact.cc).
-  void add_contact_section(Report &report, const Scene &scene, bool full);
+  // Each case runs through `run_case` (the command line's simulate).
+  void add_contact_section(Report &report, const Scene &scene, bool full, const CaseRunner &run_case);
 
   // Section 5: FE against ROM adaptation traces, speed against accuracy,
   // failure chart (report_fe_rom.cc).
@@ -88,4 +66,16 @@ namespace beamslider
   // The scene overrides of section 8's 3D strip (ν = 0.3, 70 × 4 × 1 Q2
   // elements), also timed by the benchmark SolidAssembly.
   std::vector<std::string> solid_strip_3d_overrides();
+
+  // The prescribed-position sweep (report_pcs.cc).
+  // A few lines of Markdown: the jumps, the zero crossings (stable/unstable),
+  // where the free slider went, and the costs.
+  std::string describe(const PcsStudy &study, const Scene &scene);
+
+  // Report subsection (part of section 4): 0.5 s settling and 0.2 s
+  // averaging per position; quick mode Δx_C/L = 0.005 and a 20 s free run
+  // (~15 s wall on the ROM), full mode the seed's 0.003 and the scene's whole
+  // free run. (Settling 2 s instead of 0.5 s moved no jump by a step on
+  // system1.)
+  void add_pcs_sweep_subsection(Report &report, const Scene &scene, bool full);
 } // namespace beamslider

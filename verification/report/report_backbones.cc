@@ -16,7 +16,7 @@
 #include "fem/fe_modes.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
-#include "verification/cli/commands.h"
+#include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 

@@ -7,7 +7,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
-#include "verification/cli/commands.h"
+#include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/studies/console.h"

@@ -8,7 +8,6 @@
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
-#include "verification/cli/commands.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/pcs_sweep.h"
@@ -43,7 +42,7 @@ namespace beamslider
     }
   } // namespace
 
-  void add_contact_section(Report &report, const Scene &scene, const bool full)
+  void add_contact_section(Report &report, const Scene &scene, const bool full, const CaseRunner &run_case)
   {
     auto &md = report.text;
     console() << "[verify] contact dynamics: published cases and ablations ..." << std::endl;
@@ -74,19 +73,13 @@ namespace beamslider
       {
         // The cases are defined on mueller2023's rig; on another scene they
         // still run (same overrides), and the report says which scene.
-        CommonOptions common;
-        common.scene_file = report.scene_file.empty() ? scene.name : report.scene_file;
-        common.overrides  = report.overrides;
-        common.output_dir = report.dir + "/cases/" + c.name;
-        SimulateOptions options;
-        options.model     = "rom";
-        options.case_name = c.name;
+        CaseRun run{c.name, std::nullopt, report.dir + "/cases/" + c.name};
         if (!full && c.name != "signature-move")
-          options.end_time = std::min(20., c.end_time);
+          run.end_time = std::min(20., c.end_time);
         console() << "  case " << c.name << " ..." << std::flush;
         try
           {
-            const SimulationOutcome o = run_simulation(common, options, false);
+            const SimulationOutcome o = run_case(run);
             stop_if_interrupted(); // the case stopped: no row for it, no further case
             const std::string differs = disagreements(o.verdict, c.expected);
             console() << " " << o.wall_seconds << " s: " << o.verdict.line << std::endl;

@@ -20,7 +20,7 @@
 #include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/cli/commands.h"
+#include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/report/report_ladder.h"
 #include "verification/report/report_region.h"
@@ -77,6 +77,8 @@ namespace beamslider
       const PcsStudy fe     = run_pcs_sweep(scene, settings, fe_dir);
       settings.model        = "rom";
       const PcsStudy rom    = run_pcs_sweep(scene, settings, rom_dir);
+      for (const std::string &dir : {fe_dir, rom_dir})
+        run_plot_script("plot_pcs.py", {dir, scene.name});
       // A branch that stopped early (its run left the physically possible
       // set, say) holds the first positions of the other's: compare those,
       // and say which branch stopped, where and why.

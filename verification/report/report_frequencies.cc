@@ -2,7 +2,7 @@
 #include "contact/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/cli/commands.h"
+#include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/analytic_beam.h"
 #include "verification/studies/console.h"

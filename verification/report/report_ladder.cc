@@ -1,8 +1,8 @@
 // The error ladder's files and its Markdown, see report_ladder.h.
 #include "verification/report/report_ladder.h"
 
-#include "verification/cli/commands.h"
-#include "verification/cli/member_runs.h"
+#include "verification/report/charts.h"
+#include "verification/studies/member_runs.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"

@@ -2,7 +2,7 @@
 // command show it: run_and_describe_ladder runs the rungs, writes the files
 // and returns the Markdown. The members of all rungs run as one list, longest
 // first, over the MPI ranks under mpirun, else over the cores
-// (verification/cli/member_runs.h); each finished member is appended to
+// (verification/studies/member_runs.h); each finished member is appended to
 // member_runs.csv at once, so that a ladder stopped (Ctrl-C, kill -9) and
 // started again into the same folder runs only the members not there yet and
 // ends with the same files. The tables are written when every member is done:

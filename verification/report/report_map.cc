@@ -14,7 +14,7 @@
 #include "contact/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/cli/commands.h"
+#include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/map_fe_check.h"

@@ -3,7 +3,7 @@
 #include "verification/report/report_region.h"
 
 #include "contact/csv_writer.h"
-#include "verification/cli/member_runs.h"
+#include "verification/studies/member_runs.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"

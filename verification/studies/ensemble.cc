@@ -78,7 +78,6 @@ namespace beamslider
     member.perturbation = index * perturbation;
     Scene s             = scene;
     s.initial.slider_position_over_L += member.perturbation;
-    s.time_stepping.time_step = model.time_step;
     validate_scene(s);
     std::unique_ptr<BeamSystem> beam;
     TraceThresholds thresholds;
@@ -88,6 +87,7 @@ namespace beamslider
       thresholds = trace_thresholds(scene);
     }
     RunOptions options        = RunOptions::from_scene(s);
+    options.time_step         = model.time_step;
     options.progress_interval = 1e300;
     AdaptationRun run(s, *beam, options);
     run.on_period       = [&member](const PeriodRecord &p) { member.periods.push_back(p); };

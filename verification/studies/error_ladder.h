@@ -138,7 +138,7 @@ namespace beamslider
   // Runs every rung as an ensemble of `members` members over [0, end_time]:
   // all members of all rungs, with the first refinement of every check, as
   // one list, longest first (in threads of this process, or by `runner`:
-  // spread over MPI ranks and persisted, see verification/cli/member_runs.h);
+  // spread over MPI ranks and persisted, see verification/studies/member_runs.h);
   // then the checks' further rounds, if any, by `rounds` (default: as the
   // first list) in step with the other ranks by `share`
   // (run_convergence_checks). `before_rung` (optional) announces each rung,

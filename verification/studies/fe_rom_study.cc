@@ -105,8 +105,7 @@ namespace beamslider
 
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene_in, const ModelSetting &setting)
   {
-    Scene scene                     = scene_in;
-    scene.time_stepping.time_step   = setting.time_step;
+    Scene scene = scene_in;
     if (setting.family == "fe")
       {
         if (setting.n_elements)
@@ -162,13 +161,13 @@ namespace beamslider
     const auto start = std::chrono::steady_clock::now();
     try
       {
-        Scene scene                   = scene_in;
-        scene.time_stepping.time_step = setting.time_step;
+        Scene scene = scene_in;
         scene.initial.slider_position_over_L += setting.slider_offset_over_L;
         if (setting.family == "fe" && setting.n_elements)
           scene.discretisation.n_elements = setting.n_elements;
         auto beam          = make_beam_model(scene, setting);
         RunOptions options = RunOptions::from_scene(scene);
+        options.time_step  = setting.time_step;
         options.end_time   = window;
         options.progress_interval = 1e9;
         AdaptationRun adaptation(scene, *beam, options);

@@ -5,7 +5,6 @@
 #include "contact/beam_system.h"
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
-#include "verification/cli/commands.h"
 #include "verification/studies/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 
@@ -205,9 +204,9 @@ namespace beamslider
           {
             ModelSetting model = scene_model(member_scene, settings.model.family);
             model.integrator   = settings.model.integrator;
-            member_scene.time_stepping.time_step = model.time_step; // the FE at the scene's FE time step
             const std::unique_ptr<BeamSystem> beam = make_beam_model(member_scene, model);
             RunOptions options        = RunOptions::from_scene(member_scene);
+            options.time_step         = model.time_step; // the FE at the scene's FE time step
             options.progress_interval = 1e300;
             AdaptationRun run(member_scene, *beam, options);
             run.on_period = [&periods](const PeriodRecord &p) { periods.push_back(p); };

@@ -19,8 +19,9 @@
 //                  each branch (and the free run) reached its end; status
 //                  other than "completed" = stopped early, its pcs.csv rows
 //                  are the positions it reached (also in PcsStudy and
-//                  describe())
-//   pcs.png        amplitude and F̄_x against x_C/L (seed Figs. 10b and 14)
+//                  report.h's describe())
+// The chart pcs.png (amplitude and F̄_x against x_C/L, seed Figs. 10b and 14)
+// is the caller's: scripts/plot_pcs.py on the folder.
 // Rows are flushed as they are computed: a stopped sweep keeps its points.
 // The two branches and the free run are independent runs and go on the
 // machine's cores at once (verification/studies/parallel_for.h): each
@@ -30,7 +31,6 @@
 
 #include "contact/prescribed_position_sweep.h"
 #include "meshes/scene.h"
-#include "verification/report/report.h"
 
 #include <optional>
 #include <string>
@@ -62,7 +62,6 @@ namespace beamslider
     };
     std::optional<FreeJump> free_jump;
     double wall_seconds = 0;
-    bool plotted = false;         // pcs.png written
   };
 
   PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir);
@@ -72,14 +71,4 @@ namespace beamslider
   // sets its wall time.
   double pcs_sweep_chain_time(const PcsStudySettings &settings, unsigned int cores);
 
-  // A few lines of Markdown: the jumps, the zero crossings (stable/unstable),
-  // where the free slider went, and the costs.
-  std::string describe(const PcsStudy &study, const Scene &scene);
-
-  // Report subsection (part of section 4): 0.5 s settling and 0.2 s
-  // averaging per position; quick mode Δx_C/L = 0.005 and a 20 s free run
-  // (~15 s wall on the ROM), full mode the seed's 0.003 and the scene's whole
-  // free run. (Settling 2 s instead of 0.5 s moved no jump by a step on
-  // system1.)
-  void add_pcs_sweep_subsection(Report &report, const Scene &scene, bool full);
 } // namespace beamslider

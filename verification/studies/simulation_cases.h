@@ -14,9 +14,10 @@
 #include "contact/adaptation_run.h"
 #include "contact/trace_analysis.h"
 #include "meshes/scene.h"
-#include "verification/cli/commands.h"
 #include "verification/studies/fe_rom_study.h"
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,5 +87,17 @@ namespace beamslider
     std::vector<PeriodRecord> periods; // as written to periods.csv, with the energy bookkeeping
     double wall_seconds = 0;
   };
-  SimulationOutcome run_simulation(const CommonOptions &common, const SimulateOptions &options, bool verbose = true);
+
+  // One named case to run as `beamslider simulate <scene> --case <name>` runs
+  // it (ROM), into its own folder. The command line provides the runner
+  // (verification/cli/command_simulate.cc: run_simulation), which owns the
+  // folder, its records and its charts; a study or a report section takes it
+  // as a function and never calls the command line itself.
+  struct CaseRun
+  {
+    std::string case_name;
+    std::optional<double> end_time; // [s], else the case's
+    std::string output_dir;
+  };
+  using CaseRunner = std::function<SimulationOutcome(const CaseRun &)>;
 } // namespace beamslider

@@ -1,5 +1,5 @@
 // Manager–worker distribution of cells over MPI, see mpi_cells.h.
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 
 #include "meshes/scene.h"
 #include "verification/studies/parallel_for.h"

@@ -19,7 +19,7 @@
 // says so). A row cut short by a kill is dropped and its member run again.
 #pragma once
 
-#include "verification/cli/mpi_cells.h"
+#include "verification/studies/mpi_cells.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 

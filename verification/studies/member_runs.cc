@@ -1,10 +1,10 @@
 // Persisted, distributed member runs, see member_runs.h.
-#include "verification/cli/member_runs.h"
+#include "verification/studies/member_runs.h"
 
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
 #include "contact/output_file.h"
-#include "verification/cli/commands.h"
+#include "verification/studies/build_info.h"
 #include "verification/studies/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
@@ -61,8 +61,7 @@ namespace beamslider
         {
           if (g.n_members == 0)
             throw InputError("--members 0: an ensemble needs at least one member");
-          Scene s                   = g.scene;
-          s.time_stepping.time_step = g.model.time_step;
+          Scene s = g.scene;
           validate_scene(s);
           s.initial.slider_position_over_L += (g.n_members - 1) * g.perturbation;
           if (!(s.initial.slider_position_over_L <= 1.))

@@ -1,0 +1,93 @@
+// The layers look down only: every #include "folder/..." of the project's
+// sources names a layer at or below the including file's. The order is
+// doc/architecture.md's:
+//   meshes (the Scene) ← contact (the contact step, runs, files) ← reduced
+//   ← fem ← verification/studies ← verification/report ← the front ends:
+//   verification/cli, python and verification/benchmarks.
+// A study or a report section that needs something of the command line
+// (running a case as `simulate` does) takes it as a function argument
+// (simulation_cases.h: CaseRunner), never by including cli/.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace
+{
+  // Layer folders and their rank, lowest first; a front end is rank 6.
+  const std::vector<std::pair<std::string, int>> layers = {
+    {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"verification/studies", 4},
+    {"verification/report", 5}, {"verification/cli", 6}, {"python", 6}, {"verification/benchmarks", 6}};
+
+  // The rank of a path relative to the source tree (-1: not a layer).
+  int rank_of(const std::string &path)
+  {
+    int rank = -1;
+    std::size_t matched = 0;
+    for (const auto &[folder, r] : layers)
+      if (path.rfind(folder + "/", 0) == 0 && folder.size() > matched)
+        {
+          rank    = r;
+          matched = folder.size();
+        }
+    return rank;
+  }
+
+  struct Include
+  {
+    std::string file; // relative to the source tree
+    int line;
+    std::string target;
+  };
+
+  std::vector<Include> project_includes()
+  {
+    const fs::path root = BEAMSLIDER_SOURCE_DIR;
+    const std::regex include_line(R"re(^\s*#\s*include\s*"([^"]+)")re");
+    std::vector<Include> found;
+    for (const auto &[folder, rank] : layers)
+      for (const auto &entry : fs::recursive_directory_iterator(root / folder))
+        {
+          const std::string ext = entry.path().extension().string();
+          if (!entry.is_regular_file() || (ext != ".h" && ext != ".cc"))
+            continue;
+          const std::string file = fs::relative(entry.path(), root).generic_string();
+          if (rank_of(file) != rank) // a sub-folder that is a layer of its own
+            continue;
+          std::ifstream in(entry.path());
+          std::string text;
+          std::smatch m;
+          for (int line = 1; std::getline(in, text); ++line)
+            if (std::regex_search(text, m, include_line))
+              found.push_back({file, line, m[1]});
+        }
+    return found;
+  }
+} // namespace
+
+TEST(Architecture, EveryIncludeLooksDown)
+{
+  const std::vector<Include> includes = project_includes();
+  // The scan must see the code: the project has several hundred includes
+  // between its folders, and cli/ includes studies/.
+  std::size_t between_layers = 0;
+  bool cli_includes_studies  = false;
+  for (const Include &i : includes)
+    {
+      const int from = rank_of(i.file), to = rank_of(i.target);
+      if (to < 0)
+        continue; // a header beside the file, or a system one
+      between_layers += from != to;
+      cli_includes_studies = cli_includes_studies || (i.file.rfind("verification/cli/", 0) == 0 && to == 4);
+      EXPECT_LE(to, from) << i.file << ":" << i.line << " includes \"" << i.target
+                          << "\", a layer above its own (doc/architecture.md)";
+    }
+  EXPECT_GT(between_layers, 200u);
+  EXPECT_TRUE(cli_includes_studies);
+}
