@@ -91,3 +91,40 @@ TEST(Architecture, EveryIncludeLooksDown)
   EXPECT_GT(between_layers, 200u);
   EXPECT_TRUE(cli_includes_studies);
 }
+
+// README.md and doc/ name only files and folders that exist: a path of the
+// project's folders in the text (`fem/fe_modes.h`, `scripts/setup.sh`) is
+// there; one without an extension names a module (its .h or .cc is there).
+// Left out: generated report folders other than the published one, globs
+// and placeholders (`tests/test_*.cc`, `command_<name>.cc`), and the scene a
+// step of doc/architecture.md §4 creates.
+TEST(Architecture, TheDocsNameOnlyPathsThatExist)
+{
+  const fs::path root = BEAMSLIDER_SOURCE_DIR;
+  const std::regex path_in_text(
+    R"re((^|[^A-Za-z0-9_/.-])((contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
+  std::vector<fs::path> docs = {root / "README.md"};
+  for (const auto &entry : fs::directory_iterator(root / "doc"))
+    if (entry.path().extension() == ".md")
+      docs.push_back(entry.path());
+  std::size_t checked = 0;
+  for (const fs::path &doc : docs)
+    {
+      std::ifstream in(doc);
+      std::string text;
+      for (int line = 1; std::getline(in, text); ++line)
+        for (std::sregex_iterator m(text.begin(), text.end(), path_in_text), end; m != end; ++m)
+          {
+            const std::string path = (*m)[2];
+            if (!(*m)[4].str().empty() || path == "meshes/myscene.prm" ||
+                (path.rfind("reports/", 0) == 0 && path.rfind("reports/mueller2023-full", 0) != 0))
+              continue;
+            ++checked;
+            const bool exists = fs::exists(root / path) || fs::exists(root / (path + ".h")) ||
+                                fs::exists(root / (path + ".cc"));
+            EXPECT_TRUE(exists) << fs::relative(doc, root).string() << ":" << line << " names " << path
+                                << ", which does not exist";
+          }
+    }
+  EXPECT_GT(checked, 100u); // the docs name many files: the scan sees them
+}

@@ -12,7 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
 #include <sstream>
 
 using namespace beamslider;
@@ -71,4 +75,70 @@ TEST(PublishedReport, ThePublishedROMStillEndsWithinItsPublishedInterval)
                                       "and commit it";
       EXPECT_LE(x, high + rounding) << "the published ROM now ends above the published report's interval";
     }
+}
+
+// README quotes the verdict at the scene's own point from the published
+// report: each quoted number is the ladder.csv cell rounded to the digits
+// the README prints (a new report, or an edit of the README, that lets the
+// two disagree fails here).
+TEST(PublishedReport, TheReadmeQuotesTheLaddersNumbers)
+{
+  std::ifstream in(BEAMSLIDER_SOURCE_DIR "/README.md");
+  ASSERT_TRUE(in.good());
+  std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  readme = std::regex_replace(readme, std::regex(R"(\s+)"), " "); // lines wrap anywhere
+
+  const auto published = ladder_row("ROM N=5 (published)"), converged = ladder_row("ROM N=20");
+  std::map<std::string, std::string> reference;
+  {
+    std::ifstream csv(report_dir + "/ladder.csv");
+    std::string line;
+    std::getline(csv, line);
+    const std::vector<std::string> header = CsvWriter::cells(line);
+    while (std::getline(csv, line))
+      {
+        const std::vector<std::string> cells = CsvWriter::cells(line);
+        std::map<std::string, std::string> row;
+        for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i)
+          row[header[i]] = cells[i];
+        if (row["reference"] == "1")
+          reference = row;
+      }
+  }
+  ASSERT_FALSE(reference.empty()) << "no reference rung in ladder.csv";
+
+  // Each quoted number against its cell, to the quoted number's decimals.
+  auto expect_quoted = [](const std::string &quoted, const std::string &cell, const std::string &what) {
+    const std::size_t point = quoted.find('.');
+    const int decimals      = point == std::string::npos ? 0 : static_cast<int>(quoted.size() - point - 1);
+    EXPECT_NEAR(std::stod(quoted), std::stod(cell), 0.5 * std::pow(10., -decimals) + 1e-12)
+      << what << ": README says " << quoted << ", ladder.csv " << cell;
+  };
+  const std::string number = R"(([0-9]+\.[0-9]+))";
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(readme, m,
+                                std::regex("the published ROM \\(N = 5\\) ends at " + number + " L \\[" + number +
+                                           ", " + number + "\\]; the FE reference at " + number + " L \\[" + number +
+                                           ", " + number + "\\]: W₁ = " + number + " L \\[" + number + ", " +
+                                           number + "\\]")))
+    << "README's verdict sentence on the published ROM changed its form";
+  expect_quoted(m[1], published.at("final_x_median"), "published ROM, median");
+  expect_quoted(m[2], published.at("final_x_min"), "published ROM, lowest member");
+  expect_quoted(m[3], published.at("final_x_max"), "published ROM, highest member");
+  expect_quoted(m[4], reference.at("final_x_median"), "FE reference, median");
+  expect_quoted(m[5], reference.at("final_x_min"), "FE reference, lowest member");
+  expect_quoted(m[6], reference.at("final_x_max"), "FE reference, highest member");
+  expect_quoted(m[7], published.at("w1_to_reference"), "published ROM, W1");
+  expect_quoted(m[8], published.at("w1_low"), "published ROM, W1 interval low");
+  expect_quoted(m[9], published.at("w1_high"), "published ROM, W1 interval high");
+  ASSERT_TRUE(std::regex_search(readme, m,
+                                std::regex("\\(N = 20\\) ends at " + number + " L \\[" + number + ", " + number +
+                                           "\\], W₁ = " + number + " \\[" + number + ", " + number + "\\]")))
+    << "README's verdict sentence on the converged ROM changed its form";
+  expect_quoted(m[1], converged.at("final_x_median"), "ROM N=20, median");
+  expect_quoted(m[2], converged.at("final_x_min"), "ROM N=20, lowest member");
+  expect_quoted(m[3], converged.at("final_x_max"), "ROM N=20, highest member");
+  expect_quoted(m[4], converged.at("w1_to_reference"), "ROM N=20, W1");
+  expect_quoted(m[5], converged.at("w1_low"), "ROM N=20, W1 interval low");
+  expect_quoted(m[6], converged.at("w1_high"), "ROM N=20, W1 interval high");
 }
