@@ -22,6 +22,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -50,6 +51,289 @@ void record_effective_options(const CLI::App &command)
   beamslider::record_command_settings(command.get_name(), settings);
 }
 
+// The exit status of the exception in flight, its one-line message on
+// `errors`: 2 bad input, 1 a failure or a result not written, 128 + the
+// signal when interrupted (run_beamslider says so).
+int exit_status_of_failure(std::ostream &errors)
+{
+  try
+    {
+      throw;
+    }
+    catch (const InputError &e)
+      {
+        // Values the user gave may hold a line break or an escape sequence.
+        errors << "error: " << one_line(e.what()) << std::endl;
+        return 2;
+      }
+    catch (const std::invalid_argument &e)
+      {
+        // The library's checks of values that came from the scene or the
+        // options (a time step above the model's stability limit, ...).
+        errors << "error: " << one_line(e.what()) << std::endl;
+        return 2;
+      }
+    catch (const Interrupted &)
+      {
+        // A solver, Newton loop or continuation stopped for Ctrl-C or kill;
+        // run_beamslider says so and gives 128 + the signal.
+        return interruption_exit_code();
+      }
+    catch (const FolderInUseError &e)
+      {
+        errors << "error: " << e.what() << std::endl; // nothing was written: not a failed write
+        return 1;
+      }
+    catch (const OutputError &e)
+      {
+        errors << "error: results not written: " << one_line(e.what()) << std::endl;
+        return 1;
+      }
+    catch (const dealii::ExceptionBase &e)
+      {
+        // deal.II's what() carries a stack trace and source lines that mean
+        // nothing to a user; its name and additional information do.
+        std::ostringstream info;
+        e.print_info(info);
+        errors << "beamslider failed: " << e.get_exc_name() << ": " << info.str() << std::endl;
+        return 1;
+      }
+    catch (const std::exception &e)
+      {
+        const std::string what = e.what();
+        errors << "beamslider failed: " << (what.empty() ? "unknown error" : what) << std::endl;
+        return 1;
+      }
+  return 1;
+}
+
+// `simulate --resume DIR` continues the run of DIR's checkpoint: what
+// defines that run cannot be given beside it.
+void refuse_what_resume_takes_from_the_checkpoint(const CLI::App &simulate_cmd, const SimulateOptions &simulate)
+{
+  if (simulate.resume_dir.empty())
+    return;
+  for (const char *given : {"scene", "--set", "--case", "--model", "--output"})
+    if (simulate_cmd.get_option(given)->count() > 0)
+      throw InputError(std::string("simulate --resume takes the scene, case, model, parameters and folder from the "
+                                   "checkpoint; ") +
+                       given + " cannot be given with it (only --end-time, --checkpoint-every)");
+}
+
+// Adds the options every sub-command has (scene, --set, --output, --quiet).
+using AddCommon = std::function<void(CLI::App *)>;
+
+// One function a sub-command: it declares the sub-command and its options,
+// which parse into the struct it is given, and returns the sub-command.
+CLI::App *declare_modes(CLI::App &app, const AddCommon &add_common, ModesOptions &modes)
+{
+  auto *modes_cmd = app.add_subcommand("modes", "linear bending modes of the bare beam or with a bonded slider");
+  add_common(modes_cmd);
+  modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)")
+    ->check(finite_in(0., 1.));
+  modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(integer_in(1, 50));
+  modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(integer_in(1, 4096));
+  return modes_cmd;
+}
+
+CLI::App *declare_coefficients(CLI::App &app, const AddCommon &add_common, CoefficientsOptions &coefficients)
+{
+  auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
+  add_common(coefficients_cmd);
+  coefficients_cmd->add_option("--method", coefficients.method,
+                               "analytic | step | step-condensed | ice (a solid scene: exact | step | step-condensed | ice; "
+                               "analytic means exact there)")
+    ->check(CLI::IsMember({"analytic", "exact", "step", "step-condensed", "ice"}));
+  auto *coefficient_modes =
+    coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
+  coefficients_cmd
+    ->add_option("--mode-indices", coefficients.mode_indices,
+                 "a solid scene: the modes by their index in modes.csv (any shape), e.g. 1,2,4")
+    ->delimiter(',')
+    ->check(integer_in(1, 50))
+    ->excludes(coefficient_modes);
+  return coefficients_cmd;
+}
+
+CLI::App *declare_statics(CLI::App &app, const AddCommon &add_common, StaticsOptions &statics)
+{
+  auto *statics_cmd =
+    app.add_subcommand("statics", "nonlinear statics under a uniform line load or a modal load (statics.csv)");
+  add_common(statics_cmd);
+  auto *line_load_opt =
+    statics_cmd->add_option("--line-load", statics.line_load_n_per_m, "uniform dead load Q [N/m], positive downward")
+      ->check(finite_nonzero());
+  auto *modal_load_opt =
+    statics_cmd
+      ->add_option("--modal-load", statics.modal_load,
+                   "modal load f [N kg^-1/2]: the dead load M phi_n f on bending mode n (--mode), along +phi_n")
+      ->check(finite_nonzero())
+      ->excludes(line_load_opt);
+  statics_cmd->add_option("--mode", statics.mode, "n of --modal-load: the n-th bending mode")
+    ->check(integer_in(1, 10))
+    ->needs(modal_load_opt);
+  statics_cmd->add_option("--steps", statics.n_steps, "equal load steps to the full load")
+    ->check(integer_in(1, 10000));
+  return statics_cmd;
+}
+
+CLI::App *declare_backbone(CLI::App &app, const AddCommon &add_common, BackboneOptions &backbone)
+{
+  auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
+  add_common(backbone_cmd);
+  backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
+  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
+  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h, in (0.01, 10]")->check(finite_in(0.01, 10., Bound::open, Bound::closed));
+  return backbone_cmd;
+}
+
+CLI::App *declare_simulate(CLI::App &app, const AddCommon &add_common, SimulateOptions &simulate)
+{
+  auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
+  add_common(simulate_cmd);
+  simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
+  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see doc/scenes.md)");
+  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
+  simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
+  simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
+                           "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
+    ->check(finite_positive());
+  simulate_cmd->add_option("--resume", simulate.resume_dir,
+                           "continue the run whose checkpoint.bin is in DIR (scene, case, model and parameters from "
+                           "it; --end-time may extend it)");
+  simulate_cmd->add_flag("--allow-large-output", simulate.allow_large_output,
+                         "allow a trace of more than " + std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
+                           " rows (End time x Output rate)");
+  return simulate_cmd;
+}
+
+CLI::App *declare_sweep(CLI::App &app, const AddCommon &add_common, SweepOptions &sweep)
+{
+  auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
+  add_common(sweep_cmd);
+  sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see doc/scenes.md)");
+  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
+  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
+    ->check(finite_non_negative());
+  sweep_cmd->add_option("--average-time", sweep.average_time, "simulated time averaged per position [s]")
+    ->check(finite_positive());
+  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)")
+    ->check(finite_in(0., 1.));
+  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
+  sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
+    ->check(finite_non_negative());
+  sweep_cmd->add_option("--against", sweep.against,
+                        "another sweep's folder (same positions, e.g. the other model) to compare with: "
+                        "comparison.csv, crossings.csv, pcs_compare.png");
+  return sweep_cmd;
+}
+
+CLI::App *declare_animate(CLI::App &app, const AddCommon &add_common, AnimateOptions &animate)
+{
+  auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
+  add_common(animate_cmd);
+  animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
+  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see doc/scenes.md)");
+  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
+  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
+  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
+  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(finite_positive());
+  return animate_cmd;
+}
+
+CLI::App *declare_ensemble(CLI::App &app, const AddCommon &add_common, EnsembleOptions &ensemble)
+{
+  auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
+  add_common(ensemble_cmd);
+  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  ensemble_cmd->add_option("--integrator", ensemble.integrator,
+                           "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
+    ->check(CLI::IsMember({"explicit", "implicit"}));
+  ensemble_cmd->add_option("--coefficients", ensemble.coefficients,
+                           "ROM cubic coefficients: analytic | step-condensed | ice on a beam scene (default "
+                           "analytic); ice | step | exact | analytic from the solid on a solid scene (default ice)");
+  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see doc/scenes.md)");
+  ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
+  ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
+  ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
+  ensemble_cmd->add_flag("--unchecked", ensemble.unchecked,
+                         "fe: skip the convergence check (the same ensemble at Δt/2, Δt/4, … until it ends where Δt "
+                         "ends); the result says it is unchecked");
+  return ensemble_cmd;
+}
+
+CLI::App *declare_map(CLI::App &app, const AddCommon &add_common, MapOptions &map)
+{
+  auto *map_cmd = app.add_subcommand("map", "the adaptation over a grid of parameters, one run or ensemble per cell "
+                                            "(under mpirun: cells spread over the ranks); restartable");
+  add_common(map_cmd);
+  map_cmd->add_option("--frequency", map.frequency, "excitation frequency axis [Hz]: A:B:STEP or one value");
+  map_cmd->add_option("--acceleration", map.acceleration, "base acceleration amplitude axis [m/s^2]: A:B:STEP or one value");
+  map_cmd->add_option("--start", map.start, "start position axis x_C/L: A:B:STEP or one value");
+  map_cmd->add_option("--axis", map.axes, "any scene parameter as an axis: \"Section/Name=A:B:STEP\" (repeatable)");
+  map_cmd->add_option("--model", map.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  map_cmd->add_option("--members", map.members, "K members per cell (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  map_cmd->add_option("--perturbation", map.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  map_cmd->add_option("--end-time", map.end_time, "simulated time per member [s]")->check(finite_positive());
+  return map_cmd;
+}
+
+CLI::App *declare_identify(CLI::App &app, const AddCommon &add_common, IdentifyOptions &identify)
+{
+  auto *identify_cmd = app.add_subcommand("identify", "the seed's System 1 facts over a grid of unknown parameters "
+                                                      "(one map per fact); scores each candidate");
+  add_common(identify_cmd);
+  identify_cmd->add_option("--axis", identify.axes, "an unknown scene parameter: \"Section/Name=A:B:STEP\" (repeatable)");
+  identify_cmd->add_option("--fact", identify.facts, "only this fact, by id (repeatable; default: every fact)");
+  identify_cmd->add_option("--members", identify.members, "K members per run (start x_C/L + m x perturbation)")
+    ->check(integer_in(1, 1000));
+  identify_cmd->add_option("--perturbation", identify.perturbation, "start shift of x_C/L per member index")
+    ->check(finite_in(0., 1e-3));
+  return identify_cmd;
+}
+
+CLI::App *declare_verify(CLI::App &app, const AddCommon &add_common, VerifyOptions &verify)
+{
+  auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
+  add_common(verify_cmd);
+  auto *verify_full = verify_cmd->add_flag("--full", verify.full, "run the long studies too");
+  verify_cmd
+    ->add_flag("--diagnostics", verify.diagnostics,
+               "with --full: the error ladder's diagnostic rungs too (the midpoint-rule FE in dt, the ROM with all "
+               "modes; about 26 min more on 2 cores)")
+    ->needs(verify_full);
+  verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
+    ->check(integer_in(1, 8));
+  // Not for users (hidden): how verify starts its section 8 in a second process.
+  verify_cmd->add_option("--part-file", verify.part_file, "")->group("");
+  return verify_cmd;
+}
+
+CLI::App *declare_ladder(CLI::App &app, const AddCommon &add_common, LadderOptions &ladder)
+{
+  auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
+                                                  "as ensembles against the FE reference");
+  add_common(ladder_cmd);
+  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
+  ladder_cmd->add_flag("--diagnostics", ladder.diagnostics,
+                       "the rungs of --full and the diagnostic rungs (the midpoint-rule FE in dt, the ROM with all "
+                       "modes; 4 members each)");
+  ladder_cmd->add_option("--rung", ladder.rungs,
+                         "run only this rung of the ladder with diagnostics, by name (repeatable; the reference, the scene's FE model, always runs)");
+  ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
+    ->check(integer_in(2, 1000));
+  ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")
+    ->check(finite_positive());
+  return ladder_cmd;
+}
+
 int parse_and_run(int argc, char **argv, std::ostream &errors)
 {
   CLI::App app{"beamslider: FE and reduced-order models of a beam with a sliding mass (cross-verification suite)"};
@@ -72,177 +356,29 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   };
 
   ModesOptions modes;
-  auto *modes_cmd = app.add_subcommand("modes", "linear bending modes of the bare beam or with a bonded slider");
-  add_common(modes_cmd);
-  modes_cmd->add_option("--slider-at", modes.slider_at, "bond the slider at x_C/L = S (seed Eq. 5 comparison)")
-    ->check(finite_in(0., 1.));
-  modes_cmd->add_option("--modes", modes.n_modes, "number of modes")->check(integer_in(1, 50));
-  modes_cmd->add_option("--elements", modes.n_elements, "FE elements (default: the scene's)")->check(integer_in(1, 4096));
-
+  auto *modes_cmd = declare_modes(app, add_common, modes);
   CoefficientsOptions coefficients;
-  auto *coefficients_cmd = app.add_subcommand("coefficients", "modal cubic stiffness coefficients (coefficients.csv)");
-  add_common(coefficients_cmd);
-  coefficients_cmd->add_option("--method", coefficients.method,
-                               "analytic | step | step-condensed | ice (a solid scene: exact | step | step-condensed | ice; "
-                               "analytic means exact there)")
-    ->check(CLI::IsMember({"analytic", "exact", "step", "step-condensed", "ice"}));
-  auto *coefficient_modes =
-    coefficients_cmd->add_option("--modes", coefficients.n_modes, "N (default: the scene's)")->check(integer_in(1, 10));
-  coefficients_cmd
-    ->add_option("--mode-indices", coefficients.mode_indices,
-                 "a solid scene: the modes by their index in modes.csv (any shape), e.g. 1,2,4")
-    ->delimiter(',')
-    ->check(integer_in(1, 50))
-    ->excludes(coefficient_modes);
-
+  auto *coefficients_cmd = declare_coefficients(app, add_common, coefficients);
   StaticsOptions statics;
-  auto *statics_cmd =
-    app.add_subcommand("statics", "nonlinear statics under a uniform line load or a modal load (statics.csv)");
-  add_common(statics_cmd);
-  auto *line_load_opt =
-    statics_cmd->add_option("--line-load", statics.line_load_n_per_m, "uniform dead load Q [N/m], positive downward")
-      ->check(finite_nonzero());
-  auto *modal_load_opt =
-    statics_cmd
-      ->add_option("--modal-load", statics.modal_load,
-                   "modal load f [N kg^-1/2]: the dead load M phi_n f on bending mode n (--mode), along +phi_n")
-      ->check(finite_nonzero())
-      ->excludes(line_load_opt);
-  statics_cmd->add_option("--mode", statics.mode, "n of --modal-load: the n-th bending mode")
-    ->check(integer_in(1, 10))
-    ->needs(modal_load_opt);
-  statics_cmd->add_option("--steps", statics.n_steps, "equal load steps to the full load")
-    ->check(integer_in(1, 10000));
-
+  auto *statics_cmd = declare_statics(app, add_common, statics);
   BackboneOptions backbone;
-  auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
-  add_common(backbone_cmd);
-  backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
-  backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
-  backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h, in (0.01, 10]")->check(finite_in(0.01, 10., Bound::open, Bound::closed));
-
+  auto *backbone_cmd = declare_backbone(app, add_common, backbone);
   SimulateOptions simulate;
-  auto *simulate_cmd = app.add_subcommand("simulate", "free-slider simulation (trace.csv, trace.png)");
-  add_common(simulate_cmd);
-  simulate_cmd->add_option("--model", simulate.model, "rom | fe | auto")->check(CLI::IsMember({"rom", "fe", "auto"}));
-  simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see doc/scenes.md)");
-  simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
-  simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
-  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
-  simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
-                           "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
-    ->check(finite_positive());
-  simulate_cmd->add_option("--resume", simulate.resume_dir,
-                           "continue the run whose checkpoint.bin is in DIR (scene, case, model and parameters from "
-                           "it; --end-time may extend it)");
-  simulate_cmd->add_flag("--allow-large-output", simulate.allow_large_output,
-                         "allow a trace of more than " + std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
-                           " rows (End time x Output rate)");
-
+  auto *simulate_cmd = declare_simulate(app, add_common, simulate);
   SweepOptions sweep;
-  auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
-  add_common(sweep_cmd);
-  sweep_cmd->add_option("--model", sweep.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  sweep_cmd->add_option("--case", sweep.case_name, "a published case or ablation (its excitation and slider; see doc/scenes.md)");
-  sweep_cmd->add_option("--step", sweep.step_over_L, "position step dx_C/L")->check(finite_in(1e-4, 0.1));
-  sweep_cmd->add_option("--settle-time", sweep.settle_time, "simulated time per position before averaging [s]")
-    ->check(finite_non_negative());
-  sweep_cmd->add_option("--average-time", sweep.average_time, "simulated time averaged per position [s]")
-    ->check(finite_positive());
-  sweep_cmd->add_option("--from", sweep.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)")
-    ->check(finite_in(0., 1.));
-  sweep_cmd->add_option("--to", sweep.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
-  sweep_cmd->add_option("--free-time", sweep.free_time, "free-slider run overlaid [s] (default: the scene's end time; 0: none)")
-    ->check(finite_non_negative());
-  sweep_cmd->add_option("--against", sweep.against,
-                        "another sweep's folder (same positions, e.g. the other model) to compare with: "
-                        "comparison.csv, crossings.csv, pcs_compare.png");
-
+  auto *sweep_cmd = declare_sweep(app, add_common, sweep);
   AnimateOptions animate;
-  auto *animate_cmd = app.add_subcommand("animate", "ParaView time series (.pvd of .vtu/.vtp) of a run");
-  add_common(animate_cmd);
-  animate_cmd->add_option("--model", animate.model, "fe | rom")->check(CLI::IsMember({"rom", "fe"}));
-  animate_cmd->add_option("--case", animate.case_name, "a published case or ablation (see doc/scenes.md)");
-  animate_cmd->add_option("--end-time", animate.end_time, "simulated time [s]")->check(finite_positive());
-  animate_cmd->add_option("--start-time", animate.start_time, "first frame time [s]")->check(finite_non_negative());
-  animate_cmd->add_option("--frame-rate", animate.frame_rate, "frames per simulated second")->check(finite_positive());
-  animate_cmd->add_option("--magnification", animate.magnification, "deformation scale")->check(finite_positive());
-
+  auto *animate_cmd = declare_animate(app, add_common, animate);
   EnsembleOptions ensemble;
-  auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
-  add_common(ensemble_cmd);
-  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  ensemble_cmd->add_option("--integrator", ensemble.integrator,
-                           "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
-    ->check(CLI::IsMember({"explicit", "implicit"}));
-  ensemble_cmd->add_option("--coefficients", ensemble.coefficients,
-                           "ROM cubic coefficients: analytic | step-condensed | ice on a beam scene (default "
-                           "analytic); ice | step | exact | analytic from the solid on a solid scene (default ice)");
-  ensemble_cmd->add_option("--case", ensemble.case_name, "a published case or ablation (see doc/scenes.md)");
-  ensemble_cmd->add_option("--members", ensemble.members, "K members")->check(integer_in(1, 1000));
-  ensemble_cmd->add_option("--perturbation", ensemble.perturbation, "start shift of x_C/L per member index")
-    ->check(finite_in(0., 1e-3));
-  ensemble_cmd->add_option("--end-time", ensemble.end_time, "simulated time per member [s]")->check(finite_positive());
-  ensemble_cmd->add_option("--against", ensemble.against, "compare with the ensemble in this folder (its members.csv)");
-  ensemble_cmd->add_flag("--unchecked", ensemble.unchecked,
-                         "fe: skip the convergence check (the same ensemble at Δt/2, Δt/4, … until it ends where Δt "
-                         "ends); the result says it is unchecked");
-
+  auto *ensemble_cmd = declare_ensemble(app, add_common, ensemble);
   MapOptions map;
-  auto *map_cmd = app.add_subcommand("map", "the adaptation over a grid of parameters, one run or ensemble per cell "
-                                            "(under mpirun: cells spread over the ranks); restartable");
-  add_common(map_cmd);
-  map_cmd->add_option("--frequency", map.frequency, "excitation frequency axis [Hz]: A:B:STEP or one value");
-  map_cmd->add_option("--acceleration", map.acceleration, "base acceleration amplitude axis [m/s^2]: A:B:STEP or one value");
-  map_cmd->add_option("--start", map.start, "start position axis x_C/L: A:B:STEP or one value");
-  map_cmd->add_option("--axis", map.axes, "any scene parameter as an axis: \"Section/Name=A:B:STEP\" (repeatable)");
-  map_cmd->add_option("--model", map.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  map_cmd->add_option("--members", map.members, "K members per cell (start x_C/L + m x perturbation)")
-    ->check(integer_in(1, 1000));
-  map_cmd->add_option("--perturbation", map.perturbation, "start shift of x_C/L per member index")
-    ->check(finite_in(0., 1e-3));
-  map_cmd->add_option("--end-time", map.end_time, "simulated time per member [s]")->check(finite_positive());
-
+  auto *map_cmd = declare_map(app, add_common, map);
   IdentifyOptions identify;
-  auto *identify_cmd = app.add_subcommand("identify", "the seed's System 1 facts over a grid of unknown parameters "
-                                                      "(one map per fact); scores each candidate");
-  add_common(identify_cmd);
-  identify_cmd->add_option("--axis", identify.axes, "an unknown scene parameter: \"Section/Name=A:B:STEP\" (repeatable)");
-  identify_cmd->add_option("--fact", identify.facts, "only this fact, by id (repeatable; default: every fact)");
-  identify_cmd->add_option("--members", identify.members, "K members per run (start x_C/L + m x perturbation)")
-    ->check(integer_in(1, 1000));
-  identify_cmd->add_option("--perturbation", identify.perturbation, "start shift of x_C/L per member index")
-    ->check(finite_in(0., 1e-3));
-
+  auto *identify_cmd = declare_identify(app, add_common, identify);
   VerifyOptions verify;
-  auto *verify_cmd = app.add_subcommand("verify", "write the verification report (reports/<scene>/report.md)");
-  add_common(verify_cmd);
-  auto *verify_full = verify_cmd->add_flag("--full", verify.full, "run the long studies too");
-  verify_cmd
-    ->add_flag("--diagnostics", verify.diagnostics,
-               "with --full: the error ladder's diagnostic rungs too (the midpoint-rule FE in dt, the ROM with all "
-               "modes; about 26 min more on 2 cores)")
-    ->needs(verify_full);
-  verify_cmd->add_option("--section", verify.sections, "write only this section (1-8; repeatable)")
-    ->check(integer_in(1, 8));
-  // Not for users (hidden): how verify starts its section 8 in a second process.
-  verify_cmd->add_option("--part-file", verify.part_file, "")->group("");
-
+  auto *verify_cmd = declare_verify(app, add_common, verify);
   LadderOptions ladder;
-  auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
-                                                  "as ensembles against the FE reference");
-  add_common(ladder_cmd);
-  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
-  ladder_cmd->add_flag("--diagnostics", ladder.diagnostics,
-                       "the rungs of --full and the diagnostic rungs (the midpoint-rule FE in dt, the ROM with all "
-                       "modes; 4 members each)");
-  ladder_cmd->add_option("--rung", ladder.rungs,
-                         "run only this rung of the ladder with diagnostics, by name (repeatable; the reference, the scene's FE model, always runs)");
-  ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
-    ->check(integer_in(2, 1000));
-  ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")
-    ->check(finite_positive());
+  auto *ladder_cmd = declare_ladder(app, add_common, ladder);
 
   auto *template_cmd = app.add_subcommand("scene-template", "print a scene file with every parameter, its unit and range");
 
@@ -283,12 +419,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
         return run_backbone(common, backbone);
       if (*simulate_cmd)
         {
-          if (!simulate.resume_dir.empty())
-            for (const char *given : {"scene", "--set", "--case", "--model", "--output"})
-              if (simulate_cmd->get_option(given)->count() > 0)
-                throw InputError(std::string("simulate --resume takes the scene, case, model, parameters and folder "
-                                             "from the checkpoint; ") +
-                                 given + " cannot be given with it (only --end-time, --checkpoint-every)");
+          refuse_what_resume_takes_from_the_checkpoint(*simulate_cmd, simulate);
           return run_simulate(common, simulate);
         }
       if (*sweep_cmd)
@@ -316,49 +447,9 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
           return 0;
         }
     }
-  catch (const InputError &e)
+  catch (...)
     {
-      // Values the user gave may hold a line break or an escape sequence.
-      errors << "error: " << one_line(e.what()) << std::endl;
-      return 2;
-    }
-  catch (const std::invalid_argument &e)
-    {
-      // The library's checks of values that came from the scene or the
-      // options (a time step above the model's stability limit, ...).
-      errors << "error: " << one_line(e.what()) << std::endl;
-      return 2;
-    }
-  catch (const Interrupted &)
-    {
-      // A solver, Newton loop or continuation stopped for Ctrl-C or kill;
-      // run_beamslider says so and gives 128 + the signal.
-      return interruption_exit_code();
-    }
-  catch (const FolderInUseError &e)
-    {
-      errors << "error: " << e.what() << std::endl; // nothing was written: not a failed write
-      return 1;
-    }
-  catch (const OutputError &e)
-    {
-      errors << "error: results not written: " << one_line(e.what()) << std::endl;
-      return 1;
-    }
-  catch (const dealii::ExceptionBase &e)
-    {
-      // deal.II's what() carries a stack trace and source lines that mean
-      // nothing to a user; its name and additional information do.
-      std::ostringstream info;
-      e.print_info(info);
-      errors << "beamslider failed: " << e.get_exc_name() << ": " << info.str() << std::endl;
-      return 1;
-    }
-  catch (const std::exception &e)
-    {
-      const std::string what = e.what();
-      errors << "beamslider failed: " << (what.empty() ? "unknown error" : what) << std::endl;
-      return 1;
+      return exit_status_of_failure(errors);
     }
   return 0;
 }
