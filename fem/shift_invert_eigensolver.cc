@@ -54,9 +54,9 @@ namespace beamslider
       {}
 
       // deal.II's solve() without its last loop, which computes the
-      // residual of every converged pair (often twice as many as asked; 8 of
-      // 27 s at 143,055 DoFs) and cannot be interrupted. Returns the number
-      // of Krylov–Schur iterations.
+      // residual of every converged pair (often twice as many as asked) and
+      // cannot be interrupted: at 143,055 DoFs it went on for seconds after
+      // Ctrl-C. Returns the number of Krylov–Schur iterations.
       unsigned int solve_lowest(const PETScWrappers::MatrixBase &K, const PETScWrappers::MatrixBase &M,
                                 const unsigned int n, std::vector<double> &eigenvalues,
                                 std::vector<PETScWrappers::MPI::Vector> &vectors)
