@@ -25,8 +25,8 @@ namespace
 {
   const std::string report_dir = BEAMSLIDER_SOURCE_DIR "/reports/mueller2023-full";
 
-  // The row of ladder.csv whose `rung` is `name`, as {column: cell}.
-  std::map<std::string, std::string> ladder_row(const std::string &name)
+  // The first row of ladder.csv whose `column` holds `value`, as {column: cell}.
+  std::map<std::string, std::string> ladder_row(const std::string &value, const std::string &column = "rung")
   {
     std::ifstream in(report_dir + "/ladder.csv");
     EXPECT_TRUE(in.good()) << "the published report's ladder.csv is missing";
@@ -39,10 +39,10 @@ namespace
         std::map<std::string, std::string> row;
         for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i)
           row[header[i]] = cells[i];
-        if (row["rung"] == name)
+        if (row[column] == value)
           return row;
       }
-    ADD_FAILURE() << "no rung '" << name << "' in " << report_dir << "/ladder.csv";
+    ADD_FAILURE() << "no row with " << column << " = '" << value << "' in " << report_dir << "/ladder.csv";
     return {};
   }
 } // namespace
@@ -89,22 +89,7 @@ TEST(PublishedReport, TheReadmeQuotesTheLaddersNumbers)
   readme = std::regex_replace(readme, std::regex(R"(\s+)"), " "); // lines wrap anywhere
 
   const auto published = ladder_row("ROM N=5 (published)"), converged = ladder_row("ROM N=20");
-  std::map<std::string, std::string> reference;
-  {
-    std::ifstream csv(report_dir + "/ladder.csv");
-    std::string line;
-    std::getline(csv, line);
-    const std::vector<std::string> header = CsvWriter::cells(line);
-    while (std::getline(csv, line))
-      {
-        const std::vector<std::string> cells = CsvWriter::cells(line);
-        std::map<std::string, std::string> row;
-        for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i)
-          row[header[i]] = cells[i];
-        if (row["reference"] == "1")
-          reference = row;
-      }
-  }
+  const auto reference = ladder_row("1", "reference");
   ASSERT_FALSE(reference.empty()) << "no reference rung in ladder.csv";
 
   // Each quoted number against its cell, to the quoted number's decimals.
@@ -114,31 +99,39 @@ TEST(PublishedReport, TheReadmeQuotesTheLaddersNumbers)
     EXPECT_NEAR(std::stod(quoted), std::stod(cell), 0.5 * std::pow(10., -decimals) + 1e-12)
       << what << ": README says " << quoted << ", ladder.csv " << cell;
   };
-  const std::string number = R"(([0-9]+\.[0-9]+))";
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(readme, m,
-                                std::regex("the published ROM \\(N = 5\\) ends at " + number + " L \\[" + number +
-                                           ", " + number + "\\]; the FE reference at " + number + " L \\[" + number +
-                                           ", " + number + "\\]: W₁ = " + number + " L \\[" + number + ", " +
-                                           number + "\\]")))
-    << "README's verdict sentence on the published ROM changed its form";
-  expect_quoted(m[1], published.at("final_x_median"), "published ROM, median");
-  expect_quoted(m[2], published.at("final_x_min"), "published ROM, lowest member");
-  expect_quoted(m[3], published.at("final_x_max"), "published ROM, highest member");
-  expect_quoted(m[4], reference.at("final_x_median"), "FE reference, median");
-  expect_quoted(m[5], reference.at("final_x_min"), "FE reference, lowest member");
-  expect_quoted(m[6], reference.at("final_x_max"), "FE reference, highest member");
-  expect_quoted(m[7], published.at("w1_to_reference"), "published ROM, W1");
-  expect_quoted(m[8], published.at("w1_low"), "published ROM, W1 interval low");
-  expect_quoted(m[9], published.at("w1_high"), "published ROM, W1 interval high");
-  ASSERT_TRUE(std::regex_search(readme, m,
-                                std::regex("\\(N = 20\\) ends at " + number + " L \\[" + number + ", " + number +
-                                           "\\], W₁ = " + number + " \\[" + number + ", " + number + "\\]")))
-    << "README's verdict sentence on the converged ROM changed its form";
-  expect_quoted(m[1], converged.at("final_x_median"), "ROM N=20, median");
-  expect_quoted(m[2], converged.at("final_x_min"), "ROM N=20, lowest member");
-  expect_quoted(m[3], converged.at("final_x_max"), "ROM N=20, highest member");
-  expect_quoted(m[4], converged.at("w1_to_reference"), "ROM N=20, W1");
-  expect_quoted(m[5], converged.at("w1_low"), "ROM N=20, W1 interval low");
-  expect_quoted(m[6], converged.at("w1_high"), "ROM N=20, W1 interval high");
+  // README's two verdict sentences, each number with the ladder.csv cell it quotes.
+  using Row = std::map<std::string, std::string>;
+  struct Quote
+  {
+    const Row &row;
+    std::string column, what;
+  };
+  const std::string x = R"(([0-9]+\.[0-9]+))";
+  const std::vector<std::pair<std::string, std::vector<Quote>>> sentences = {
+    {"the published ROM \\(N = 5\\) ends at " + x + " L \\[" + x + ", " + x + "\\]; the FE reference at " + x +
+       " L \\[" + x + ", " + x + "\\]: W₁ = " + x + " L \\[" + x + ", " + x + "\\]",
+     {{published, "final_x_median", "published ROM, median"},
+      {published, "final_x_min", "published ROM, lowest member"},
+      {published, "final_x_max", "published ROM, highest member"},
+      {reference, "final_x_median", "FE reference, median"},
+      {reference, "final_x_min", "FE reference, lowest member"},
+      {reference, "final_x_max", "FE reference, highest member"},
+      {published, "w1_to_reference", "published ROM, W1"},
+      {published, "w1_low", "published ROM, W1 interval low"},
+      {published, "w1_high", "published ROM, W1 interval high"}}},
+    {"\\(N = 20\\) ends at " + x + " L \\[" + x + ", " + x + "\\], W₁ = " + x + " \\[" + x + ", " + x + "\\]",
+     {{converged, "final_x_median", "ROM N=20, median"},
+      {converged, "final_x_min", "ROM N=20, lowest member"},
+      {converged, "final_x_max", "ROM N=20, highest member"},
+      {converged, "w1_to_reference", "ROM N=20, W1"},
+      {converged, "w1_low", "ROM N=20, W1 interval low"},
+      {converged, "w1_high", "ROM N=20, W1 interval high"}}}};
+  for (const auto &[pattern, quotes] : sentences)
+    {
+      std::smatch m;
+      ASSERT_TRUE(std::regex_search(readme, m, std::regex(pattern))) << "README's verdict sentence changed its form: "
+                                                                     << pattern;
+      for (std::size_t i = 0; i < quotes.size(); ++i)
+        expect_quoted(m[i + 1], quotes[i].row.at(quotes[i].column), quotes[i].what);
+    }
 }

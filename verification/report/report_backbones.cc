@@ -71,7 +71,16 @@ namespace beamslider
       return s;
     }
 
-    // What every subsection of section 3 works on: one mesh for every model.
+    // 3.1's backbones, which 3.4 (cost) and --full's mesh check quote.
+    struct RomAndFe
+    {
+      std::map<unsigned int, Backbone> rom; // by N
+      Backbone fe;
+      unsigned int fe_dofs = 0;
+    };
+
+    // Section 3: what every subsection works on (one mesh for every model),
+    // and one member function a subsection.
     struct BackboneSection
     {
       Report &report;
@@ -104,23 +113,24 @@ namespace beamslider
         for (unsigned int i = 1; i <= 16; ++i) // ŵ/h = 0.25 … 4 (table and H study)
           settings.landing_over_h.push_back(0.25 * i);
       }
-    };
 
-    // 3.1's backbones, which 3.4 (cost) and --full's mesh check quote.
-    struct RomAndFe
-    {
-      std::map<unsigned int, Backbone> rom; // by N
-      Backbone fe;
-      unsigned int fe_dofs = 0;
-    };
-
-    void write_introduction(const BackboneSection &s)
-    {
-      auto &md = s.report.text;
-      const Scene &scene = s.scene;
-      const unsigned int n_elements = s.n_elements;
       const double pi = std::acos(-1.);
-      const double omega_1 = s.omega_1;
+
+      void write_introduction() const;
+      // 3.1 ROM N = 1, 3, 5, 7 and FE, H = 10: curves, differences, Eq. 4.
+      RomAndFe write_rom_against_fe() const;
+      // 3.2 Harmonic truncation on ROM N = 5.
+      void write_harmonic_truncation() const;
+      // 3.3 The ideal clamp: the single-mode law of doc/physics.md §5 and the
+      // 3:1 interaction.
+      void write_ideal_clamp() const;
+      // 3.4 Cost, and with --full the FE mesh and harmonic-set checks.
+      void write_cost(const RomAndFe &rom_fe) const;
+    };
+
+    void BackboneSection::write_introduction() const
+    {
+      auto &md = report.text;
       const unsigned int n_scene = scene.discretisation.n_elements;
       const FEBeam scene_beam(scene);
       const double omega_1_scene = compute_bending_modes(scene_beam, 1).omega[0];
@@ -143,20 +153,9 @@ namespace beamslider
             "the extrapolated backbone; the amplitude range jumped over is listed as a gap.\n\n";
     }
 
-    // 3.1 ROM N = 1, 3, 5, 7 and FE, H = 10: curves, differences, Eq. 4.
-    RomAndFe write_rom_against_fe(const BackboneSection &s)
+    RomAndFe BackboneSection::write_rom_against_fe() const
     {
-      auto &md = s.report.text;
-      Report &report = s.report;
-      const double h = s.h;
-      const double L = s.L;
-      const double pi = std::acos(-1.);
-      const unsigned int n_elements = s.n_elements;
-      const BeamBackboneSettings &settings = s.settings;
-      const std::vector<double> &table_amplitudes = s.table_amplitudes;
-      const FEBeam &beam = s.beam;
-      const FEModes &modes = s.modes;
-      const double omega_1 = s.omega_1;
+      auto &md = report.text;
       std::map<unsigned int, Backbone> rom;
       CsvWriter curves(report.dir + "/backbone_curves.csv", {"curve", "amplitude_over_h", "frequency_hz", "segment", "branch"});
       for (const unsigned int N : {1u, 3u, 5u, 7u})
@@ -268,18 +267,11 @@ namespace beamslider
       return {std::move(rom), fe, fe_system.system.n_dofs()};
     }
 
-    // 3.2 Harmonic truncation on ROM N = 5.
-    void write_harmonic_truncation(const BackboneSection &s)
+    void BackboneSection::write_harmonic_truncation() const
     {
-      auto &md = s.report.text;
-      Report &report = s.report;
-      const double h = s.h;
-      const double L = s.L;
-      const double pi = std::acos(-1.);
-      const BeamBackboneSettings &settings = s.settings;
-      const std::vector<double> &table_amplitudes = s.table_amplitudes;
+      auto &md = report.text;
       console() << "[verify] backbones: harmonic truncation ..." << std::endl;
-      const ReducedOrderModel rom5(make_modal_basis(s.beam, s.modes, 5), 0.);
+      const ReducedOrderModel rom5(make_modal_basis(beam, modes, 5), 0.);
       std::map<unsigned int, Backbone> by_h;
       for (const unsigned int H : {1u, 3u, 5u, 10u})
         {
@@ -323,19 +315,9 @@ namespace beamslider
       hcsv.close();
     }
 
-    // 3.3 The ideal clamp: the single-mode law of doc/physics.md §5 and the
-    // 3:1 interaction.
-    void write_ideal_clamp(const BackboneSection &s)
+    void BackboneSection::write_ideal_clamp() const
     {
-      auto &md = s.report.text;
-      Report &report = s.report;
-      const Scene &scene = s.scene;
-      const double h = s.h;
-      const double L = s.L;
-      const double pi = std::acos(-1.);
-      const unsigned int n_elements = s.n_elements;
-      const BeamBackboneSettings &settings = s.settings;
-      const bool full = s.full;
+      auto &md = report.text;
       console() << "[verify] backbones: ideal clamp ..." << std::endl;
       {
         Scene ideal               = scene;
@@ -420,17 +402,9 @@ namespace beamslider
       }
     }
 
-    // 3.4 Cost, and with --full the FE mesh and harmonic-set checks.
-    void write_cost(const BackboneSection &s, const RomAndFe &rom_fe)
+    void BackboneSection::write_cost(const RomAndFe &rom_fe) const
     {
-      auto &md = s.report.text;
-      const Scene &scene = s.scene;
-      const double h = s.h;
-      const double L = s.L;
-      const unsigned int n_elements = s.n_elements;
-      const BeamBackboneSettings &settings = s.settings;
-      const bool full = s.full;
-      const std::vector<double> &table_amplitudes = s.table_amplitudes;
+      auto &md = report.text;
       md << "### 3.4 Cost\n\n"
          << "ROM N = 5: " << sci(rom_fe.rom.at(5).seconds, 2) << " s, N = 7: " << sci(rom_fe.rom.at(7).seconds, 2) << " s (" << rom_fe.rom.at(7).points.size()
          << " points); FE on " << n_elements << " elements (" << rom_fe.fe_dofs << " DoFs, "
@@ -470,11 +444,11 @@ namespace beamslider
   {
     console() << "[verify] backbones ..." << std::endl;
     const BackboneSection section(report, scene, full);
-    write_introduction(section);
-    const RomAndFe rom_fe = write_rom_against_fe(section);
-    write_harmonic_truncation(section);
-    write_ideal_clamp(section);
-    write_cost(section, rom_fe);
+    section.write_introduction();
+    const RomAndFe rom_fe = section.write_rom_against_fe();
+    section.write_harmonic_truncation();
+    section.write_ideal_clamp();
+    section.write_cost(rom_fe);
     run_plot_script("plot_backbones.py", {"report", report.dir});
   }
 } // namespace beamslider
