@@ -50,6 +50,13 @@ namespace beamslider
     return o;
   }
 
+  RunOptions RunOptions::from_scene(const Scene &scene, const double time_step)
+  {
+    RunOptions o = from_scene(scene);
+    o.time_step  = time_step;
+    return o;
+  }
+
   AdaptationRun::AdaptationRun(const Scene &scene, BeamSystem &beam, RunOptions options)
     : beam_(beam)
     , options_(options)

@@ -101,9 +101,9 @@ namespace beamslider
   struct RunOptions
   {
     double end_time    = 60.;   // [s]
-    // The model's time step [s]: from_scene gives the ROM's ('Time stepping/
-    // Time step'); a run of another model sets its own (the FE's is 'FE time
-    // step'). The scene's value is never overwritten for it.
+    // The model's time step [s]: from_scene(scene) gives the ROM's ('Time
+    // stepping/Time step'), from_scene(scene, Δt) a model's own (the FE's
+    // 'FE time step'). The scene's value is never overwritten for it.
     double time_step = 0.;
     double output_rate = 1000.; // trace rows per second [1/s]; 0: every step
     double probe_position_over_L = 4. / 7.;
@@ -114,6 +114,8 @@ namespace beamslider
     double period_without_excitation = 0.01;
 
     static RunOptions from_scene(const Scene &scene);
+    // The same for a model that runs at its own `time_step` [s].
+    static RunOptions from_scene(const Scene &scene, double time_step);
   };
 
   class AdaptationRun

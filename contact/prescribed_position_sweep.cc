@@ -109,8 +109,7 @@ namespace beamslider
 
     Scene start_scene                          = scene;
     start_scene.initial.slider_position_over_L = positions.front();
-    RunOptions options                         = RunOptions::from_scene(scene);
-    options.time_step                          = time_step;
+    RunOptions options                         = RunOptions::from_scene(scene, time_step);
     options.prescribed_slider_position         = true;
     options.output_rate                        = 1.; // no trace rows needed
     options.progress_interval                  = 1e300;

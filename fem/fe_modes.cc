@@ -128,7 +128,7 @@ namespace beamslider
       copy_to_petsc(K, K_petsc);
       copy_to_petsc(M, M_petsc);
 
-      std::vector<PETScWrappers::MPI::Vector> petsc_vectors(n_modes + 2);
+      std::vector<PETScWrappers::MPI::Vector> petsc_vectors(n_modes);
       for (auto &v : petsc_vectors)
         v.reinit(MPI_COMM_SELF, beam.n_dofs(), beam.n_dofs());
 

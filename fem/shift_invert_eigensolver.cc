@@ -72,12 +72,9 @@ namespace beamslider
         check(KSPSetPostSolve(ksp, &stop_if_signalled, nullptr), "KSPSetPostSolve");
 
         const PetscErrorCode solved = EPSSolve(eps);
-        if (solved != 0)
-          {
-            stop_if_interrupted(); // every rank has the signal: agreed below
-            throw std::runtime_error("EPSSolve failed (PETSc error " + std::to_string(solved) +
+        if (solved != 0) // also a stop by stop_if_signalled, which the caller tells apart
+          throw std::runtime_error("EPSSolve failed (PETSc error " + std::to_string(solved) +
                                      (petsc.first.empty() ? "" : ": " + petsc.first) + ")");
-          }
 
         PetscInt iterations = 0, converged = 0;
         EPSConvergedReason reason;
@@ -88,8 +85,9 @@ namespace beamslider
           throw std::runtime_error(std::to_string(converged) + " of " + std::to_string(n) +
                                    " eigenpairs converged in " + std::to_string(iterations) + " iterations (" +
                                    EPSConvergedReasons[reason] + ")");
+        if (vectors.size() < n)
+          throw std::logic_error("lowest_eigenpairs needs " + std::to_string(n) + " vectors of K's layout");
         eigenvalues.resize(n);
-        vectors.resize(n);
         for (unsigned int i = 0; i < n; ++i)
           {
             stop_if_interrupted(comm);
@@ -141,7 +139,8 @@ namespace beamslider
     solver.set_which_eigenpairs(EPS_TARGET_MAGNITUDE);
     solver.set_target_eigenvalue(0.);
     // A failure on one rank alone must not wait for the others in a
-    // collective: the checks on the way out are local.
+    // collective: the checks on the way out are local (after a stop by a
+    // signal every rank has it).
     try
       {
         return solver.solve_lowest(K, M, n, eigenvalues, vectors);

@@ -31,9 +31,8 @@ namespace beamslider
   };
 
   // The `n` lowest eigenpairs into `eigenvalues` (unordered, as SLEPc gives
-  // them) and the first of `vectors`, which the caller sizes (n + 2 vectors
-  // of K's layout) and which keeps as many as converged. Returns the number
-  // of Krylov–Schur iterations. Throws std::runtime_error naming
+  // them) and `vectors`, which the caller sizes (n vectors of K's layout).
+  // Returns the number of Krylov–Schur iterations. Throws std::runtime_error naming
   // settings.what when SLEPc fails, Interrupted when stopped by a signal.
   unsigned int lowest_eigenpairs(const dealii::PETScWrappers::MatrixBase &K,
                                  const dealii::PETScWrappers::MatrixBase &M, unsigned int n,

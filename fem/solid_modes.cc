@@ -90,7 +90,7 @@ namespace beamslider
                               const PETScWrappers::MPI::SparseMatrix &M, const unsigned int n,
                               std::vector<double> &eigenvalues, std::vector<PETScWrappers::MPI::Vector> &vectors)
     {
-      vectors.resize(n + 2);
+      vectors.resize(n);
       for (auto &v : vectors)
         model.reinit_vector(v);
       ShiftInvertSettings settings;

@@ -80,8 +80,7 @@ namespace
   void run_contact(benchmark::State &state, const Scene &scene, BeamSystem &beam, const double seconds,
                    const double time_step)
   {
-    RunOptions options        = RunOptions::from_scene(scene);
-    options.time_step         = time_step;
+    RunOptions options        = RunOptions::from_scene(scene, time_step);
     options.end_time          = seconds;
     options.output_rate       = 1000.;
     options.progress_interval = 1e300;
@@ -185,8 +184,7 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
   std::unique_ptr<BeamSystem> system  = make_fe_beam_system(scene, state.range(0));
   const auto &fe                      = dynamic_cast<const FETransientBeam &>(*system);
   const double from                   = state.range(1);
-  RunOptions options                  = RunOptions::from_scene(scene);
-  options.time_step                   = scene.time_stepping.fe_time_step;
+  RunOptions options                  = RunOptions::from_scene(scene, scene.time_stepping.fe_time_step);
   options.progress_interval           = 1e300;
   unsigned long steps = 0, allocations = 0, counted_steps = 0;
   double wall = 0, fastest = 0;

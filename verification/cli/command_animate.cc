@@ -55,8 +55,7 @@ namespace beamslider
               << " s, " << static_cast<long>(n_frames) << " frames from t = " << options.start_time << " s into "
               << dir << std::endl;
 
-    RunOptions run_options        = RunOptions::from_scene(scene);
-    run_options.time_step         = dt;
+    RunOptions run_options        = RunOptions::from_scene(scene, dt);
     run_options.end_time          = end_time;
     run_options.progress_interval = 1e9;
     AdaptationRun run(scene, *beam, run_options);

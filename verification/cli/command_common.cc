@@ -1,11 +1,8 @@
 #include "contact/output_file.h"
-#include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
-#include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/build_info.h"
-#include "verification/studies/mpi_cells.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>

@@ -458,8 +458,7 @@ namespace beamslider
               << setting.label() << ", " << end_time << " s (" << std::llround(end_time / setting.time_step)
               << " steps), output in " << dir << std::endl;
 
-    RunOptions run_options        = RunOptions::from_scene(scene);
-    run_options.time_step         = setting.time_step;
+    RunOptions run_options        = RunOptions::from_scene(scene, setting.time_step);
     run_options.progress_interval = std::max(1., end_time / 20.);
     if (!(setting.time_step <= beam->max_stable_time_step()))
       {

@@ -27,17 +27,25 @@ namespace beamslider
 
   void clear_output_failures() { failed_outputs().clear(); }
 
+  namespace
+  {
+    // Whether the chart's process succeeded; a failure is a result not written.
+    bool drawn(const ChildResult &result, const std::string &script)
+    {
+      if (!result.succeeded())
+        note_output_failure("the chart of " + script + " was not drawn (" + result.error +
+                            "); the CSV files beside it are complete");
+      return result.succeeded();
+    }
+  } // namespace
+
   bool run_plot_script(const std::string &script, const std::vector<std::string> &arguments)
   {
     // The interpreter was found once, at configure time (CMake); the script
     // and every argument go to it as separate strings, never through a shell.
     std::vector<std::string> argv = {BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script};
     argv.insert(argv.end(), arguments.begin(), arguments.end());
-    const ChildResult result = run_child(argv, ChildEnvironment::inherited, ChildGroup::own);
-    if (!result.succeeded())
-      note_output_failure("the chart of " + script + " was not drawn (" + result.error +
-                          "); the CSV files beside it are complete");
-    return result.succeeded();
+    return drawn(run_child(argv, ChildEnvironment::inherited, ChildGroup::own), script);
   }
 
   EarlyPlot::EarlyPlot(const std::string &script)
@@ -47,10 +55,6 @@ namespace beamslider
 
   bool EarlyPlot::draw(const std::vector<std::string> &arguments)
   {
-    const ChildResult result = child_.finish(arguments);
-    if (!result.succeeded())
-      note_output_failure("the chart of " + script_ + " was not drawn (" + result.error +
-                          "); the CSV files beside it are complete");
-    return result.succeeded();
+    return drawn(child_.finish(arguments), script_);
   }
 } // namespace beamslider

@@ -86,8 +86,7 @@ namespace beamslider
       beam       = make_beam_model(s, model);
       thresholds = trace_thresholds(scene);
     }
-    RunOptions options        = RunOptions::from_scene(s);
-    options.time_step         = model.time_step;
+    RunOptions options        = RunOptions::from_scene(s, model.time_step);
     options.progress_interval = 1e300;
     AdaptationRun run(s, *beam, options);
     run.on_period       = [&member](const PeriodRecord &p) { member.periods.push_back(p); };

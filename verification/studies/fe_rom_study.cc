@@ -166,8 +166,7 @@ namespace beamslider
         if (setting.family == "fe" && setting.n_elements)
           scene.discretisation.n_elements = setting.n_elements;
         auto beam          = make_beam_model(scene, setting);
-        RunOptions options = RunOptions::from_scene(scene);
-        options.time_step  = setting.time_step;
+        RunOptions options = RunOptions::from_scene(scene, setting.time_step);
         options.end_time   = window;
         options.progress_interval = 1e9;
         AdaptationRun adaptation(scene, *beam, options);

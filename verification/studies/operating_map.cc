@@ -205,8 +205,7 @@ namespace beamslider
             ModelSetting model = scene_model(member_scene, settings.model.family);
             model.integrator   = settings.model.integrator;
             const std::unique_ptr<BeamSystem> beam = make_beam_model(member_scene, model);
-            RunOptions options        = RunOptions::from_scene(member_scene);
-            options.time_step         = model.time_step; // the FE at the scene's FE time step
+            RunOptions options        = RunOptions::from_scene(member_scene, model.time_step); // the FE at its FE time step
             options.progress_interval = 1e300;
             AdaptationRun run(member_scene, *beam, options);
             run.on_period = [&periods](const PeriodRecord &p) { periods.push_back(p); };

@@ -49,11 +49,10 @@ namespace beamslider
                         : 2 * branch + free_run;
   }
 
-  PcsStudy run_pcs_sweep(const Scene &scene_in, const PcsStudySettings &settings, const std::string &dir)
+  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir)
   {
     // The model runs at its own step (the FE at the scene's FE time step).
-    const Scene &scene        = scene_in;
-    const ModelSetting model  = scene_model(scene, settings.model);
+    const ModelSetting model = scene_model(scene, settings.model);
     settings.sweep.validate(scene);
     if (!(settings.free_time >= 0.))
       throw InputError("--free-time " + std::to_string(settings.free_time) + " s is outside [0, inf)");
@@ -124,8 +123,7 @@ namespace beamslider
     // The free slider from the scene's own start, for the overlay.
     auto free_slider = [&]() {
       std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
-      RunOptions options               = RunOptions::from_scene(scene);
-      options.time_step                = model.time_step;
+      RunOptions options               = RunOptions::from_scene(scene, model.time_step);
       options.end_time                 = settings.free_time;
       options.output_rate              = 1.;
       options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
