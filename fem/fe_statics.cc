@@ -1,6 +1,7 @@
 #include "fem/fe_statics.h"
 
 #include "contact/interruption.h"
+#include "numerics/newton.h"
 
 #include <deal.II/lac/sparse_direct.h>
 
@@ -148,86 +149,114 @@ namespace beamslider
     }
   } // namespace
 
+  // One solve of f(x) = F as numerics/newton.h's load-stepped problem: full
+  // Newton (the tangent factorised by UMFPACK every iteration), converged on
+  // the residual alone.
+  struct FEStatics::LoadSteppedSolve
+  {
+    FEStatics &statics;
+    const Vector<double> &F;
+    const Vector<double> *F_start;
+    Vector<double> &x;
+    const double load_norm;
+    Vector<double> f, residual, dx, x_start, load;
+    SparseMatrix<double> K;
+    SparseDirectUMFPACK solver;
+    double target_norm = 0, rel_residual = 0, previous_rel_residual = 0;
+
+    LoadSteppedSolve(FEStatics &statics, const Vector<double> &F, const Vector<double> *F_start, Vector<double> &x)
+      : statics(statics)
+      , F(F)
+      , F_start(F_start)
+      , x(x)
+      , load_norm(std::max(F.l2_norm(), 1e-300))
+      , dx(statics.beam.n_dofs())
+      , load(statics.beam.n_dofs())
+    {}
+
+    void begin_increment(const double target)
+    {
+      // The load at this increment: F_start + target (F - F_start).
+      load = F;
+      if (F_start)
+        load.sadd(target, 1. - target, *F_start);
+      else
+        load *= target;
+      target_norm           = std::max(load.l2_norm(), 1e-300 * load_norm);
+      x_start               = x;
+      rel_residual          = 0;
+      previous_rel_residual = std::numeric_limits<double>::infinity();
+    }
+
+    NewtonOutcome solve_increment()
+    {
+      NewtonControl control;
+      control.max_iterations = statics.settings.max_iterations;
+      return solve_newton(*this, control);
+    }
+
+    NewtonState evaluate(bool)
+    {
+      stop_if_interrupted(); // Ctrl-C between iterations (one process)
+      const auto &constraints = statics.beam.constraints();
+      statics.beam.assemble_internal_force(x, &f, &K, constraints);
+      residual = load;
+      residual -= f;
+      constraints.set_zero(residual);
+      rel_residual = residual.l2_norm() / target_norm;
+      // The residual cannot fall below the round-off of the sums that
+      // form it, of the order of ε ‖|K||x| + |load|‖ (the size of f's
+      // largest terms): it grows with the stiffness K ~ EI/Δx³ of a
+      // finer mesh while ‖load‖ shrinks, and from about 50 elements on
+      // it lies above 1e-11 ‖load‖, where Newton stalled. Measured on
+      // 8–512 elements, line and modal loads, w up to 8 h: the residual
+      // stalls at 0.08–0.28 of that estimate, so a residual below it
+      // (round_off_factor = 1) is as converged as it can be, once it
+      // has stalled there (fallen less than tenfold in one iteration):
+      // a residual that is still falling fast goes on to the old test,
+      // so a solve that met the tolerance before stops where it did
+      // (the same results; ICE on 32 elements has the floor at up to
+      // 2.5e-11 of the load).
+      const double floor_ratio = round_off_floor(K, x, load) / target_norm;
+      const bool stalled       = rel_residual > 0.1 * previous_rel_residual;
+      previous_rel_residual    = rel_residual;
+      const NewtonSettings &settings = statics.settings;
+      if (rel_residual < settings.relative_tolerance ||
+          (stalled && rel_residual < settings.round_off_factor * floor_ratio))
+        return NewtonState::converged;
+      return NewtonState::go_on;
+    }
+
+    void factorise() { solver.initialize(K); }
+
+    double correct()
+    {
+      solver.vmult(dx, residual);
+      statics.beam.constraints().distribute(dx);
+      x += dx;
+      ++statics.linear_solves;
+      return dx.l2_norm();
+    }
+
+    bool small(double) const { return false; } // converged on the residual
+
+    void restore() { x = x_start; }
+
+    [[noreturn]] void give_up(const double lambda, const NewtonOutcome &) const
+    {
+      const NewtonSettings &settings = statics.settings;
+      std::ostringstream msg;
+      msg << "Newton's method for the FE statics did not converge: stuck at load fraction " << lambda
+          << " (next increment below " << settings.min_load_step << "), relative residual " << rel_residual
+          << " after " << settings.max_iterations << " iterations; |F| = " << load_norm << " N";
+      throw StaticSolveError(msg.str());
+    }
+  };
+
   unsigned int FEStatics::solve(const Vector<double> &F, Vector<double> &x, const Vector<double> *F_start)
   {
     ++static_solves;
-    const auto &constraints = beam.constraints();
-    const double load_norm  = std::max(F.l2_norm(), 1e-300);
-    double lambda = 0, step = settings.initial_load_step;
-    unsigned int total_iterations = 0;
-    Vector<double> f, residual, dx(beam.n_dofs()), x_start, load(beam.n_dofs());
-    SparseMatrix<double> K;
-    SparseDirectUMFPACK solver;
-
-    while (lambda < 1.)
-      {
-        const double target = std::min(1., lambda + step);
-        // The load at this increment: F_start + target (F - F_start).
-        load = F;
-        if (F_start)
-          load.sadd(target, 1. - target, *F_start);
-        else
-          load *= target;
-        const double target_norm = std::max(load.l2_norm(), 1e-300 * load_norm);
-        x_start             = x;
-        bool converged      = false;
-        double rel_residual = 0, previous_rel_residual = std::numeric_limits<double>::infinity();
-        for (unsigned int it = 0; it < settings.max_iterations; ++it)
-          {
-            stop_if_interrupted(); // Ctrl-C between iterations (one process)
-            beam.assemble_internal_force(x, &f, &K, constraints);
-            residual = load;
-            residual -= f;
-            constraints.set_zero(residual);
-            rel_residual = residual.l2_norm() / target_norm;
-            // The residual cannot fall below the round-off of the sums that
-            // form it, of the order of ε ‖|K||x| + |load|‖ (the size of f's
-            // largest terms): it grows with the stiffness K ~ EI/Δx³ of a
-            // finer mesh while ‖load‖ shrinks, and from about 50 elements on
-            // it lies above 1e-11 ‖load‖, where Newton stalled. Measured on
-            // 8–512 elements, line and modal loads, w up to 8 h: the residual
-            // stalls at 0.08–0.28 of that estimate, so a residual below it
-            // (round_off_factor = 1) is as converged as it can be, once it
-            // has stalled there (fallen less than tenfold in one iteration):
-            // a residual that is still falling fast goes on to the old test,
-            // so a solve that met the tolerance before stops where it did
-            // (the same results; ICE on 32 elements has the floor at up to
-            // 2.5e-11 of the load).
-            const double floor_ratio = round_off_floor(K, x, load) / target_norm;
-            const bool stalled       = rel_residual > 0.1 * previous_rel_residual;
-            previous_rel_residual    = rel_residual;
-            if (rel_residual < settings.relative_tolerance ||
-                (stalled && rel_residual < settings.round_off_factor * floor_ratio))
-              {
-                converged = true;
-                break;
-              }
-            solver.initialize(K);
-            solver.vmult(dx, residual);
-            constraints.distribute(dx);
-            x += dx;
-            ++linear_solves;
-            ++total_iterations;
-          }
-        if (converged)
-          {
-            lambda = target;
-            step   = std::min(2 * step, 1. - lambda + 1e-15);
-          }
-        else
-          {
-            x = x_start;
-            step *= 0.5;
-            if (step < settings.min_load_step)
-              {
-                std::ostringstream msg;
-                msg << "Newton's method for the FE statics did not converge: stuck at load fraction " << lambda
-                    << " (next increment below " << settings.min_load_step << "), relative residual " << rel_residual
-                    << " after " << settings.max_iterations << " iterations; |F| = " << load_norm << " N";
-                throw StaticSolveError(msg.str());
-              }
-          }
-      }
-    return total_iterations;
+    LoadSteppedSolve problem(*this, F, F_start, x);
+    return solve_load_stepped(problem, LoadSteps{settings.initial_load_step, settings.min_load_step});
   }
 } // namespace beamslider

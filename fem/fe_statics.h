@@ -101,5 +101,6 @@ namespace beamslider
     dealii::SparseMatrix<double> M;
     dealii::AffineConstraints<double> axial_only; // supports + every w and θ DoF
     unsigned int linear_solves = 0, static_solves = 0;
+    struct LoadSteppedSolve; // one solve() as numerics/newton.h's problem
   };
 } // namespace beamslider

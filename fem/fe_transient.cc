@@ -2,6 +2,7 @@
 #include "fem/fe_transient.h"
 
 #include "contact/checkpoint.h"
+#include "numerics/newton.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -590,6 +591,99 @@ namespace beamslider
     x.noalias() -= Z_ * woodbury_v_;
   }
 
+  // One step's smooth velocity as numerics/newton.h's problem: modified
+  // Newton on the θ-method's residual with the last factorisation of S₀.
+  struct FETransientBeam::NewtonStep
+  {
+    FETransientBeam &beam;
+    const Eigen::VectorXd &q_M, &u_B;
+    const double dt, theta, a;
+    const unsigned int rank;
+    const bool exact_in_one; // a linear beam without damping: S₀ is the exact Jacobian
+    unsigned int iteration = 0;
+
+    NewtonState evaluate(bool)
+    {
+      ++iteration;
+      FETransientBeam &b = beam;
+      // q̄ = (1 − θ) q_B + θ q_E = q_M + θ²Δt (u − u_B) + (2θ − 1)Δt u_B
+      // (q_M + Δt/4 (u − u_B) for θ = 1/2).
+      // (Each a single pass over the vectors, summed left to right as the
+      // formula reads.)
+      b.tmp_ = b.u_ - u_B;
+      if (theta != 0.5)
+        b.q_bar_ = q_M + (theta * theta * dt) * b.tmp_ + ((2. * theta - 1.) * dt) * u_B;
+      else
+        b.q_bar_ = q_M + (theta * theta * dt) * b.tmp_;
+      b.internal_force_cached(b.q_bar_, b.f_);
+      // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
+      // Newton's first iterate is u_B itself unless extrapolated: then
+      // M(u − u_B) is zero, and the first of a step's two products is
+      // skipped.
+      if (iteration == 1 && b.tmp_.isZero(0.))
+        b.res_.setZero();
+      else if (!b.M_blocks_.empty())
+        b.M_blocks_.multiply(b.tmp_, b.res_);
+      else
+        b.res_.noalias() = b.M_eigen_ * b.tmp_;
+      b.res_ = (b.res_ + dt * b.f_) - (dt * a) * b.r_eigen_;
+      if (rank > 0)
+        {
+          // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
+          b.tmp_ = theta * b.u_ + (1. - theta) * u_B;
+          // Column by column (rank N, a handful): dot products and axpys
+          // over the DoFs cost less than two calls into Eigen's
+          // matrix–vector kernel with their set-up.
+          for (unsigned int k = 0; k < rank; ++k)
+            b.res_ += (dt * b.modal_c_[k] * b.U_.col(k).dot(b.tmp_)) * b.U_.col(k);
+        }
+      if (!b.massless_axial_.empty())
+        {
+          // Massless axial DoFs: equilibrium at the step's end (see
+          // FETransientSettings::axial_inertia).
+          // θΔt f_axial(q_E): its Jacobian θ²Δt² K_axial is S₀'s axial block.
+          b.q_end_ = q_M;
+          b.q_end_.noalias() += (theta * dt) * b.u_;
+          b.internal_force_cached(b.q_end_, b.f_end_);
+          for (const unsigned int i : b.massless_axial_)
+            b.res_[i] = theta * dt * b.f_end_[i];
+        }
+      for (const unsigned int i : b.constrained_list_)
+        b.res_[i] = 0.;
+      return NewtonState::go_on;
+    }
+
+    void factorise() { beam.factorise(beam.q_bar_, dt); }
+
+    double correct()
+    {
+      // The correction with S₀ alone: the damping's part of S, θΔt C,
+      // is of relative size Δt D ω_n ≤ 1e-4 on the N damped modes, so
+      // leaving it out of the iteration matrix only adds that factor to
+      // the contraction of this (already modified) Newton iteration; the
+      // residual keeps the damping exactly, so the converged u_free is
+      // the same. The contact impulses still see the full S (solve()).
+      beam.solve_factored(beam.res_, beam.du_);
+      beam.u_ -= beam.du_;
+      ++beam.stats_.newton_iterations;
+      return beam.du_.norm();
+    }
+
+    // Converged when the correction moves q_E by less than rtol of the
+    // step's scale (Δt/2 δu against Δt u and q̄): this also sets the
+    // floor above the round-off of f(q̄), which grows with ‖q̄‖/Δt. (The
+    // driver also accepts on the contraction estimate of the remaining
+    // error.) With damping the correction left out θΔt C, so only the
+    // undamped linear beam is solved in one step.
+    bool small(const double correction) const
+    {
+      const FETransientSettings &settings = beam.settings_;
+      const double tolerance =
+        settings.relative_tolerance * (beam.u_.norm() + beam.q_bar_.norm() / dt) + settings.absolute_tolerance;
+      return correction <= tolerance || (exact_in_one && iteration == 1);
+    }
+  };
+
   void FETransientBeam::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                       const double dt, Eigen::VectorXd &u_free)
   {
@@ -598,9 +692,10 @@ namespace beamslider
     const bool nonlinear = beam_->geometric_nonlinearity();
     // The smooth forces act at t_θ = t_B + θΔt, and t_M = t_B + (1 − θ)Δt
     // (both the midpoint for θ = 1/2).
-    const double theta   = settings_.theta;
-    const double a       = excitation_.acceleration(t_M + (2. * theta - 1.) * dt);
+    const double theta      = settings_.theta;
     const unsigned int rank = damping_->rank();
+    NewtonStep step{*this, q_M, u_B, dt, theta, excitation_.acceleration(t_M + (2. * theta - 1.) * dt), rank,
+                    !nonlinear && rank == 0};
 
     // Predictor: the start velocity (plus, optionally, the last step's smooth
     // velocity change).
@@ -610,112 +705,28 @@ namespace beamslider
     for (const unsigned int i : constrained_list_)
       u_[i] = 0.;
 
-    bool refactor = !factorised_ || factorised_dt_ != dt || factorised_theta_ != theta ||
-                    (nonlinear && settings_.refactor_interval > 0 &&
-                     stats_.steps - factorised_step_ >= settings_.refactor_interval);
-    double previous = std::numeric_limits<double>::infinity(), correction = 0;
-    unsigned int it = 0;
-    bool converged  = false;
-    while (it < settings_.max_iterations)
-      {
-        ++it;
-        // q̄ = (1 − θ) q_B + θ q_E = q_M + θ²Δt (u − u_B) + (2θ − 1)Δt u_B
-        // (q_M + Δt/4 (u − u_B) for θ = 1/2).
-        // (Each a single pass over the vectors, summed left to right as the
-        // formula reads.)
-        tmp_ = u_ - u_B;
-        if (theta != 0.5)
-          q_bar_ = q_M + (theta * theta * dt) * tmp_ + ((2. * theta - 1.) * dt) * u_B;
-        else
-          q_bar_ = q_M + (theta * theta * dt) * tmp_;
-        internal_force_cached(q_bar_, f_);
-        if (refactor)
-          {
-            factorise(q_bar_, dt);
-            refactor = false;
-          }
-        // R = M(u − u_B) + Δt [f(q̄) + C((1 − θ)u_B + θu) − r ẅ0], C = U diag(2Dω) Uᵀ.
-        // Newton's first iterate is u_B itself unless extrapolated: then
-        // M(u − u_B) is zero, and the first of a step's two products is
-        // skipped.
-        if (it == 1 && tmp_.isZero(0.))
-          res_.setZero();
-        else if (!M_blocks_.empty())
-          M_blocks_.multiply(tmp_, res_);
-        else
-          res_.noalias() = M_eigen_ * tmp_;
-        res_ = (res_ + dt * f_) - (dt * a) * r_eigen_;
-        if (rank > 0)
-          {
-            // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
-            tmp_ = theta * u_ + (1. - theta) * u_B;
-            // Column by column (rank N, a handful): dot products and axpys
-            // over the DoFs cost less than two calls into Eigen's
-            // matrix–vector kernel with their set-up.
-            for (unsigned int k = 0; k < rank; ++k)
-              res_ += (dt * modal_c_[k] * U_.col(k).dot(tmp_)) * U_.col(k);
-          }
-        if (!massless_axial_.empty())
-          {
-            // Massless axial DoFs: equilibrium at the step's end (see
-            // FETransientSettings::axial_inertia).
-            // θΔt f_axial(q_E): its Jacobian θ²Δt² K_axial is S₀'s axial block.
-            q_end_ = q_M;
-            q_end_.noalias() += (theta * dt) * u_;
-            internal_force_cached(q_end_, f_end_);
-            for (const unsigned int i : massless_axial_)
-              res_[i] = theta * dt * f_end_[i];
-          }
-        for (const unsigned int i : constrained_list_)
-          res_[i] = 0.;
-        // The correction with S₀ alone: the damping's part of S, θΔt C,
-        // is of relative size Δt D ω_n ≤ 1e-4 on the N damped modes, so
-        // leaving it out of the iteration matrix only adds that factor to
-        // the contraction of this (already modified) Newton iteration; the
-        // residual keeps the damping exactly, so the converged u_free is
-        // the same. The contact impulses still see the full S (solve()).
-        solve_factored(res_, du_);
-        u_ -= du_;
-        ++stats_.newton_iterations;
-
-        correction = du_.norm();
-        if (!std::isfinite(correction))
-          break;
-        // Converged when the correction moves q_E by less than rtol of the
-        // step's scale (Δt/2 δu against Δt u and q̄): this also sets the
-        // floor above the round-off of f(q̄), which grows with ‖q̄‖/Δt.
-        // With the contraction c = ‖δu_k‖/‖δu_{k−1}‖ of the (modified) Newton
-        // iteration the remaining error is about c/(1 − c) ‖δu_k‖ (Hairer &
-        // Wanner, Solving ODEs II, §IV.8): accept on that estimate too, which
-        // saves the iteration that would only confirm convergence.
-        const double tolerance =
-          settings_.relative_tolerance * (u_.norm() + q_bar_.norm() / dt) + settings_.absolute_tolerance;
-        const double c = correction / previous;
-        if (correction <= tolerance || (it > 1 && c < 0.5 && c / (1. - c) * correction <= tolerance))
-          {
-            converged = true;
-            break;
-          }
-        // A linear beam without damping is solved in one step (up to
-        // round-off): S₀ is then the exact Jacobian. With damping the
-        // correction left out θΔt C, so the test above decides.
-        if (!nonlinear && rank == 0 && it == 1)
-          {
-            converged = true;
-            break;
-          }
-        if (nonlinear && correction > settings_.max_contraction * previous)
-          refactor = true;
-        previous = correction;
-      }
-    if (!converged)
-      throw TransientNewtonFailure(t_M, it, correction, u_.norm());
+    // Modified Newton: S₀ is refactorised when stale, or when a correction
+    // shrinks by less than max_contraction against the one before (the
+    // contraction measured across a refresh too).
+    NewtonMatrixAge age;
+    age.stale = !factorised_ || factorised_dt_ != dt || factorised_theta_ != theta ||
+                (nonlinear && settings_.refactor_interval > 0 &&
+                 stats_.steps - factorised_step_ >= settings_.refactor_interval);
+    NewtonControl control;
+    control.modified                       = true;
+    control.max_iterations                 = settings_.max_iterations;
+    control.max_contraction                = nonlinear ? settings_.max_contraction : std::numeric_limits<double>::infinity();
+    control.accept_on_contraction_estimate = true;
+    control.restart_contraction_at_refresh = false;
+    const NewtonOutcome outcome = solve_newton(step, control, age);
+    if (!outcome.converged())
+      throw TransientNewtonFailure(t_M, outcome.iterations, outcome.correction, u_.norm());
 
     u_free             = u_;
     last_u_B_          = u_B;
     last_u_free_       = u_free;
     last_dt_           = dt;
-    last_acceleration_ = a;
+    last_acceleration_ = step.a;
     have_last_         = true;
     ++stats_.steps;
   }

@@ -419,6 +419,7 @@ namespace beamslider
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too
     // Scratch of the Newton loop.
     Eigen::VectorXd q_bar_, u_, res_, du_, f_, tmp_;
+    struct NewtonStep; // compute_free_velocity() as numerics/newton.h's problem
     // Without axial inertia: the free axial DoFs, and q_E, f(q_E) scratch.
     std::vector<unsigned int> massless_axial_;
     Eigen::VectorXd q_end_, f_end_;

@@ -1,5 +1,7 @@
 #include "fem/solid_coefficients.h"
 
+#include "numerics/newton.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -166,68 +168,100 @@ namespace beamslider
     return p;
   }
 
+  // Relaxed STEP at one q as numerics/newton.h's problem: full Newton on
+  // f(Φq + v) = M Φ λ with Φᵀ M v = 0, for v and the holding forces λ.
+  template <int dim>
+  struct SolidModalCoefficients<dim>::RelaxedStep
+  {
+    SolidModalCoefficients<dim> &c;
+    const unsigned int N;
+    std::vector<PETScWrappers::MPI::Vector> MPhi, B; // M Φ_j on the free DoFs; K⁻¹ M Φ_j
+    PETScWrappers::MPI::Vector u, u_ghosted, f, residual, a, dv;
+    PETScWrappers::MPI::SparseMatrix K;
+    Eigen::VectorXd lambda;
+    double q_norm = 0;
+
+    RelaxedStep(SolidModalCoefficients<dim> &c, const Eigen::VectorXd &q)
+      : c(c)
+      , N(c.Phi.size())
+      , MPhi(N)
+      , B(N)
+    {
+      // M Φ_j on the free DoFs: the directions the holding forces act in.
+      for (unsigned int j = 0; j < N; ++j)
+        {
+          c.model.reinit_vector(MPhi[j]);
+          c.model.reinit_vector(B[j]);
+          c.M.vmult(MPhi[j], c.Phi[j]);
+          c.model.constraints().set_zero(MPhi[j]);
+        }
+      c.model.reinit_vector(u);
+      c.model.reinit_vector(a);
+      c.model.reinit_vector(dv);
+      c.model.reinit_ghosted_vector(u_ghosted);
+      for (unsigned int j = 0; j < N; ++j)
+        u.add(q[j], c.Phi[j]);
+      q_norm = u.l2_norm();
+      // Start from plain STEP: v = 0, λ = Φᵀ f(Φ q).
+      lambda = c.modal_force(q);
+    }
+
+    NewtonState evaluate(bool)
+    {
+      u_ghosted = u;
+      c.model.assemble_internal_force(u_ghosted, &f, &K);
+      residual = f;
+      for (unsigned int j = 0; j < N; ++j)
+        residual.add(-lambda[j], MPhi[j]); // f(u) − M Φ λ
+      return NewtonState::go_on;
+    }
+
+    double relative_residual() const { return residual.l2_norm() / std::max(f.l2_norm(), 1e-300); }
+
+    void factorise() { c.relaxed_tangent.factorise(K); }
+
+    double correct()
+    {
+      // dv = a + B dλ with a = −K⁻¹ r, B_j = K⁻¹ M Φ_j; (MΦ)ᵀ dv = 0 gives S dλ = −(MΦ)ᵀ a.
+      residual *= -1.;
+      c.relaxed_tangent.solve(a, residual);
+      Eigen::MatrixXd S(N, N);
+      Eigen::VectorXd rhs(N);
+      for (unsigned int j = 0; j < N; ++j)
+        c.relaxed_tangent.solve(B[j], MPhi[j]);
+      for (unsigned int i = 0; i < N; ++i)
+        {
+          rhs[i] = -(MPhi[i] * a);
+          for (unsigned int j = 0; j < N; ++j)
+            S(i, j) = MPhi[i] * B[j];
+        }
+      const Eigen::VectorXd dlambda = S.lu().solve(rhs);
+      dv = a;
+      for (unsigned int j = 0; j < N; ++j)
+        dv.add(dlambda[j], B[j]);
+      c.model.constraints().set_zero(dv);
+      u += dv;
+      c.model.distribute(u);
+      lambda += dlambda;
+      return dv.l2_norm();
+    }
+
+    bool small(const double correction) const { return correction < 1e-12 * q_norm; }
+  };
+
   template <int dim>
   Eigen::VectorXd SolidModalCoefficients<dim>::modal_force_relaxed(const Eigen::VectorXd &q)
   {
-    const unsigned int N = Phi.size();
-    // M Φ_j on the free DoFs: the directions the holding forces act in.
-    std::vector<PETScWrappers::MPI::Vector> MPhi(N), B(N);
-    for (unsigned int j = 0; j < N; ++j)
-      {
-        model.reinit_vector(MPhi[j]);
-        model.reinit_vector(B[j]);
-        M.vmult(MPhi[j], Phi[j]);
-        model.constraints().set_zero(MPhi[j]);
-      }
-    PETScWrappers::MPI::Vector u, u_ghosted, f, residual, a, dv;
-    PETScWrappers::MPI::SparseMatrix K;
-    model.reinit_vector(u);
-    model.reinit_vector(a);
-    model.reinit_vector(dv);
-    model.reinit_ghosted_vector(u_ghosted);
-    for (unsigned int j = 0; j < N; ++j)
-      u.add(q[j], Phi[j]);
-    const double q_norm = u.l2_norm();
-    // Start from plain STEP: v = 0, λ = Φᵀ f(Φ q).
-    Eigen::VectorXd lambda = modal_force(q);
-    const unsigned int max_iterations = 30;
-    for (unsigned int it = 0;; ++it)
-      {
-        u_ghosted = u;
-        model.assemble_internal_force(u_ghosted, &f, &K);
-        residual = f;
-        for (unsigned int j = 0; j < N; ++j)
-          residual.add(-lambda[j], MPhi[j]); // f(u) − M Φ λ
-        const double holding = std::max(f.l2_norm(), 1e-300);
-        if (it == max_iterations)
-          throw SolidStaticSolveError("relaxed STEP did not converge at |q| = " + std::to_string(q.norm()) +
-                                      ": relative residual " + std::to_string(residual.l2_norm() / holding) +
-                                      " after " + std::to_string(max_iterations) + " Newton iterations");
-        relaxed_tangent.factorise(K);
-        // dv = a + B dλ with a = −K⁻¹ r, B_j = K⁻¹ M Φ_j; (MΦ)ᵀ dv = 0 gives S dλ = −(MΦ)ᵀ a.
-        residual *= -1.;
-        relaxed_tangent.solve(a, residual);
-        Eigen::MatrixXd S(N, N);
-        Eigen::VectorXd rhs(N);
-        for (unsigned int j = 0; j < N; ++j)
-          relaxed_tangent.solve(B[j], MPhi[j]);
-        for (unsigned int i = 0; i < N; ++i)
-          {
-            rhs[i] = -(MPhi[i] * a);
-            for (unsigned int j = 0; j < N; ++j)
-              S(i, j) = MPhi[i] * B[j];
-          }
-        const Eigen::VectorXd dlambda = S.lu().solve(rhs);
-        dv = a;
-        for (unsigned int j = 0; j < N; ++j)
-          dv.add(dlambda[j], B[j]);
-        model.constraints().set_zero(dv);
-        u += dv;
-        model.distribute(u);
-        lambda += dlambda;
-        if (dv.l2_norm() < 1e-12 * q_norm)
-          return lambda;
-      }
+    RelaxedStep step(*this, q);
+    NewtonControl control;
+    control.max_iterations = 30;
+    const NewtonOutcome outcome = solve_newton(step, control);
+    if (outcome.converged())
+      return step.lambda;
+    step.evaluate(false); // the residual where it stopped
+    throw SolidStaticSolveError("relaxed STEP did not converge at |q| = " + std::to_string(q.norm()) +
+                                ": relative residual " + std::to_string(step.relative_residual()) + " after " +
+                                std::to_string(outcome.iterations) + " Newton iterations (" + outcome.reason() + ")");
   }
 
   template <int dim>

@@ -80,6 +80,7 @@ namespace beamslider
     dealii::PETScWrappers::MPI::SparseMatrix M;
     SolidStatics<dim> statics;
     KeptFactorisation relaxed_tangent{model.communicator()};
+    struct RelaxedStep; // modal_force_relaxed() as numerics/newton.h's problem
   };
 
   // The coefficients of `coefficients`' modes by a method, at the load or

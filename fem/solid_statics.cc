@@ -2,6 +2,7 @@
 
 #include "fem/mpi_interruption.h"
 #include "fem/solid_point_values.h"
+#include "numerics/newton.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -22,32 +23,98 @@ namespace beamslider
     , tangent(model.communicator())
   {}
 
+  // One solve() as numerics/newton.h's load-stepped problem: modified
+  // Newton on the kept MUMPS factorisation, with a line search on the energy.
   template <int dim>
-  unsigned int SolidStatics<dim>::solve(const PETScWrappers::MPI::Vector &F, PETScWrappers::MPI::Vector &u,
-                                       const PETScWrappers::MPI::Vector *F_start)
+  struct SolidStatics<dim>::LoadSteppedSolve
   {
-    ++static_solves;
-    const double relative_tolerance = 1e-10, correction_tolerance = 1e-10, min_step = 1e-4;
-    // Modified Newton: the tangent's factorisation is refreshed when the
-    // corrections stop shrinking fast, or after this many iterations on it.
-    const double slow_contraction = 0.25;
-    const unsigned int max_iterations = 30, max_iterations_per_factorisation = 10, max_factorisations = 6;
+    // Converged when the residual or the correction (relative to the
+    // displacement) is this small.
+    static constexpr double relative_tolerance = 1e-10, correction_tolerance = 1e-10;
     // A residual this far above the load means the increment diverges (ICE's
     // small solves peak at ~1e3 of the load, from the bent strip's membrane
     // forces before the first refresh): cut it back at once.
-    const double diverged = 1e8;
-    const double line_search_tolerance = 0.5, line_search_above = 1e-3;
-    const double load_norm = std::max(F.l2_norm(), 1e-300);
-    double lambda = 0, step = 1;
-    unsigned int total = 0;
+    static constexpr double diverged = 1e8;
+    static constexpr double line_search_tolerance = 0.5, line_search_above = 1e-3;
+
+    SolidStatics<dim> &statics;
+    const SolidModel<dim> &model;
+    const PETScWrappers::MPI::Vector &F, *F_start;
+    PETScWrappers::MPI::Vector &u;
+    const double load_norm;
+    NewtonControl control;
     PETScWrappers::MPI::Vector u_ghosted, f, residual, du, u_start, load, u_trial, f_trial, r_trial;
     PETScWrappers::MPI::SparseMatrix K;
-    model.reinit_ghosted_vector(u_ghosted);
-    model.reinit_vector(du);
+    double load_scale = 0, relative = 0;
+    bool have_residual = false; // residual = load − f(u) kept from the line search
+
+    LoadSteppedSolve(SolidStatics<dim> &statics, const PETScWrappers::MPI::Vector &F,
+                     const PETScWrappers::MPI::Vector *F_start, PETScWrappers::MPI::Vector &u)
+      : statics(statics)
+      , model(statics.model)
+      , F(F)
+      , F_start(F_start)
+      , u(u)
+      , load_norm(std::max(F.l2_norm(), 1e-300))
+    {
+      // The tangent's factorisation is refreshed when the corrections stop
+      // shrinking fast, or after this many iterations on it.
+      control.modified                         = true;
+      control.max_iterations                   = 30;
+      control.max_contraction                  = 0.25;
+      control.max_iterations_per_factorisation = 10;
+      control.max_factorisations               = 6;
+      model.reinit_ghosted_vector(u_ghosted);
+      model.reinit_vector(du);
+    }
+
+    void begin_increment(const double target)
+    {
+      // The load at this increment: F_start + target (F − F_start).
+      load = F;
+      if (F_start)
+        load.sadd(target, 1. - target, *F_start);
+      else
+        load *= target;
+      load_scale    = std::max(load.l2_norm(), 1e-300 * load_norm);
+      u_start       = u;
+      relative      = 0;
+      have_residual = false;
+    }
+
+    NewtonOutcome solve_increment()
+    {
+      statics.tangent_age.stale = !statics.tangent.factorised();
+      return solve_newton(*this, control, statics.tangent_age);
+    }
+
+    NewtonState evaluate(const bool refresh)
+    {
+      stop_if_interrupted(model.communicator()); // every rank at the same iteration
+      if (refresh || !have_residual)
+        {
+          u_ghosted = u;
+          model.assemble_internal_force(u_ghosted, &f, refresh ? &K : nullptr);
+          residual = load;
+          residual -= f;
+        }
+      relative = residual.l2_norm() / load_scale;
+      // The residual of a thin strip cannot fall far below ε times the
+      // stiffness ratio of its membrane and bending (~1e-4 of the load at
+      // L/h = 140): converged when either it or Newton's correction
+      // relative to the displacement (small()) is small.
+      if (relative < relative_tolerance)
+        return NewtonState::converged;
+      return relative < diverged ? NewtonState::go_on : NewtonState::diverged;
+    }
+
+    void factorise() { statics.tangent.factorise(K); }
+
     // The residual r(u + α du) = load − f(u + α du) and its work along the
-    // correction, g(α) = du·r: the line search below looks for g = 0, the
-    // minimum of the total potential energy along du.
-    auto work_along = [&](const double alpha) {
+    // correction, g(α) = du·r: the line search looks for g = 0, the minimum
+    // of the total potential energy along du.
+    double work_along(const double alpha)
+    {
       u_trial = u;
       u_trial.add(alpha, du);
       model.distribute(u_trial);
@@ -56,120 +123,82 @@ namespace beamslider
       r_trial = load;
       r_trial -= f_trial;
       return du * r_trial;
-    };
-    while (lambda < 1.)
-      {
-        const double target = std::min(1., lambda + step);
-        // The load at this increment: F_start + target (F − F_start).
-        load = F;
-        if (F_start)
-          load.sadd(target, 1. - target, *F_start);
-        else
-          load *= target;
-        const double load_scale = std::max(load.l2_norm(), 1e-300 * load_norm);
-        u_start             = u;
-        bool converged      = false;
-        double relative     = 0;
-        double last_correction = 0, contraction = 0;
-        unsigned int factorisations = 0, attempt_iterations = 0;
-        bool have_residual = false; // residual = load − f(u) kept from the line search
-        for (unsigned int it = 0; it < max_iterations; ++it)
-          {
-            stop_if_interrupted(model.communicator()); // every rank at the same iteration
-            const bool refresh = !tangent.factorised() || contraction > slow_contraction ||
-                                 iterations_on_tangent >= max_iterations_per_factorisation;
-            if (refresh || !have_residual)
-              {
-                u_ghosted = u;
-                model.assemble_internal_force(u_ghosted, &f, refresh ? &K : nullptr);
-                residual = load;
-                residual -= f;
-              }
-            relative = residual.l2_norm() / load_scale;
-            // The residual of a thin strip cannot fall far below ε times the
-            // stiffness ratio of its membrane and bending (~1e-4 of the load
-            // at L/h = 140): converged when either it or Newton's correction
-            // relative to the displacement is small.
-            if (relative < relative_tolerance || (it > 0 && last_correction < correction_tolerance * u.l2_norm()))
-              {
-                converged = true;
-                break;
-              }
-            if (!(relative < diverged) || (refresh && factorisations == max_factorisations))
-              break;
-            if (refresh)
-              {
-                tangent.factorise(K);
-                iterations_on_tangent = 0;
-                ++factorisations;
-              }
-            tangent.solve(du, residual);
-            model.constraints().set_zero(du);
-            // Line search on the energy (see the header): the full correction
-            // when |g(1)| ≤ ½ g(0), else secant steps toward g = 0.
-            // Small corrections (converging) take the full step: there g is
-            // at the level of round-off in the strip's membrane forces.
-            const double g_0 = du * residual, du_norm = du.l2_norm();
-            double alpha = 1, g = work_along(1.);
-            if (g_0 > 0 && du_norm > line_search_above * u.l2_norm())
-              {
-                // [a_low, a_high] brackets the root: g > 0 at a_low, g < 0
-                // (or not finite: overflow) at a_high.
-                double a_low = 0, g_low = g_0, a_high = 1, g_high = g;
-                for (unsigned int ls = 0; ls < 3 && !(std::abs(g) <= line_search_tolerance * g_0); ++ls)
-                  {
-                    if (g > 0) // still descending at α: accept (at α = 1 the root lies beyond the full step)
-                      break;
-                    const double width = a_high - a_low;
-                    const double secant =
-                      std::isfinite(g_high) ? a_low + width * g_low / (g_low - g_high) : a_low + 0.5 * width;
-                    alpha = std::clamp(secant, a_low + 0.1 * width, a_high - 0.1 * width);
-                    g     = work_along(alpha);
-                    if (g > 0)
-                      a_low = alpha, g_low = g;
-                    else
-                      a_high = alpha, g_high = g;
-                  }
-              }
-            u.swap(u_trial); // u + α du, distributed: an elastic end's face follows its plate
-            residual.swap(r_trial);
-            have_residual = std::isfinite(g);
-            ++linear_solves;
-            ++iterations_on_tangent;
-            ++attempt_iterations;
-            ++total;
-            const double correction = std::abs(alpha) * du_norm;
-            if (!std::isfinite(correction))
-              break;
-            // The contraction of successive corrections on one factorisation
-            // (0: not known yet, after a refresh or at an increment's start).
-            contraction     = refresh || it == 0 ? 0 : correction / last_correction;
-            last_correction = correction;
-          }
-        if (converged)
-          {
-            lambda = target;
-            step   = std::min(2 * step, 1. - lambda + 1e-15);
-          }
-        else
-          {
-            u = u_start;
-            step *= 0.5;
-            // Start the smaller increment on the tangent at its start.
-            iterations_on_tangent = max_iterations_per_factorisation;
-            if (step < min_step)
-              {
-                std::ostringstream msg;
-                msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
-                    << " (next increment below " << min_step << "): the last attempt ended at relative residual "
-                    << relative << " after " << attempt_iterations << " iterations and " << factorisations
-                    << " factorisations (limits: " << max_iterations << " iterations, " << max_factorisations
-                    << " factorisations, residual " << diverged << "); |F| = " << load_norm << " N";
-                throw SolidStaticSolveError(msg.str());
-              }
-          }
-      }
-    return total;
+    }
+
+    // Line search on the energy (see the header): the full correction when
+    // |g(1)| ≤ ½ g(0), else secant steps toward g = 0. Small corrections
+    // (converging) take the full step: there g is at the level of round-off
+    // in the strip's membrane forces. Returns α; u_trial and r_trial hold
+    // u + α du and its residual, g its work.
+    double line_search(const double g_0, const double du_norm, double &g)
+    {
+      double alpha = 1;
+      g            = work_along(1.);
+      if (!(g_0 > 0 && du_norm > line_search_above * u.l2_norm()))
+        return alpha;
+      // [a_low, a_high] brackets the root: g > 0 at a_low, g < 0 (or not
+      // finite: overflow) at a_high.
+      double a_low = 0, g_low = g_0, a_high = 1, g_high = g;
+      for (unsigned int ls = 0; ls < 3 && !(std::abs(g) <= line_search_tolerance * g_0); ++ls)
+        {
+          if (g > 0) // still descending at α: accept (at α = 1 the root lies beyond the full step)
+            break;
+          const double width  = a_high - a_low;
+          const double secant = std::isfinite(g_high) ? a_low + width * g_low / (g_low - g_high) : a_low + 0.5 * width;
+          alpha               = std::clamp(secant, a_low + 0.1 * width, a_high - 0.1 * width);
+          g                   = work_along(alpha);
+          if (g > 0)
+            a_low = alpha, g_low = g;
+          else
+            a_high = alpha, g_high = g;
+        }
+      return alpha;
+    }
+
+    double correct()
+    {
+      statics.tangent.solve(du, residual);
+      model.constraints().set_zero(du);
+      const double g_0 = du * residual, du_norm = du.l2_norm();
+      double g           = 0;
+      const double alpha = line_search(g_0, du_norm, g);
+      u.swap(u_trial); // u + α du, distributed: an elastic end's face follows its plate
+      residual.swap(r_trial);
+      have_residual = std::isfinite(g);
+      ++statics.linear_solves;
+      return std::abs(alpha) * du_norm;
+    }
+
+    bool small(const double correction) const { return correction < correction_tolerance * u.l2_norm(); }
+
+    void restore()
+    {
+      u = u_start;
+      // Start the smaller increment on the tangent at its start.
+      statics.tangent_age.corrections_on_matrix = control.max_iterations_per_factorisation;
+    }
+
+    [[noreturn]] void give_up(const double lambda, const NewtonOutcome &last) const
+    {
+      std::ostringstream msg;
+      msg << "Newton's method for the solid's statics did not converge: stuck at load fraction " << lambda
+          << " (next increment below " << min_step << "): the last attempt ended at relative residual " << relative
+          << " after " << last.iterations << " iterations and " << last.factorisations
+          << " factorisations (limits: " << control.max_iterations << " iterations, " << control.max_factorisations
+          << " factorisations, residual " << diverged << "); |F| = " << load_norm << " N";
+      throw SolidStaticSolveError(msg.str());
+    }
+
+    static constexpr double min_step = 1e-4;
+  };
+
+  template <int dim>
+  unsigned int SolidStatics<dim>::solve(const PETScWrappers::MPI::Vector &F, PETScWrappers::MPI::Vector &u,
+                                       const PETScWrappers::MPI::Vector *F_start)
+  {
+    ++static_solves;
+    LoadSteppedSolve problem(*this, F, F_start, u);
+    return solve_load_stepped(problem, LoadSteps{1., LoadSteppedSolve::min_step});
   }
 
 

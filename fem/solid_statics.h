@@ -34,6 +34,8 @@
 // SolidStaticSolveError saying at which load fraction and residual it stopped.
 #pragma once
 
+#include "numerics/newton.h"
+
 #include "fem/kept_factorisation.h"
 #include "fem/solid_model.h"
 
@@ -86,7 +88,8 @@ namespace beamslider
 
     const SolidModel<dim> &model;
     unsigned int static_solves = 0, linear_solves = 0;
-    KeptFactorisation tangent;               // kept across solve() calls
-    unsigned int iterations_on_tangent = 0;  // back-substitutions on it so far
+    KeptFactorisation tangent;  // kept across solve() calls
+    NewtonMatrixAge tangent_age; // back-substitutions on it so far
+    struct LoadSteppedSolve;     // one solve() as numerics/newton.h's problem
   };
 } // namespace beamslider

@@ -5,6 +5,7 @@
 #include "reduced/backbone_tongues.h"
 
 #include "contact/interruption.h"
+#include "numerics/newton.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
@@ -270,39 +271,53 @@ namespace beamslider
         return R.norm() / std::max(ref, std::numeric_limits<double>::min());
       }
 
-      // Newton on R(z) = 0 plus one closing equation rowᵀ z = rhs.
+      // Newton on R(z) = 0 plus one closing equation rowᵀ z = rhs
+      // (numerics/newton.h: full Newton, converged on the correction).
       bool correct(Eigen::VectorXd &z, const Eigen::VectorXd &row, const double rhs, BackbonePoint &p)
       {
-        Eigen::VectorXd R;
-        Eigen::MatrixXd A;
-        Eigen::VectorXd b(m_ + 1);
-        p.relative_residual = std::numeric_limits<double>::infinity();
-        for (unsigned int it = 1; it <= settings_.max_newton_iterations; ++it)
+        struct Corrector
+        {
+          BackboneContinuation &c;
+          Eigen::VectorXd &z;
+          const Eigen::VectorXd &row;
+          const double rhs;
+          Eigen::VectorXd R, b;
+          Eigen::MatrixXd A;
+
+          NewtonState evaluate(bool)
           {
             stop_if_interrupted(); // Ctrl-C: compute_backbone keeps the converged points
-            ++result_.n_newton_iterations;
-            linearise(z, row, R, A);
-            b.head(m_)              = -R(active_);
-            b[m_]                   = rhs - row.dot(z);
+            ++c.result_.n_newton_iterations;
+            c.linearise(z, row, R, A);
+            b.head(c.m_) = -R(c.active_);
+            b[c.m_]      = rhs - row.dot(z);
+            return NewtonState::go_on;
+          }
+          void factorise() {} // solve_newton_matrix factorises A itself
+          double correct()
+          {
             const Eigen::VectorXd dz = solve_newton_matrix(A, b);
             if (!dz.allFinite())
-              return false;
+              return std::numeric_limits<double>::quiet_NaN();
             z += dz;
             const double step = dz.lpNorm<Eigen::Infinity>();
-            if (step > 10. || !(z[m_] > 0))
-              return false; // diverging, or through ω = 0
-            if (step <= settings_.tolerance)
-              {
-                // The full residual, inactive rows included: they vanish
-                // only if the symmetry assumed is really there.
-                p.relative_residual = relative_residual(z);
-                p.newton_iterations = it;
-                return p.relative_residual < 1e-8;
-              }
+            if (step > 10. || !(z[c.m_] > 0))
+              return std::numeric_limits<double>::infinity(); // diverging, or through ω = 0
+            return step;
           }
+          bool small(const double step) const { return step <= c.settings_.tolerance; }
+        } corrector{*this, z, row, rhs, {}, Eigen::VectorXd(m_ + 1), {}};
+        NewtonControl control;
+        control.max_iterations = settings_.max_newton_iterations;
+        p.relative_residual         = std::numeric_limits<double>::infinity();
+        const NewtonOutcome outcome = solve_newton(corrector, control);
+        if (outcome.stop == NewtonStop::diverged)
+          return false;
+        // The full residual, inactive rows included: they vanish only if the
+        // symmetry assumed is really there.
         p.relative_residual = relative_residual(z);
-        p.newton_iterations = settings_.max_newton_iterations;
-        return false;
+        p.newton_iterations = outcome.iterations;
+        return outcome.converged() && p.relative_residual < 1e-8;
       }
 
       bool correct_at_amplitude(Eigen::VectorXd &z, const double amplitude, BackbonePoint &p)

@@ -2,6 +2,8 @@
 // rom_implicit_beam_system.h.
 #include "reduced/rom_implicit_beam_system.h"
 
+#include "numerics/newton.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
@@ -26,6 +28,66 @@ namespace beamslider
                                  scene.beam.thickness_profile(), BaseExcitation::from_scene(scene.excitation));
   }
 
+  // One step as a Newton problem (numerics/newton.h), full Newton on
+  // R(u) = (u − u_B) + Δt [C (u_B + u)/2 + Ω² q̄ + f_nl(q̄) − a γ],
+  // q̄ = q_M + Δt/4 (u − u_B), with S = ∂R/∂u factorised every iteration.
+  struct RomImplicitBeamSystem::NewtonStep
+  {
+    RomImplicitBeamSystem &system;
+    const Eigen::VectorXd &q_M, &u_B;
+    const double dt, a;
+    Eigen::VectorXd u, du, q_bar, R;
+
+    NewtonState evaluate(bool)
+    {
+      q_bar = q_M + 0.25 * dt * (u - u_B);
+      R     = (u - u_B) + dt * (0.5 * system.c_.cwiseProduct(u_B + u) + system.omega2_.cwiseProduct(q_bar) +
+                            system.model().nonlinear_force(q_bar) - a * system.model().basis().gamma);
+      return NewtonState::go_on;
+    }
+
+    void factorise()
+    {
+      const ReducedOrderModel &model = system.model();
+      if (system.structured_)
+        {
+          // S = D + α K' + β v vᵀ in the eigenbasis of D^-½ K' D^-½.
+          const double k          = model.is_nonlinear() ? model.basis().membrane_stiffness : 0.;
+          system.Kq_.noalias()    = model.basis().stretch * q_bar;
+          const double alpha      = 0.125 * dt * dt * k * q_bar.dot(system.Kq_);
+          system.beta_            = 0.25 * dt * dt * k;
+          system.z_.noalias()     = system.W_.transpose() * system.Kq_;
+          system.e_inv_           = (1. + alpha * system.lambda_.array()).inverse().matrix();
+          system.e_inv_z_         = system.e_inv_.cwiseProduct(system.z_);
+          system.sm_denominator_  = 1. + system.beta_ * system.z_.dot(system.e_inv_z_);
+        }
+      else
+        {
+          const Eigen::Index N = system.n_dofs();
+          Eigen::MatrixXd S    = (0.25 * dt * dt) * model.nonlinear_tangent(q_bar);
+          S.diagonal() += Eigen::VectorXd::Ones(N) + 0.5 * dt * system.c_ + (0.25 * dt * dt) * system.omega2_;
+          system.lu_.compute(S);
+        }
+      system.factorised_ = true;
+    }
+
+    double correct()
+    {
+      if (system.structured_)
+        system.structured_solve(R, du);
+      else
+        du = system.lu_.solve(R);
+      u -= du;
+      ++system.newton_iterations_;
+      return du.norm();
+    }
+
+    bool small(const double correction) const
+    {
+      return correction <= 1e-10 * (u.norm() + q_bar.norm() / dt) + 1e-14;
+    }
+  };
+
   void RomImplicitBeamSystem::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
                                             const double dt, Eigen::VectorXd &u_free)
   {
@@ -35,54 +97,19 @@ namespace beamslider
         m << "implicit reduced model: time step Delta t = " << dt << " s must be positive";
         throw std::invalid_argument(m.str());
       }
-    const Eigen::Index N  = n_dofs();
-    const double a        = excitation().acceleration(t_M);
-    const Eigen::VectorXd &gamma = model().basis().gamma;
-    structured_                  = model().has_membrane_form();
+    structured_ = model().has_membrane_form();
     if (structured_ && structured_dt_ != dt)
       prepare_structure(dt);
-    Eigen::VectorXd u     = u_B;
-    Eigen::VectorXd du(N);
-    for (unsigned int it = 1; it <= 30; ++it)
+    NewtonStep step{*this, q_M, u_B, dt, excitation().acceleration(t_M), u_B, Eigen::VectorXd(n_dofs()), {}, {}};
+    NewtonControl control;
+    control.max_iterations = 30;
+    if (solve_newton(step, control).converged())
       {
-        const Eigen::VectorXd q_bar = q_M + 0.25 * dt * (u - u_B);
-        const Eigen::VectorXd R =
-          (u - u_B) + dt * (0.5 * c_.cwiseProduct(u_B + u) + omega2_.cwiseProduct(q_bar) +
-                            model().nonlinear_force(q_bar) - a * gamma);
-        if (structured_)
-          {
-            // S = D + α K' + β v vᵀ in the eigenbasis of D^-½ K' D^-½.
-            const double k = model().is_nonlinear() ? model().basis().membrane_stiffness : 0.;
-            Kq_.noalias()  = model().basis().stretch * q_bar;
-            const double alpha = 0.125 * dt * dt * k * q_bar.dot(Kq_);
-            beta_              = 0.25 * dt * dt * k;
-            z_.noalias()       = W_.transpose() * Kq_;
-            e_inv_             = (1. + alpha * lambda_.array()).inverse().matrix();
-            e_inv_z_           = e_inv_.cwiseProduct(z_);
-            sm_denominator_    = 1. + beta_ * z_.dot(e_inv_z_);
-            structured_solve(R, du);
-          }
-        else
-          {
-            Eigen::MatrixXd S = (0.25 * dt * dt) * model().nonlinear_tangent(q_bar);
-            S.diagonal() += Eigen::VectorXd::Ones(N) + 0.5 * dt * c_ + (0.25 * dt * dt) * omega2_;
-            lu_.compute(S);
-            du = lu_.solve(R);
-          }
-        factorised_ = true;
-        u -= du;
-        ++newton_iterations_;
-        const double correction = du.norm();
-        if (!std::isfinite(correction))
-          break;
-        if (correction <= 1e-10 * (u.norm() + q_bar.norm() / dt) + 1e-14)
-          {
-            u_free            = u;
-            last_dt_          = dt;
-            last_acceleration_ = a;
-            last_u_B_         = u_B;
-            return;
-          }
+        u_free             = step.u;
+        last_dt_           = dt;
+        last_acceleration_ = step.a;
+        last_u_B_          = u_B;
+        return;
       }
     std::ostringstream m;
     m << "implicit reduced model: Newton did not converge in 30 iterations at t_M = " << t_M << " s (Delta t = " << dt

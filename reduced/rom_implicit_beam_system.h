@@ -80,5 +80,6 @@ namespace beamslider
     double last_dt_ = 0, last_acceleration_ = 0;
     Eigen::VectorXd last_u_B_;
     unsigned long newton_iterations_ = 0;
+    struct NewtonStep; // a step as numerics/newton.h's problem
   };
 } // namespace beamslider

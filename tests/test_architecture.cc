@@ -1,7 +1,7 @@
 // The layers look down only: every #include "folder/..." of the project's
 // sources names a layer at or below the including file's. The order is
 // doc/architecture.md's:
-//   meshes (the Scene) ← contact (the contact step, runs, files) ← reduced
+//   numerics (the Newton driver), meshes (the Scene) ← contact (the contact step, runs, files) ← reduced
 //   ← fem ← verification/studies ← verification/report ← the front ends:
 //   verification/cli, python and verification/benchmarks.
 // A study or a report section that needs something of the command line
@@ -22,7 +22,7 @@ namespace
 {
   // Layer folders and their rank, lowest first; a front end is rank 6.
   const std::vector<std::pair<std::string, int>> layers = {
-    {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"verification/studies", 4},
+    {"numerics", 0}, {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"verification/studies", 4},
     {"verification/report", 5}, {"verification/cli", 6}, {"python", 6}, {"verification/benchmarks", 6}};
 
   // The rank of a path relative to the source tree (-1: not a layer).

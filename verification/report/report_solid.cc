@@ -21,6 +21,7 @@
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
+#include "numerics/newton.h"
 #include "fem/solid_statics.h"
 #include "reduced/cubic_fit.h"
 #include "verification/report/report.h"
@@ -73,17 +74,34 @@ namespace beamslider
 
     // The line load that bends the beam to |w(L/2)| = target: Newton's
     // method on log w(log Q) with a secant slope (the curve runs from slope 1,
-    // linear, towards 1/3, membrane).
+    // linear, towards 1/3, membrane), on numerics/newton.h's driver.
     double beam_load_for(const FEBeam &beam, const double target)
     {
-      double Q = 1., w = beam_deflection(beam, Q);
-      double slope = 1.;
-      for (unsigned int it = 0; it < 30 && std::abs(w / target - 1) > 1e-9; ++it)
+      struct LoadForDeflection
+      {
+        const FEBeam &beam;
+        const double target;
+        double Q = 1., w = beam_deflection(beam, 1.), slope = 1.;
+
+        NewtonState evaluate(bool)
+        {
+          return std::abs(w / target - 1) > 1e-9 ? NewtonState::go_on : NewtonState::converged;
+        }
+        void factorise() {} // the secant slope is updated by each correction
+        double correct()
         {
           const double Q_next = Q * std::pow(target / w, 1. / slope), w_next = beam_deflection(beam, Q_next);
-          slope = std::log(w_next / w) / std::log(Q_next / Q);
+          slope                = std::log(w_next / w) / std::log(Q_next / Q);
+          const double step    = std::abs(std::log(Q_next / Q));
           Q = Q_next, w = w_next;
+          return step;
         }
+        bool small(double) const { return false; } // converged on the deflection
+      } problem{beam, target};
+      NewtonControl control;
+      control.max_iterations = 30;
+      solve_newton(problem, control);
+      const double Q = problem.Q, w = problem.w;
       if (std::abs(w / target - 1) > 1e-6)
         throw std::runtime_error("section 8: no line load found that bends the beam to " + std::to_string(target) +
                                  " m at mid-span (reached " + std::to_string(w) + " m)");
