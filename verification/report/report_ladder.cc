@@ -95,6 +95,245 @@ namespace beamslider
     {
       return cost_per_simulated_second(s, scene) * end_time * 0.6e-6;
     }
+
+    // Shift of the median final position from rung i − 1 to rung i [x_C/L].
+    double median_shift(const LadderStudy &study, const std::size_t i)
+    {
+      return study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median;
+    }
+
+    // How many members the ladder runs, for the text.
+    struct LadderSize
+    {
+      // " (2 on the 3 diagnostic rungs)": the diagnostic rungs run fewer
+      // members; empty without diagnostic rungs.
+      std::string diagnostic_members;
+      unsigned int n_member_runs = 0;
+    };
+
+    // Counts the members and says on the console what runs and roughly how long it takes.
+    LadderSize announce_ladder(const Scene &scene, const std::vector<LadderRung> &rungs,
+                               const LadderRunSettings &settings)
+    {
+      const unsigned int n_members = settings.members;
+      double expected              = 0;
+      unsigned int n_diagnostic    = 0;
+      LadderSize size;
+      for (const auto &r : rungs)
+        {
+          expected += expected_member_seconds(r.model, scene, settings.end_time) * rung_members(r, n_members) / 2; // two cores
+          n_diagnostic += r.diagnostic;
+          size.n_member_runs += rung_members(r, n_members);
+        }
+      if (n_diagnostic > 0)
+        size.diagnostic_members = " (" + std::to_string(rung_members(LadderRung{"", "", {}, true}, n_members)) +
+                                  " on the " + std::to_string(n_diagnostic) + " diagnostic rungs)";
+      console() << settings.progress_prefix << "error ladder, " << rungs.size() << " rungs × " << n_members
+                << " members" << size.diagnostic_members << " over " << settings.end_time << " s, expected about "
+                << fixed(expected / 60, 1) << " min" << std::endl;
+      return size;
+    }
+
+    // Runs the members of every rung and of the reference's convergence
+    // checks (member_runs.csv, convergence.csv) and says on the console how
+    // each check ended. `n_kept`: the members read back from an earlier,
+    // stopped run.
+    LadderStudy run_ladder_members(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                                   const std::size_t reference, const LadderRunSettings &settings,
+                                   std::size_t &n_kept)
+    {
+      MemberRunsSettings runs;
+      runs.dir             = dir;
+      runs.study           = "ladder";
+      runs.mpi             = MpiSession::active();
+      runs.progress_prefix = settings.progress_prefix;
+      runs.n_kept          = &n_kept;
+      announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
+      const LadderStudy study = run_ladder(
+        scene, rungs, reference, settings.end_time, settings.members,
+        [&](const LadderRung &rung, const std::size_t i) {
+          console() << settings.progress_prefix << "rung " << i << ": " << rung.name << " (" << rung.model.label()
+                    << ")" << std::endl;
+        },
+        member_runs_runner(runs), check_rounds_runner(runs), round_sharer(runs.mpi));
+      write_convergence_csv(dir, study.checks);
+      for (const ConvergenceCheck &c : study.checks)
+        (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
+      return study;
+    }
+
+    // "### 5.1 title" in the report (numbering "5."), "## title" in a summary of its own.
+    std::string ladder_heading(const std::string &numbering, const unsigned int k, const std::string &title)
+    {
+      return numbering.empty() ? "## " + title + "\n\n" : "### " + numbering + std::to_string(k) + " " + title + "\n\n";
+    }
+
+    // What the ensembles are and how they are compared, then the headline
+    // table: every rung against the reference.
+    void describe_headline(std::ostream &md, const LadderStudy &study, const std::size_t reference,
+                           const LadderRunSettings &settings, const std::string &diagnostic_members)
+    {
+      const LadderRungResult &ref = study.rungs[reference];
+      md << "Every model runs as an ensemble of " << settings.members << " members" << diagnostic_members << " over "
+         << settings.end_time << " s; member m starts at x_C/L + m·1e-9, nothing else differs. The outcomes come from the one trace analysis "
+            "(doc/verification.md §5): the final x_C/L and amplitude are means over the last seconds, the jump time is "
+            "that of the first jump to the upper branch. Two ensembles are compared by the Wasserstein distance W₁ of "
+            "their final positions (in x_C/L; the mean distance the members must move to match) with a 90 % bootstrap "
+            "interval; the spread is W₁ between the halves of one ensemble, i.e. what its own scatter gives at this size. "
+            "A model is distinguishable from another when the interval's lower end exceeds the spread. Reference: **"
+         << ref.rung.name << "** (" << ref.rung.model.label() << ")"
+         << (!settings.quick_ladder ? "" : "; `verify --full` runs 8 members over 40 s and adds the implicit ROM with 20 modes; "
+                         "`verify --full --diagnostics` adds, with 4 members each, the implicit ROM with all the mesh's "
+                         "bending modes at Δt/4 and the midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt")
+         << ". Cost: the stated model of `fe_rom_study.h` in units of one step of the published ROM (not a clock reading); "
+            "wall time is per member on this machine, for information.\n\n"
+         << ladder_heading(settings.numbering, 1, "Headline: every model against the FE reference")
+         << "| model | what it changes | wall per member [s] | cost [units] | final x_C/L median [min, max] | final amplitude "
+            "[h] median [min, max] | jump time [s] median [min, max] (members) | W₁ to reference [90 %] | outcomes |\n"
+            "|---|---|---|---|---|---|---|---|---|\n";
+      for (std::size_t i = 0; i < study.rungs.size(); ++i)
+        {
+          const LadderRungResult &r = study.rungs[i];
+          md << "| " << (i == reference ? "**" + r.rung.name + "**" : r.rung.name) << " | " << r.rung.change << " | "
+             << fixed(r.wall_seconds_per_member, 1) << " | " << sci(r.cost_units, 2) << " | "
+             << median_range(r.final_position, 3) << " | " << median_range(r.final_amplitude, 2) << " | "
+             << median_range(r.jump_time, 2) << " (" << r.jump_time.n << "/" << r.members.size() << ") | "
+             << (i == reference ? "reference" : distance(r.position_to_reference) +
+                                                    (r.position_to_reference.distinguishable ? "" : " (indistinguishable)"))
+             << " | " << classes(r.outcome_classes) << (r.n_failed ? ", " + std::to_string(r.n_failed) + " failed" : "")
+             << " |\n";
+        }
+    }
+
+    // The tables in ladder order, from the members (read back or computed).
+    // Each file is renamed into place as it closes here, before the chart reads it.
+    void write_ladder_tables(const std::string &dir, const LadderStudy &study, const std::size_t reference)
+    {
+      LadderFiles files(dir);
+      for (std::size_t i = 0; i < study.rungs.size(); ++i)
+        files.add_rung(study.rungs[i], i, i == reference);
+      files.write_steps(study);
+    }
+
+    // The ROM that claims to be converged in N: the last explicit ROM rung.
+    const LadderRungResult *converged_rom(const LadderStudy &study)
+    {
+      const LadderRungResult *converged = nullptr;
+      for (const auto &r : study.rungs)
+        if (r.rung.model.family == "rom" && r.rung.model.integrator == "explicit")
+          converged = &r;
+      return converged;
+    }
+
+    // The midpoint-rule FE rungs (θ = ½, the scene's damped set) but the
+    // reference, by step from the largest.
+    std::vector<const LadderRungResult *> midpoint_fe_by_step(const LadderStudy &study, const LadderRungResult &ref)
+    {
+      std::vector<const LadderRungResult *> midpoint_fe;
+      for (const auto &r : study.rungs)
+        if (&r != &ref && r.rung.model.family == "fe" && r.rung.model.theta == 0.5 && r.rung.model.damped_modes == 0 &&
+            r.rung.model.axial_inertia)
+          midpoint_fe.push_back(&r);
+      std::sort(midpoint_fe.begin(), midpoint_fe.end(), [](const LadderRungResult *a, const LadderRungResult *b) {
+        return a->rung.model.time_step > b->rung.model.time_step;
+      });
+      return midpoint_fe;
+    }
+
+    // One rung's end state against the reference's, in a sentence.
+    std::string end_state_verdict(const LadderRungResult &r, const LadderRungResult &ref)
+    {
+      const SampleComparison &d = r.position_to_reference;
+      std::ostringstream s;
+      s << r.rung.name << " ends at x_C/L = " << fixed(r.final_position.median, 3) << " against the reference's "
+        << fixed(ref.final_position.median, 3) << ": W₁ = " << distance(d) << ", spread " << spread(d) << " — "
+        << (d.distinguishable ? "distinguishable" : "indistinguishable at this ensemble size");
+      return s.str();
+    }
+
+    // The verdict in words: the published ROM, the converged ROM, and the
+    // midpoint-rule FE in Δt where the ladder has it.
+    void describe_end_state(std::ostream &md, const LadderStudy &study, const LadderRungResult &ref,
+                            const LadderRunSettings &settings)
+    {
+      const LadderRungResult &published = study.rungs.front();
+      const LadderRungResult *converged = converged_rom(study);
+      const std::vector<const LadderRungResult *> midpoint_fe = midpoint_fe_by_step(study, ref);
+      md << "\n**Verdict on the end state.** " << end_state_verdict(published, ref) << ". ";
+      if (converged && converged != &published)
+        md << end_state_verdict(*converged, ref) << ". ";
+      if (!midpoint_fe.empty())
+        {
+          md << "The midpoint-rule FE (θ = ½) ends at";
+          for (std::size_t k = 0; k < midpoint_fe.size(); ++k)
+            md << (k ? "," : "") << " " << fixed(midpoint_fe[k]->final_position.median, 3) << " ("
+               << midpoint_fe[k]->rung.name.substr(3) << ")";
+          md << ": where it stops moving for a halving of Δt it sits on a plateau, not at its limit; the reference, "
+                "with the modes its step cannot resolve damped by the scheme, is at that limit (on mueller2023 the "
+                "midpoint rule ends at 0.409 L at 1.25e-6 s and at 6.25e-7 s, doc/verification.md §7). ";
+        }
+      if (midpoint_fe.empty())
+        md << "The reference is the scene's FE model (" << ref.rung.model.label()
+           << "). On mueller2023 it ends, after 40 s, where the midpoint-rule FE converged in Δt ends (0.409 L at "
+              "1.25e-6 and 6.25e-7 s, 2 members each) and where the ROM converged in N ends, with an eighth of the "
+              "steps; the midpoint rule at 5e-6 and 2.5e-6 s sits on a plateau at 0.371 L (doc/verification.md §7). "
+              "`verify --full --diagnostics` shows that plateau. ";
+      if (settings.quick_ladder)
+        md << "This quick ladder stops at " << settings.end_time << " s (the reference's median here: "
+           << fixed(ref.final_position.median, 3)
+           << " L); on mueller2023 that is before the end state: the reference's members are still moving and end at "
+              "0.409 L after 40 s (reports/mueller2023-full), so the positions above are a snapshot on the way and the "
+              "verdict on the end state is that of `verify --full`. ";
+      // Every sentence above ends with ". ".
+      md << "What all models share is in the last column (the class of each member's adaptation) and the jump-time "
+            "column.\n\n";
+    }
+
+    // Which steps carry the difference: computed from this run, not
+    // asserted (the distinguishable steps, largest shift first).
+    void describe_carrying_steps(std::ostream &md, const LadderStudy &study)
+    {
+      std::vector<std::size_t> carried;
+      for (std::size_t i = 1; i < study.rungs.size(); ++i)
+        if (study.steps[i].n_a > 0 && study.steps[i].distinguishable)
+          carried.push_back(i);
+      std::sort(carried.begin(), carried.end(), [&](const std::size_t a, const std::size_t b) {
+        return std::abs(median_shift(study, a)) > std::abs(median_shift(study, b));
+      });
+      if (carried.empty())
+        {
+          md << "\nNo step of this ladder is distinguishable from its neighbour at this ensemble size.\n";
+          return;
+        }
+      md << "\n**Which steps carry the differences** (distinguishable steps, largest shift first): ";
+      for (std::size_t k = 0; k < carried.size(); ++k)
+        md << (k ? "; " : "") << study.rungs[carried[k] - 1].rung.name << " → " << study.rungs[carried[k]].rung.name
+           << " (" << signed_fixed(median_shift(study, carried[k]), 3) << " L: "
+           << study.rungs[carried[k]].rung.change << ")";
+      md << ". Every other step is within the ensembles' own scatter.\n";
+    }
+
+    // Each step of the ladder, rung i − 1 against rung i, under `heading`.
+    void describe_steps(std::ostream &md, const LadderStudy &study, const std::string &heading)
+    {
+      md << heading
+         << "Each row compares a rung with the one before it (W₁ of the final positions, interval and spread as above; shift = "
+            "difference of the medians).\n\n"
+         << "| step | shift of the median x_C/L | W₁ [90 %] | spread | distinguishable |\n|---|---|---|---|---|\n";
+      for (std::size_t i = 1; i < study.rungs.size(); ++i)
+        {
+          const SampleComparison &c = study.steps[i];
+          md << "| " << study.rungs[i - 1].rung.name << " → " << study.rungs[i].rung.name << " | ";
+          if (c.n_a == 0)
+            {
+              md << "– | – | – | – |\n";
+              continue;
+            }
+          md << signed_fixed(median_shift(study, i), 3) << " | " << distance(c) << " | " << spread(c) << " | "
+             << (c.distinguishable ? "yes" : "no") << " |\n";
+        }
+      describe_carrying_steps(md, study);
+    }
   } // namespace
 
   LadderFiles::LadderFiles(const std::string &dir)
@@ -162,7 +401,7 @@ namespace beamslider
         if (c.n_a == 0)
           continue;
         steps.row({study.rungs[i - 1].rung.name, study.rungs[i].rung.name,
-                   CsvWriter::cell(study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median, 6),
+                   CsvWriter::cell(median_shift(study, i), 6),
                    CsvWriter::cell(c.wasserstein, 6), CsvWriter::cell(c.interval_low, 6),
                    CsvWriter::cell(c.interval_high, 6), CsvWriter::cell(c.spread, 6), c.distinguishable ? "1" : "0"});
       }
@@ -171,189 +410,24 @@ namespace beamslider
   std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
                                     const std::size_t reference, const LadderRunSettings &settings, bool *proven)
   {
-    const auto start             = clock::now();
-    const unsigned int n_members = settings.members;
-    const double end_time        = settings.end_time;
-    double expected              = 0;
-    unsigned int n_diagnostic = 0, n_member_runs = 0; // the diagnostic rungs run fewer members
-    for (const auto &r : rungs)
-      {
-        expected += expected_member_seconds(r.model, scene, end_time) * rung_members(r, n_members) / 2; // two cores
-        n_diagnostic += r.diagnostic;
-        n_member_runs += rung_members(r, n_members);
-      }
-    const std::string diagnostic_members =
-      n_diagnostic == 0 ? std::string()
-                        : " (" + std::to_string(rung_members(LadderRung{"", "", {}, true}, n_members)) + " on the " +
-                            std::to_string(n_diagnostic) + " diagnostic rungs)";
-    console() << settings.progress_prefix << "error ladder, " << rungs.size() << " rungs × " << n_members
-              << " members" << diagnostic_members << " over " << end_time << " s, expected about "
-              << fixed(expected / 60, 1) << " min" << std::endl;
-    auto heading = [&](const unsigned int k, const std::string &title) {
-      return settings.numbering.empty() ? "## " + title + "\n\n"
-                                        : "### " + settings.numbering + std::to_string(k) + " " + title + "\n\n";
-    };
-
-    MemberRunsSettings runs;
-    runs.dir             = dir;
-    runs.study           = "ladder";
-    runs.mpi             = MpiSession::active();
-    runs.progress_prefix = settings.progress_prefix;
-    std::size_t n_kept   = 0;
-    runs.n_kept          = &n_kept;
-    announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
-    const LadderStudy study = run_ladder(
-      scene, rungs, reference, end_time, n_members,
-      [&](const LadderRung &rung, const std::size_t i) {
-        console() << settings.progress_prefix << "rung " << i << ": " << rung.name << " (" << rung.model.label()
-                  << ")" << std::endl;
-      },
-      member_runs_runner(runs), check_rounds_runner(runs), round_sharer(runs.mpi));
-    write_convergence_csv(dir, study.checks);
+    const auto start      = clock::now();
+    const LadderSize size = announce_ladder(scene, rungs, settings);
+    std::size_t n_kept    = 0;
+    const LadderStudy study = run_ladder_members(dir, scene, rungs, reference, settings, n_kept);
     if (proven)
       *proven = study.proven();
-    for (const ConvergenceCheck &c : study.checks)
-      (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
+    write_ladder_tables(dir, study, reference);
 
-    // The tables in ladder order, from the members (read back or computed).
-    // In a scope: each file is renamed into place as it closes, before the chart reads it.
-    {
-      LadderFiles files(dir);
-      for (std::size_t i = 0; i < study.rungs.size(); ++i)
-        files.add_rung(study.rungs[i], i, i == reference);
-      files.write_steps(study);
-    }
-
-    const LadderRungResult &ref = study.rungs[reference];
     std::ostringstream md;
-    md << "Every model runs as an ensemble of " << n_members << " members" << diagnostic_members << " over "
-       << end_time << " s; member m starts at x_C/L + m·1e-9, nothing else differs. The outcomes come from the one trace analysis "
-          "(doc/verification.md §5): the final x_C/L and amplitude are means over the last seconds, the jump time is "
-          "that of the first jump to the upper branch. Two ensembles are compared by the Wasserstein distance W₁ of "
-          "their final positions (in x_C/L; the mean distance the members must move to match) with a 90 % bootstrap "
-          "interval; the spread is W₁ between the halves of one ensemble, i.e. what its own scatter gives at this size. "
-          "A model is distinguishable from another when the interval's lower end exceeds the spread. Reference: **"
-       << ref.rung.name << "** (" << ref.rung.model.label() << ")"
-       << (!settings.quick_ladder ? "" : "; `verify --full` runs 8 members over 40 s and adds the implicit ROM with 20 modes; "
-                       "`verify --full --diagnostics` adds, with 4 members each, the implicit ROM with all the mesh's "
-                       "bending modes at Δt/4 and the midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt")
-       << ". Cost: the stated model of `fe_rom_study.h` in units of one step of the published ROM (not a clock reading); "
-          "wall time is per member on this machine, for information.\n\n"
-       << heading(1, "Headline: every model against the FE reference")
-       << "| model | what it changes | wall per member [s] | cost [units] | final x_C/L median [min, max] | final amplitude "
-          "[h] median [min, max] | jump time [s] median [min, max] (members) | W₁ to reference [90 %] | outcomes |\n"
-          "|---|---|---|---|---|---|---|---|---|\n";
-    for (std::size_t i = 0; i < study.rungs.size(); ++i)
-      {
-        const LadderRungResult &r = study.rungs[i];
-        md << "| " << (i == reference ? "**" + r.rung.name + "**" : r.rung.name) << " | " << r.rung.change << " | "
-           << fixed(r.wall_seconds_per_member, 1) << " | " << sci(r.cost_units, 2) << " | "
-           << median_range(r.final_position, 3) << " | " << median_range(r.final_amplitude, 2) << " | "
-           << median_range(r.jump_time, 2) << " (" << r.jump_time.n << "/" << r.members.size() << ") | "
-           << (i == reference ? "reference" : distance(r.position_to_reference) +
-                                                  (r.position_to_reference.distinguishable ? "" : " (indistinguishable)"))
-           << " | " << classes(r.outcome_classes) << (r.n_failed ? ", " + std::to_string(r.n_failed) + " failed" : "")
-           << " |\n";
-      }
-
+    describe_headline(md, study, reference, settings, size.diagnostic_members);
     md << "\n" << ladder_convergence_paragraph(study.checks) << "\n";
-
-    // The verdict in words: the published ROM, the converged ROM, and the
-    // midpoint-rule FE in Δt where the ladder has it.
-    const LadderRungResult &published = study.rungs.front();
-    const LadderRungResult *converged = nullptr;
-    std::vector<const LadderRungResult *> midpoint_fe; // θ = ½, the scene's damped set, by step
-    for (const auto &r : study.rungs)
-      {
-        if (r.rung.model.family == "rom" && r.rung.model.integrator == "explicit")
-          converged = &r;
-        if (&r != &ref && r.rung.model.family == "fe" && r.rung.model.theta == 0.5 && r.rung.model.damped_modes == 0 &&
-            r.rung.model.axial_inertia)
-          midpoint_fe.push_back(&r);
-      }
-    std::sort(midpoint_fe.begin(), midpoint_fe.end(), [](const LadderRungResult *a, const LadderRungResult *b) {
-      return a->rung.model.time_step > b->rung.model.time_step;
-    });
-    auto verdict = [&](const LadderRungResult &r) {
-      const SampleComparison &d = r.position_to_reference;
-      std::ostringstream s;
-      s << r.rung.name << " ends at x_C/L = " << fixed(r.final_position.median, 3) << " against the reference's "
-        << fixed(ref.final_position.median, 3) << ": W₁ = " << distance(d) << ", spread " << spread(d) << " — "
-        << (d.distinguishable ? "distinguishable" : "indistinguishable at this ensemble size");
-      return s.str();
-    };
-    md << "\n**Verdict on the end state.** " << verdict(published) << ". ";
-    if (converged && converged != &published)
-      md << verdict(*converged) << ". ";
-    if (!midpoint_fe.empty())
-      {
-        md << "The midpoint-rule FE (θ = ½) ends at";
-        for (std::size_t k = 0; k < midpoint_fe.size(); ++k)
-          md << (k ? "," : "") << " " << fixed(midpoint_fe[k]->final_position.median, 3) << " ("
-             << midpoint_fe[k]->rung.name.substr(3) << ")";
-        md << ": where it stops moving for a halving of Δt it sits on a plateau, not at its limit; the reference, "
-              "with the modes its step cannot resolve damped by the scheme, is at that limit (on mueller2023 the "
-              "midpoint rule ends at 0.409 L at 1.25e-6 s and at 6.25e-7 s, doc/verification.md §7). ";
-      }
-    if (midpoint_fe.empty())
-      md << "The reference is the scene's FE model (" << ref.rung.model.label()
-         << "). On mueller2023 it ends, after 40 s, where the midpoint-rule FE converged in Δt ends (0.409 L at "
-            "1.25e-6 and 6.25e-7 s, 2 members each) and where the ROM converged in N ends, with an eighth of the "
-            "steps; the midpoint rule at 5e-6 and 2.5e-6 s sits on a plateau at 0.371 L (doc/verification.md §7). "
-            "`verify --full --diagnostics` shows that plateau. ";
-    if (settings.quick_ladder)
-      md << "This quick ladder stops at " << end_time << " s (the reference's median here: "
-         << fixed(ref.final_position.median, 3)
-         << " L); on mueller2023 that is before the end state: the reference's members are still moving and end at "
-            "0.409 L after 40 s (reports/mueller2023-full), so the positions above are a snapshot on the way and the "
-            "verdict on the end state is that of `verify --full`. ";
-    // Every sentence above ends with ". ".
-    md << "What all models share is in the last column (the class of each member's adaptation) and the jump-time "
-          "column.\n\n";
-
-    md << heading(2, "The ladder: what each step contributes")
-       << "Each row compares a rung with the one before it (W₁ of the final positions, interval and spread as above; shift = "
-          "difference of the medians).\n\n"
-       << "| step | shift of the median x_C/L | W₁ [90 %] | spread | distinguishable |\n|---|---|---|---|---|\n";
-    for (std::size_t i = 1; i < study.rungs.size(); ++i)
-      {
-        const SampleComparison &c = study.steps[i];
-        md << "| " << study.rungs[i - 1].rung.name << " → " << study.rungs[i].rung.name << " | ";
-        if (c.n_a == 0)
-          {
-            md << "– | – | – | – |\n";
-            continue;
-          }
-        md << signed_fixed(study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median, 3) << " | " << distance(c) << " | " << spread(c) << " | "
-           << (c.distinguishable ? "yes" : "no") << " |\n";
-      }
-    // Which step carries the difference: computed from this run, not
-    // asserted (the distinguishable steps, largest shift first).
-    std::vector<std::size_t> carried;
-    for (std::size_t i = 1; i < study.rungs.size(); ++i)
-      if (study.steps[i].n_a > 0 && study.steps[i].distinguishable)
-        carried.push_back(i);
-    auto shift = [&](const std::size_t i) {
-      return study.rungs[i].final_position.median - study.rungs[i - 1].final_position.median;
-    };
-    std::sort(carried.begin(), carried.end(),
-              [&](const std::size_t a, const std::size_t b) { return std::abs(shift(a)) > std::abs(shift(b)); });
-    if (carried.empty())
-      md << "\nNo step of this ladder is distinguishable from its neighbour at this ensemble size.\n";
-    else
-      {
-        md << "\n**Which steps carry the differences** (distinguishable steps, largest shift first): ";
-        for (std::size_t k = 0; k < carried.size(); ++k)
-          md << (k ? "; " : "") << study.rungs[carried[k] - 1].rung.name << " → " << study.rungs[carried[k]].rung.name
-             << " (" << signed_fixed(shift(carried[k]), 3) << " L: "
-             << study.rungs[carried[k]].rung.change << ")";
-        md << ". Every other step is within the ensembles' own scatter.\n";
-      }
+    describe_end_state(md, study, study.rungs[reference], settings);
+    describe_steps(md, study, ladder_heading(settings.numbering, 2, "The ladder: what each step contributes"));
     md << "\n![The ladder: final positions per rung, and speed against accuracy](ladder.png)\n\n"
        << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv, convergence.csv; member_runs.csv holds every "
           "member as it finished, member_runs.check-1.csv, … the members of the checks' later rounds (the same "
           "command started again into this folder runs only the members not there yet). "
-       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(n_member_runs) +
+       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(size.n_member_runs) +
                       " members were read back from there, computed by an earlier, stopped run of this same build "
                       "and settings. "
                   : std::string())

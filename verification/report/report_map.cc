@@ -28,6 +28,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <thread>
 
 namespace beamslider
@@ -159,6 +160,160 @@ namespace beamslider
          << seconds_since(start) << ".\n\n";
       return md.str();
     }
+
+    // The map as it runs: its grid around f_s, the settings of every cell
+    // and, once run, each cell's members (cell i·n_levels + j: frequency i, level j).
+    struct OperatingMap
+    {
+      double f_s = 0; // [Hz] the first natural frequency with the slider bonded at its start
+      MapGrid grid;
+      MapSettings settings;
+      std::vector<std::vector<MapMember>> cells;
+    };
+
+    // The scene's ROM, one member per cell over the scene's end time, on 17
+    // frequencies from 0.875 to 1.25 f_s × 9 accelerations from 0.25 to 1.5
+    // times the scene's.
+    OperatingMap map_around_resonance(const Scene &scene)
+    {
+      // Around the first natural frequency with the slider bonded at its start.
+      const FEBeam beam(scene);
+      const double x_C     = scene.initial.slider_position_over_L * scene.beam.length;
+      const FEModes bonded = compute_bending_modes(beam, 1, BondedBody{x_C, scene.slider_mass(), scene.slider_inertia()});
+      OperatingMap map;
+      map.f_s          = bonded.omega[0] / (2 * M_PI);
+      const double f_s = map.f_s;
+      const double a0  = scene.excitation.acceleration_amplitude;
+      map.grid.axes.push_back({"Excitation/Frequency", "frequency_hz", spaced(0.875 * f_s, 1.25 * f_s, 17, 0.1)});
+      map.grid.axes.push_back({"Excitation/Acceleration amplitude", "acceleration_m_s2", spaced(0.25 * a0, 1.5 * a0, 9, 0.1)});
+      map.settings.model.family = "rom";
+      map.settings.n_members    = 1;
+      map.settings.end_time     = scene.time_stepping.end_time;
+      return map;
+    }
+
+    // A published case run as its own cell.
+    struct CaseResult
+    {
+      std::string name, expected;
+      double f = 0, a = 0, x0 = 0;
+      MapMember member;
+    };
+
+    // The published cases of this scene that a frequency × level map can
+    // show, each run as its own cell (its own start and end time); those that
+    // start where the map's runs start go to published_cases.csv in `dir`, to
+    // be marked on the map. std::nullopt when interrupted.
+    std::optional<std::vector<CaseResult>> run_published_cases(const Report &report, const Scene &scene,
+                                                               const MapSettings &settings, const std::string &dir)
+    {
+      std::vector<CaseResult> cases;
+      CsvWriter cases_csv(dir + "/published_cases.csv",
+                          {"name", "frequency_hz", "acceleration_m_s2", "start_x_over_L", "expected_outcome"});
+      for (const PublishedMapCase &c : published_map_cases())
+        {
+          if (scene.name != "mueller2023")
+            break; // the published cases are those of mueller2023
+          MapGrid one;
+          one.axes = {{"Excitation/Frequency", "frequency_hz", {c.frequency_hz}},
+                      {"Excitation/Acceleration amplitude", "acceleration_m_s2", {c.acceleration}},
+                      {"Initial state/Slider position", "start_x_over_L", {c.start_over_L}}};
+          MapSettings s = settings;
+          s.end_time    = c.end_time;
+          const std::vector<MapMember> m = run_map_cell_members(report.scene_file, report.overrides, one, 0, s);
+          if (m.empty())
+            return std::nullopt; // interrupted
+          cases.push_back({c.name, c.expected_outcome, c.frequency_hz, c.acceleration, c.start_over_L, m.front()});
+          // Marked on the map only if it starts where the map's runs start.
+          if (std::abs(c.start_over_L - scene.initial.slider_position_over_L) < 1e-9)
+            cases_csv.row({c.name, fixed(c.frequency_hz, 1), fixed(c.acceleration, 1), fixed(c.start_over_L, 2),
+                           c.expected_outcome});
+        }
+      cases_csv.close();
+      return cases;
+    }
+
+    // What ran, how long it took and how many cells ended in each class.
+    void describe_map_runs(std::ostream &md, const Scene &scene, const OperatingMap &map, const double wall)
+    {
+      const MapGrid &grid = map.grid;
+      std::map<std::string, unsigned int> counts;
+      for (const auto &cell : map.cells)
+        for (const MapMember &m : cell)
+          ++counts[to_string(m.analysis.outcome)];
+      md << "The scene's ROM (N = " << scene.discretisation.n_modes << ", Δt = " << scene.time_stepping.time_step
+         << " s) from x_C/L = " << scene.initial.slider_position_over_L << " for " << map.settings.end_time
+         << " s on every cell of a grid of " << grid.axes[0].values.size() << " frequencies from "
+         << fixed(grid.axes[0].values.front(), 1) << " to " << fixed(grid.axes[0].values.back(), 1)
+         << " Hz (0.875 to 1.25 times f_s = " << fixed(map.f_s, 1)
+         << " Hz, the first natural frequency with the slider bonded at its start) × " << grid.axes[1].values.size()
+         << " base accelerations from " << fixed(grid.axes[1].values.front(), 1) << " to "
+         << fixed(grid.axes[1].values.back(), 1) << " m/s²: " << grid.n_cells()
+         << " runs, one member each (a cell near a class boundary may fall either way: `beamslider map --members K` "
+            "gives each cell an ensemble), "
+         << fixed(wall, 0) << " s wall on " << std::max(1u, std::thread::hardware_concurrency())
+         << " threads. Classes by the one trace analysis of section 4.\n\n| outcome | cells |\n|---|---|\n";
+      for (const auto &[name, n] : counts)
+        md << "| " << name << " | " << n << " |\n";
+    }
+
+    // Per level, the band of frequencies where the slider adapts the system
+    // to resonance, against the seed's statement of a limited range.
+    void describe_adaptation_band(std::ostream &md, const OperatingMap &map)
+    {
+      const MapGrid &grid = map.grid;
+      const double f_s    = map.f_s;
+      md << "\nWhere the slider adapts the system to resonance (signature move or trivial adaption: the end on the upper "
+            "branch), per level:\n\n| a [m/s²] | adapting frequencies [Hz] | as f/f_s | cells adapting |\n|---|---|---|---|\n";
+      const std::size_t n_f = grid.axes[0].values.size();
+      for (std::size_t j = 0; j < grid.axes[1].values.size(); ++j)
+        {
+          double low = 0, high = 0;
+          unsigned int n_adapt = 0;
+          for (std::size_t i = 0; i < n_f; ++i)
+            {
+              const std::vector<MapMember> &cell = map.cells[i * grid.axes[1].values.size() + j];
+              if (!cell.empty() && adapted(cell.front().analysis.outcome))
+                {
+                  const double f = grid.axes[0].values[i];
+                  if (n_adapt == 0)
+                    low = f;
+                  high = f;
+                  ++n_adapt;
+                }
+            }
+          md << "| " << fixed(grid.axes[1].values[j], 1) << " | "
+             << (n_adapt ? fixed(low, 1) + " – " + fixed(high, 1) : std::string("none")) << " | "
+             << (n_adapt ? fixed(low / f_s, 3) + " – " + fixed(high / f_s, 3) : std::string("–")) << " | " << n_adapt
+             << " of " << n_f << " |\n";
+        }
+      md << "\nThe seed states that self-adaptation works \"for a broad, yet limited, range of excitation frequencies "
+            "around the system's first natural frequency\": the table gives that range at each level (where it is not "
+            "one interval, the cells between low and high include others; see the map).\n\n";
+    }
+
+    // Each published case: the class found against the class its name says.
+    void describe_published_cases(std::ostream &md, const std::vector<CaseResult> &cases)
+    {
+      if (cases.empty())
+        return;
+      md << "The published cases, each run as its own cell (its start and end time):\n\n"
+            "| case | f [Hz] | a [m/s²] | start x_C/L | class found | the name says | end x_C/L | end ŵ/h |\n"
+            "|---|---|---|---|---|---|---|---|\n";
+      unsigned int agree = 0;
+      for (const CaseResult &c : cases)
+        {
+          const std::string found = to_string(c.member.analysis.outcome);
+          agree += found == c.expected;
+          md << "| " << c.name << " | " << fixed(c.f, 1) << " | " << fixed(c.a, 1) << " | " << fixed(c.x0, 2) << " | "
+             << found << " | " << c.expected << (found == c.expected ? "" : " (**differs**)") << " | "
+             << fixed(c.member.analysis.final_position, 3) << " | " << fixed(c.member.analysis.final_amplitude, 2)
+             << " |\n";
+        }
+      md << "\n" << agree << " of " << cases.size()
+         << " published cases fall in the class their name says. The maps mark those that start where the map's runs "
+            "start.\n\n";
+    }
   } // namespace
 
   std::string machine_description()
@@ -186,142 +341,35 @@ namespace beamslider
       }
     const auto start = std::chrono::steady_clock::now();
     console() << "  section 6: operating-range map" << std::endl;
-
-    // Around the first natural frequency with the slider bonded at its start.
-    const FEBeam beam(scene);
-    const double x_C   = scene.initial.slider_position_over_L * scene.beam.length;
-    const FEModes bonded = compute_bending_modes(beam, 1, BondedBody{x_C, scene.slider_mass(), scene.slider_inertia()});
-    const double f_s   = bonded.omega[0] / (2 * M_PI);
-    const double a0    = scene.excitation.acceleration_amplitude;
-
-    MapGrid grid;
-    grid.axes.push_back({"Excitation/Frequency", "frequency_hz", spaced(0.875 * f_s, 1.25 * f_s, 17, 0.1)});
-    grid.axes.push_back({"Excitation/Acceleration amplitude", "acceleration_m_s2", spaced(0.25 * a0, 1.5 * a0, 9, 0.1)});
-    MapSettings settings;
-    settings.model.family = "rom";
-    settings.n_members    = 1;
-    settings.end_time     = scene.time_stepping.end_time;
+    OperatingMap map = map_around_resonance(scene);
 
     const std::string dir = report.dir + "/map";
     std::filesystem::create_directories(dir);
-    const std::vector<std::vector<MapMember>> cells =
-      run_map_cells(report.scene_file, report.overrides, grid, settings, [](const std::size_t done, const std::size_t n) {
-        if (done % 10 == 0 || done == n)
-          console() << "    map: " << done << "/" << n << " cells" << std::endl;
-      });
+    map.cells = run_map_cells(report.scene_file, report.overrides, map.grid, map.settings,
+                              [](const std::size_t done, const std::size_t n) {
+                                if (done % 10 == 0 || done == n)
+                                  console() << "    map: " << done << "/" << n << " cells" << std::endl;
+                              });
     if (interruption_requested())
       {
         md << "(interrupted before the map was complete)\n\n";
         return;
       }
-    write_map_csv(dir + "/map.csv", grid, cells);
-
-    // The published cases of this scene that a frequency × level map can
-    // show, each run as its own cell (its own start and end time).
-    struct CaseResult
-    {
-      std::string name, expected;
-      double f = 0, a = 0, x0 = 0;
-      MapMember member;
-    };
-    std::vector<CaseResult> cases;
-    CsvWriter cases_csv(dir + "/published_cases.csv",
-                        {"name", "frequency_hz", "acceleration_m_s2", "start_x_over_L", "expected_outcome"});
-    for (const PublishedMapCase &c : published_map_cases())
-      {
-        if (scene.name != "mueller2023")
-          break; // the published cases are those of mueller2023
-        MapGrid one;
-        one.axes = {{"Excitation/Frequency", "frequency_hz", {c.frequency_hz}},
-                    {"Excitation/Acceleration amplitude", "acceleration_m_s2", {c.acceleration}},
-                    {"Initial state/Slider position", "start_x_over_L", {c.start_over_L}}};
-        MapSettings s = settings;
-        s.end_time    = c.end_time;
-        const std::vector<MapMember> m = run_map_cell_members(report.scene_file, report.overrides, one, 0, s);
-        if (m.empty())
-          return; // interrupted
-        cases.push_back({c.name, c.expected_outcome, c.frequency_hz, c.acceleration, c.start_over_L, m.front()});
-        // Marked on the map only if it starts where the map's runs start.
-        if (std::abs(c.start_over_L - scene.initial.slider_position_over_L) < 1e-9)
-          cases_csv.row({c.name, fixed(c.frequency_hz, 1), fixed(c.acceleration, 1), fixed(c.start_over_L, 2),
-                         c.expected_outcome});
-      }
-    cases_csv.close();
+    write_map_csv(dir + "/map.csv", map.grid, map.cells);
+    const std::optional<std::vector<CaseResult>> cases = run_published_cases(report, scene, map.settings, dir);
+    if (!cases)
+      return; // interrupted
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    // Counts per class and the frequency band of adaptation per level.
-    std::map<std::string, unsigned int> counts;
-    for (const auto &cell : cells)
-      for (const MapMember &m : cell)
-        ++counts[to_string(m.analysis.outcome)];
-    md << "The scene's ROM (N = " << scene.discretisation.n_modes << ", Δt = " << scene.time_stepping.time_step
-       << " s) from x_C/L = " << scene.initial.slider_position_over_L << " for " << settings.end_time
-       << " s on every cell of a grid of " << grid.axes[0].values.size() << " frequencies from "
-       << fixed(grid.axes[0].values.front(), 1) << " to " << fixed(grid.axes[0].values.back(), 1)
-       << " Hz (0.875 to 1.25 times f_s = " << fixed(f_s, 1)
-       << " Hz, the first natural frequency with the slider bonded at its start) × " << grid.axes[1].values.size()
-       << " base accelerations from " << fixed(grid.axes[1].values.front(), 1) << " to "
-       << fixed(grid.axes[1].values.back(), 1) << " m/s²: " << grid.n_cells()
-       << " runs, one member each (a cell near a class boundary may fall either way: `beamslider map --members K` "
-          "gives each cell an ensemble), "
-       << fixed(wall, 0) << " s wall on " << std::max(1u, std::thread::hardware_concurrency())
-       << " threads. Classes by the one trace analysis of section 4.\n\n| outcome | cells |\n|---|---|\n";
-    for (const auto &[name, n] : counts)
-      md << "| " << name << " | " << n << " |\n";
-
-    md << "\nWhere the slider adapts the system to resonance (signature move or trivial adaption: the end on the upper "
-          "branch), per level:\n\n| a [m/s²] | adapting frequencies [Hz] | as f/f_s | cells adapting |\n|---|---|---|---|\n";
-    const std::size_t n_f = grid.axes[0].values.size();
-    for (std::size_t j = 0; j < grid.axes[1].values.size(); ++j)
-      {
-        double low = 0, high = 0;
-        unsigned int n_adapt = 0;
-        for (std::size_t i = 0; i < n_f; ++i)
-          {
-            const std::vector<MapMember> &cell = cells[i * grid.axes[1].values.size() + j];
-            if (!cell.empty() && adapted(cell.front().analysis.outcome))
-              {
-                const double f = grid.axes[0].values[i];
-                if (n_adapt == 0)
-                  low = f;
-                high = f;
-                ++n_adapt;
-              }
-          }
-        md << "| " << fixed(grid.axes[1].values[j], 1) << " | "
-           << (n_adapt ? fixed(low, 1) + " – " + fixed(high, 1) : std::string("none")) << " | "
-           << (n_adapt ? fixed(low / f_s, 3) + " – " + fixed(high / f_s, 3) : std::string("–")) << " | " << n_adapt
-           << " of " << n_f << " |\n";
-      }
-    md << "\nThe seed states that self-adaptation works \"for a broad, yet limited, range of excitation frequencies "
-          "around the system's first natural frequency\": the table gives that range at each level (where it is not "
-          "one interval, the cells between low and high include others; see the map).\n\n";
-
-    if (!cases.empty())
-      {
-        md << "The published cases, each run as its own cell (its start and end time):\n\n"
-              "| case | f [Hz] | a [m/s²] | start x_C/L | class found | the name says | end x_C/L | end ŵ/h |\n"
-              "|---|---|---|---|---|---|---|---|\n";
-        unsigned int agree = 0;
-        for (const CaseResult &c : cases)
-          {
-            const std::string found = to_string(c.member.analysis.outcome);
-            agree += found == c.expected;
-            md << "| " << c.name << " | " << fixed(c.f, 1) << " | " << fixed(c.a, 1) << " | " << fixed(c.x0, 2) << " | "
-               << found << " | " << c.expected << (found == c.expected ? "" : " (**differs**)") << " | "
-               << fixed(c.member.analysis.final_position, 3) << " | " << fixed(c.member.analysis.final_amplitude, 2)
-               << " |\n";
-          }
-        md << "\n" << agree << " of " << cases.size()
-           << " published cases fall in the class their name says. The maps mark those that start where the map's runs "
-              "start.\n\n";
-      }
+    describe_map_runs(md, scene, map, wall);
+    describe_adaptation_band(md, map);
+    describe_published_cases(md, *cases);
     if (run_plot_script("plot_map.py", {dir, "operating range of " + scene.name + " (ROM)"}))
       md << "![Outcome class over frequency and level](map/map_outcome_frequency_hz_acceleration_m_s2.png)\n\n"
          << "![Final slider position](map/map_final_position_frequency_hz_acceleration_m_s2.png)\n\n"
          << "![Late amplitude](map/map_late_amplitude_frequency_hz_acceleration_m_s2.png)\n\n";
     md << "Files: map/map.csv (the columns of `beamslider map`), map/published_cases.csv, map/map_*.png.\n\n";
-    md << fe_spot_check_subsection(report, grid, cells, settings.end_time);
+    md << fe_spot_check_subsection(report, map.grid, map.cells, map.settings.end_time);
 
     const std::string scaling_dir = report.dir + "/map_scaling";
     std::filesystem::create_directories(scaling_dir);
