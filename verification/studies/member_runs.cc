@@ -131,8 +131,8 @@ namespace beamslider
       std::vector<TraceThresholds> thresholds;
     };
 
-    // The record of finished members in the output folder (no path: none
-    // is kept), with the rows of an earlier start that are kept.
+    // member_runs.csv (or the settings' file) in the output folder, which
+    // rank 0 appends each finished member to; no path: nothing persisted.
     struct MemberFile
     {
       explicit MemberFile(const MemberRunsSettings &settings)
