@@ -69,6 +69,119 @@ namespace beamslider
                              " moves the last member's start beyond the beam");
         }
     }
+
+    // Rank 0's members of the groups, members[group][m], each read back or
+    // computed, and whether it is there yet.
+    struct MemberTable
+    {
+      explicit MemberTable(const std::vector<MemberGroup> &member_groups)
+        : groups(member_groups), members(member_groups.size()), have(member_groups.size())
+      {
+        for (std::size_t g = 0; g < groups.size(); ++g)
+          {
+            members[g].resize(groups[g].n_members);
+            have[g].assign(groups[g].n_members, false);
+          }
+        for (const MemberGroup &g : groups)
+          thresholds.push_back(trace_thresholds(g.scene));
+      }
+
+      // A row of an earlier member_runs.csv of the same key: taken (true)
+      // if it is a whole record of a member of these groups not yet there.
+      bool take_previous_row(const std::string &row)
+      {
+        try
+          {
+            const std::vector<std::string> cells = CsvWriter::cells(row);
+            unsigned long g0 = 0;
+            const auto [end, error] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), g0);
+            if (error != std::errc() || g0 >= groups.size())
+              return false;
+            std::size_t g = 0;
+            std::string name;
+            EnsembleMember m = member_from_record(cells, thresholds[g0], g, name);
+            if (g != g0 || name != groups[g].name || m.index >= groups[g].n_members || have[g][m.index])
+              return false;
+            have[g][m.index]    = true;
+            members[g][m.index] = std::move(m);
+            return true;
+          }
+        catch (const std::invalid_argument &)
+          {
+            return false; // a row cut short by a kill: its member runs again
+          }
+      }
+
+      // The runs not there yet, longest first.
+      std::vector<std::size_t> todo() const
+      {
+        std::vector<std::size_t> runs;
+        for (const std::size_t run : longest_first(groups))
+          {
+            const auto [g, m] = group_and_member(groups, run);
+            if (!have[g][m])
+              runs.push_back(run);
+          }
+        return runs;
+      }
+
+      const std::vector<MemberGroup> &groups;
+      std::vector<std::vector<EnsembleMember>> members;
+      std::vector<std::vector<bool>> have;
+      std::vector<TraceThresholds> thresholds;
+    };
+
+    // member_runs.csv (or the settings' file) in the output folder, which
+    // rank 0 appends each finished member to; no path: nothing persisted.
+    struct MemberFile
+    {
+      explicit MemberFile(const MemberRunsSettings &settings)
+        : stem(settings.dir + "/" + settings.file.substr(0, settings.file.rfind(".csv")))
+        , path(settings.dir.empty() ? std::string() : stem + ".csv")
+      {}
+
+      // The rows of an earlier start with this key into `table` (a file of
+      // another key moved aside), the file anew with those rows only, then
+      // open for appending.
+      void resume(const std::string &key, const std::vector<std::string> &columns, MemberTable &table,
+                  const std::string &progress_prefix)
+      {
+        std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
+        const std::vector<std::string> previous = records(read_text_file_if_present(path));
+        if (!previous.empty() && previous.front() != "# " + key)
+          {
+            std::filesystem::rename(path, stem + ".other.csv");
+            console() << progress_prefix << path << " holds the members of other settings: not reused, moved to "
+                      << stem << ".other.csv; every member is run afresh" << std::endl;
+          }
+        else
+          for (std::size_t k = 2; k < previous.size(); ++k)
+            if (table.take_previous_row(previous[k]))
+              {
+                kept += previous[k] + "\n";
+                ++n_kept;
+              }
+        // The file anew with the complete rows only (atomically: a kill now
+        // leaves the old file or the new one); new rows are appended.
+        write_file_atomically(path, kept);
+        CsvOptions append;
+        append.append = true;
+        rows.emplace(path, columns, append);
+      }
+
+      const std::string stem, path;
+      std::optional<CsvWriter> rows;
+      std::size_t n_kept = 0;
+    };
+
+    std::string stopped_message(const std::size_t n_finished, const std::size_t n_total, const std::string &path)
+    {
+      return "stopped after " + std::to_string(n_finished) + " of " + std::to_string(n_total) + " member runs" +
+             (path.empty() ? std::string()
+                           : "; " + path +
+                               " holds every finished one: run the same command again into the same folder to "
+                               "continue");
+    }
   } // namespace
 
   std::string member_runs_key(const std::vector<MemberGroup> &groups, const std::string &study)
@@ -114,79 +227,22 @@ namespace beamslider
 
     // Rank 0: what is done already, then the rest.
     const std::size_t n_total = n_runs(groups);
-    std::vector<std::vector<EnsembleMember>> members(groups.size());
-    std::vector<std::vector<bool>> have(groups.size());
-    for (std::size_t g = 0; g < groups.size(); ++g)
-      {
-        members[g].resize(groups[g].n_members);
-        have[g].assign(groups[g].n_members, false);
-      }
-    std::vector<TraceThresholds> thresholds;
-    for (const MemberGroup &g : groups)
-      thresholds.push_back(trace_thresholds(g.scene));
+    MemberTable table(groups);
     const std::vector<std::string> columns = member_record_columns();
     const std::string key                  = member_runs_key(groups, settings.study);
-    std::optional<CsvWriter> rows;
-    std::size_t n_kept = 0;
+    MemberFile file(settings);
     if (settings.n_kept)
       *settings.n_kept = 0;
-    const std::string stem = settings.dir + "/" + settings.file.substr(0, settings.file.rfind(".csv"));
-    const std::string path = settings.dir.empty() ? std::string() : stem + ".csv";
-    if (!path.empty())
-      {
-        std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
-        const std::vector<std::string> previous = records(read_text_file_if_present(path));
-        if (!previous.empty() && previous.front() != "# " + key)
-          {
-            std::filesystem::rename(path, stem + ".other.csv");
-            console() << settings.progress_prefix << path
-                      << " holds the members of other settings: not reused, moved to " << stem << ".other.csv; "
-                         "every member is run afresh"
-                      << std::endl;
-          }
-        else
-          for (std::size_t k = 2; k < previous.size(); ++k)
-            try
-              {
-                const std::vector<std::string> cells = CsvWriter::cells(previous[k]);
-                unsigned long g0 = 0;
-                const auto [end, error] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), g0);
-                if (error != std::errc() || g0 >= groups.size())
-                  continue;
-                std::size_t g = 0;
-                std::string name;
-                EnsembleMember m = member_from_record(cells, thresholds[g0], g, name);
-                if (g != g0 || name != groups[g].name || m.index >= groups[g].n_members || have[g][m.index])
-                  continue;
-                have[g][m.index] = true;
-                members[g][m.index] = std::move(m);
-                kept += previous[k] + "\n";
-                ++n_kept;
-              }
-            catch (const std::invalid_argument &)
-              {
-                // a row cut short by a kill: its member runs again
-              }
-        // The file anew with the complete rows only (atomically: a kill now
-        // leaves the old file or the new one); new rows are appended.
-        write_file_atomically(path, kept);
-        CsvOptions append;
-        append.append = true;
-        rows.emplace(path, columns, append);
-      }
-
+    if (!file.path.empty())
+      file.resume(key, columns, table, settings.progress_prefix);
+    const std::size_t n_kept = file.n_kept;
     if (settings.n_kept)
       *settings.n_kept = n_kept;
-    std::vector<std::size_t> todo;
-    for (const std::size_t run : longest_first(groups))
-      {
-        const auto [g, m] = group_and_member(groups, run);
-        if (!have[g][m])
-          todo.push_back(run);
-      }
+
+    const std::vector<std::size_t> todo = table.todo();
     console() << settings.progress_prefix << n_total << " member runs";
     if (n_kept)
-      console() << ", " << n_kept << " of them kept from " << path;
+      console() << ", " << n_kept << " of them kept from " << file.path;
     console() << "; " << todo.size() << " to run, longest first, on "
               << (mpi.size() > 1 ? std::to_string(mpi.size()) + " MPI ranks" : std::string("the cores of this process"))
               << std::endl;
@@ -200,29 +256,24 @@ namespace beamslider
         const std::vector<std::string> cells = CsvWriter::cells(text);
         std::size_t group                    = 0;
         std::string name;
-        EnsembleMember member = member_from_record(cells, thresholds[g], group, name);
-        if (rows)
-          rows->row(cells);
-        members[g][m] = std::move(member);
-        have[g][m]    = true;
+        EnsembleMember member = member_from_record(cells, table.thresholds[g], group, name);
+        if (file.rows)
+          file.rows->row(cells);
+        table.members[g][m] = std::move(member);
+        table.have[g][m]    = true;
         ++n_done;
         console() << settings.progress_prefix << "member " << m << (name.empty() ? "" : " of " + name) << " ("
                   << n_done + n_kept << "/" << n_total << (mpi.size() > 1 ? ", rank " + std::to_string(rank) : "")
-                  << ", " << std::fixed << std::setprecision(1) << members[g][m].wall_seconds << " s, "
+                  << ", " << std::fixed << std::setprecision(1) << table.members[g][m].wall_seconds << " s, "
                   << std::chrono::duration<double>(clock::now() - start).count() << " s in all)"
-                  << std::defaultfloat << ": " << members[g][m].analysis.line << std::endl;
+                  << std::defaultfloat << ": " << table.members[g][m].analysis.line << std::endl;
       },
       stop, settings.n_threads);
-    if (rows)
-      rows->close();
+    if (file.rows)
+      file.rows->close();
     if (n_done < todo.size())
-      throw MemberRunsStopped("stopped after " + std::to_string(n_done + n_kept) + " of " + std::to_string(n_total) +
-                              " member runs" +
-                              (path.empty() ? std::string()
-                                            : "; " + path +
-                                                " holds every finished one: run the same command again into the "
-                                                "same folder to continue"));
-    return members;
+      throw MemberRunsStopped(stopped_message(n_done + n_kept, n_total, file.path));
+    return std::move(table.members);
   }
 
   MemberGroupRunner member_runs_runner(const MemberRunsSettings &settings)

@@ -104,124 +104,160 @@ namespace beamslider
       active_session = nullptr;
   }
 
+  namespace
+  {
+    // One distribution's cells and what is done with them: which cell is
+    // next, and each result passed on, one at a time.
+    struct Distribution
+    {
+      const std::vector<std::size_t> &todo;
+      const std::function<std::string(std::size_t)> &work;
+      const std::function<void(std::size_t, const std::string &, unsigned int)> &done;
+      const std::function<bool()> &stop;
+      std::atomic<std::size_t> next{0};
+      std::mutex done_mutex{};
+
+      // The next cell to hand out, or npos when all are out or we stop.
+      std::size_t take()
+      {
+        if (stop())
+          return std::string::npos;
+        const std::size_t k = next++;
+        return k < todo.size() ? todo[k] : std::string::npos;
+      }
+
+      void finish(const std::size_t cell, const std::string &result, const unsigned int rank)
+      {
+        if (result.empty())
+          return;
+        const std::lock_guard<std::mutex> lock(done_mutex);
+        done(cell, result, rank);
+      }
+
+      // Cells computed on this thread until none is left.
+      void work_through()
+      {
+        for (std::size_t cell = take(); cell != std::string::npos; cell = take())
+          finish(cell, work(cell), 0);
+      }
+    };
+
+    // Without MPI: one cell after another, or threads that take the cells in
+    // the order of `todo`, as the ranks would.
+    void distribute_in_process(Distribution &d, const unsigned int n_threads)
+    {
+      if (n_threads == 1)
+        {
+          d.work_through();
+          return;
+        }
+      parallel_for(d.todo.size(), n_threads, [&](std::size_t) {
+        const std::size_t cell = d.take();
+        if (cell != std::string::npos)
+          d.finish(cell, d.work(cell), 0);
+      });
+    }
+
+    // The manager on rank 0: answers every request until each worker has had
+    // its stop.
+    void manage_workers(const MpiSession &mpi, Distribution &d)
+    {
+      unsigned int active = mpi.size() - 1;
+      std::vector<char> buffer;
+      while (active > 0)
+        {
+          int flag = 0;
+          MPI_Status status;
+          check(MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+          if (!flag)
+            {
+              // Sleeping, not spinning: the manager shares a core with rank 0's work.
+              std::this_thread::sleep_for(std::chrono::milliseconds(2));
+              continue;
+            }
+          int count = 0;
+          check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
+          buffer.resize(std::max(count, 1));
+          check(MPI_Recv(buffer.data(), count, MPI_CHAR, status.MPI_SOURCE, tag_result, MPI_COMM_WORLD,
+                         MPI_STATUS_IGNORE),
+                "MPI_Recv");
+          if (count >= 8)
+            {
+              std::uint64_t cell = 0;
+              std::memcpy(&cell, buffer.data(), 8);
+              d.finish(cell, std::string(buffer.data() + 8, count - 8), status.MPI_SOURCE);
+            }
+          const std::size_t cell = d.take();
+          if (cell != std::string::npos)
+            {
+              const std::uint64_t c = cell;
+              check(MPI_Send(&c, 1, MPI_UINT64_T, status.MPI_SOURCE, tag_cell, MPI_COMM_WORLD), "MPI_Send");
+            }
+          else
+            {
+              check(MPI_Send(nullptr, 0, MPI_UINT64_T, status.MPI_SOURCE, tag_stop, MPI_COMM_WORLD), "MPI_Send");
+              --active;
+            }
+        }
+    }
+
+    // Rank 0: the manager on a second thread while this one computes cells,
+    // or the manager alone if MPI's thread support does not allow that.
+    void distribute_as_manager(const MpiSession &mpi, Distribution &d)
+    {
+      if (mpi.manager_can_work())
+        {
+          std::thread manager([&] { manage_workers(mpi, d); });
+          d.work_through();
+          manager.join();
+        }
+      else
+        manage_workers(mpi, d);
+    }
+
+    // A worker: ask, compute, send back, until told to stop.
+    void work_for_manager(const std::function<std::string(std::size_t)> &work)
+    {
+      std::vector<char> message;
+      while (true)
+        {
+          check(MPI_Send(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD), "MPI_Send");
+          // Waiting by probing and sleeping, not in a blocking receive (which
+          // Open MPI spins in): the answer may be long in coming when rank 0
+          // does other work first (verify's sections before the ladder), and
+          // the core is rank 0's meanwhile.
+          MPI_Status status;
+          for (int flag = 0; !flag;)
+            {
+              check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+              if (!flag)
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            }
+          std::uint64_t cell = 0;
+          check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, status.MPI_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
+          if (status.MPI_TAG == tag_stop)
+            return;
+          const std::string result = work(cell);
+          message.resize(8 + result.size());
+          std::memcpy(message.data(), &cell, 8);
+          std::memcpy(message.data() + 8, result.data(), result.size());
+        }
+    }
+  } // namespace
+
   void distribute_cells(const MpiSession &mpi, const std::vector<std::size_t> &todo,
                         const std::function<std::string(std::size_t)> &work,
                         const std::function<void(std::size_t, const std::string &, unsigned int)> &done,
                         const std::function<bool()> &stop, const unsigned int n_threads)
   {
     DistributionCount::add(mpi);
-    std::atomic<std::size_t> next{0};
-    std::mutex done_mutex;
-    // The next cell to hand out, or npos when all are out or we stop.
-    const auto take = [&]() -> std::size_t {
-      if (stop())
-        return std::string::npos;
-      const std::size_t k = next++;
-      return k < todo.size() ? todo[k] : std::string::npos;
-    };
-    const auto finish = [&](const std::size_t cell, const std::string &result, const unsigned int rank) {
-      if (result.empty())
-        return;
-      const std::lock_guard<std::mutex> lock(done_mutex);
-      done(cell, result, rank);
-    };
-
+    Distribution distribution{todo, work, done, stop};
     if (mpi.size() == 1)
-      {
-        if (n_threads == 1)
-          {
-            for (std::size_t cell = take(); cell != std::string::npos; cell = take())
-              finish(cell, work(cell), 0);
-            return;
-          }
-        // Threads take the cells in the order of `todo`, as the ranks would.
-        parallel_for(todo.size(), n_threads, [&](std::size_t) {
-          const std::size_t cell = take();
-          if (cell != std::string::npos)
-            finish(cell, work(cell), 0);
-        });
-        return;
-      }
-
-    if (mpi.rank() == 0)
-      {
-        // The manager: answers every request until each worker has had its stop.
-        auto manage = [&] {
-          unsigned int active = mpi.size() - 1;
-          std::vector<char> buffer;
-          while (active > 0)
-            {
-              int flag = 0;
-              MPI_Status status;
-              check(MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
-              if (!flag)
-                {
-                  // Sleeping, not spinning: the manager shares a core with rank 0's work.
-                  std::this_thread::sleep_for(std::chrono::milliseconds(2));
-                  continue;
-                }
-              int count = 0;
-              check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
-              buffer.resize(std::max(count, 1));
-              check(MPI_Recv(buffer.data(), count, MPI_CHAR, status.MPI_SOURCE, tag_result, MPI_COMM_WORLD,
-                             MPI_STATUS_IGNORE),
-                    "MPI_Recv");
-              if (count >= 8)
-                {
-                  std::uint64_t cell = 0;
-                  std::memcpy(&cell, buffer.data(), 8);
-                  finish(cell, std::string(buffer.data() + 8, count - 8), status.MPI_SOURCE);
-                }
-              const std::size_t cell = take();
-              if (cell != std::string::npos)
-                {
-                  const std::uint64_t c = cell;
-                  check(MPI_Send(&c, 1, MPI_UINT64_T, status.MPI_SOURCE, tag_cell, MPI_COMM_WORLD), "MPI_Send");
-                }
-              else
-                {
-                  check(MPI_Send(nullptr, 0, MPI_UINT64_T, status.MPI_SOURCE, tag_stop, MPI_COMM_WORLD), "MPI_Send");
-                  --active;
-                }
-            }
-        };
-        if (mpi.manager_can_work())
-          {
-            std::thread manager(manage);
-            for (std::size_t cell = take(); cell != std::string::npos; cell = take())
-              finish(cell, work(cell), 0);
-            manager.join();
-          }
-        else
-          manage();
-        return;
-      }
-
-    // A worker: ask, compute, send back, until told to stop.
-    std::vector<char> message;
-    while (true)
-      {
-        check(MPI_Send(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD), "MPI_Send");
-        // Waiting by probing and sleeping, not in a blocking receive (which
-        // Open MPI spins in): the answer may be long in coming when rank 0
-        // does other work first (verify's sections before the ladder), and
-        // the core is rank 0's meanwhile.
-        MPI_Status status;
-        for (int flag = 0; !flag;)
-          {
-            check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
-            if (!flag)
-              std::this_thread::sleep_for(std::chrono::milliseconds(2));
-          }
-        std::uint64_t cell = 0;
-        check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, status.MPI_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
-        if (status.MPI_TAG == tag_stop)
-          return;
-        const std::string result = work(cell);
-        message.resize(8 + result.size());
-        std::memcpy(message.data(), &cell, 8);
-        std::memcpy(message.data() + 8, result.data(), result.size());
-      }
+      distribute_in_process(distribution, n_threads);
+    else if (mpi.rank() == 0)
+      distribute_as_manager(mpi, distribution);
+    else
+      work_for_manager(work);
   }
 
   void release_workers(const MpiSession &mpi)

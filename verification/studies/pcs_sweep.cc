@@ -35,6 +35,152 @@ namespace beamslider
       return make_modal_basis(fe, compute_bending_modes(fe, N), N);
     }
 
+    // The Eq. 5 resonance curve on a fine grid over the swept range (needs
+    // the geometric nonlinearity: without it the curve is a vertical line).
+    void write_resonance_curve(const Scene &scene, const ModalBasis &basis, const PcsSweepSettings &sweep,
+                               const std::string &dir)
+    {
+      const double L = scene.beam.length;
+      const ReducedOrderModel rom(basis, scene.damping_ratio, true);
+      const ResonanceCurveData data =
+        ResonanceCurveData::from_model(rom, scene.slider_mass(), scene.slider_inertia(), scene.beam.thickness);
+      CsvWriter csv(dir + "/resonance.csv", {"x_over_L", "amplitude_over_h"});
+      const unsigned int n = 200;
+      for (unsigned int i = 0; i <= n; ++i)
+        {
+          const double x = sweep.low_over_L + (sweep.high_over_L - sweep.low_over_L) * i / n;
+          const double a = resonance_amplitude_over_h(rom, data, x * L, scene.excitation.frequency_hz);
+          csv.row({CsvWriter::cell(x), std::isfinite(a) ? CsvWriter::cell(a) : ""});
+        }
+    }
+
+    // The free slider's jump by the one trace analysis; the amplitude
+    // after it is the envelope one second later (where the rule checks
+    // that it lasts).
+    std::optional<PcsStudy::FreeJump> free_jump_of(const std::vector<PeriodRecord> &records,
+                                                   const TraceAnalysis &analysis)
+    {
+      if (!analysis.jumped)
+        return std::nullopt;
+      std::size_t k = 0;
+      while (k + 1 < records.size() && records[k].t_end < analysis.jump_time)
+        ++k;
+      const std::size_t later = std::min(records.size() - 1, k + static_cast<std::size_t>(std::lround(
+                                                                   1. / (records[0].t_end - records[0].t_start))));
+      return PcsStudy::FreeJump{analysis.jump_time, records[k].slider_x_over_L, analysis.level_before_jump,
+                                analysis.envelope[later]};
+    }
+
+    // The two branches and the free slider are independent runs: each on its
+    // own core. Rows of pcs.csv are written as positions finish (a branch's
+    // rows stay in its order; the readers select by direction), and console
+    // lines whole, under one lock.
+    struct PcsRuns
+    {
+      const Scene &scene;
+      const ModelSetting &model;
+      const PcsStudySettings &settings;
+      const std::string &dir;
+      CsvWriter &pcs;
+      const long n_positions; // the grid's own count, per branch
+      PcsStudy &study;
+      std::mutex output_mutex{};
+
+      void say(const std::string &line)
+      {
+        const std::lock_guard<std::mutex> lock(output_mutex);
+        console() << line << std::endl;
+      }
+
+      // One finished position of a branch: its row, and every tenth a
+      // progress line.
+      void write_point(const SweepDirection direction, const PcsPoint &p, long &done)
+      {
+        const std::lock_guard<std::mutex> lock(output_mutex);
+        pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
+                 CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
+                 std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
+        ++done;
+        if (settings.verbose && (done % 10 == 0 || done == n_positions))
+          console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
+                    << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
+                    << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
+      }
+
+      void sweep_branch(const SweepDirection direction)
+      {
+        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
+        long done                        = 0;
+        PcsBranch branch                 = run_pcs_branch(scene, *beam, settings.sweep, model.time_step, direction,
+                                                          [&](const PcsPoint &p) { write_point(direction, p, done); });
+        if (branch.last_run.status != RunStatus::completed)
+          say("  sweep " + to_string(direction) + " stopped early (" + to_string(branch.last_run.status) +
+              "): " + branch.last_run.message);
+        (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
+      }
+
+      // The free slider from the scene's own start, for the overlay.
+      void free_slider()
+      {
+        std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
+        RunOptions options               = RunOptions::from_scene(scene, model.time_step);
+        options.end_time                 = settings.free_time;
+        options.output_rate              = 1.;
+        options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
+        AdaptationRun run(scene, *beam, options);
+        CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
+        std::vector<PeriodRecord> records;
+        run.on_period = [&periods, &records](const PeriodRecord &r) {
+          write_period_row(periods, r);
+          records.push_back(r);
+        };
+        if (settings.verbose)
+          run.on_progress = [this](const RunProgress &p) {
+            say("  free slider: t = " + fixed(p.t, 1) + " / " + fixed(p.end_time, 1) + " s, x_C/L = " +
+                fixed(p.slider_x_over_L, 3) + ", amplitude " + fixed(p.amplitude_over_h, 3) + " h");
+          };
+        study.free_run            = run.run();
+        study.free_final_x_over_L = run.state().s[0] / scene.beam.length;
+        study.free_jump = free_jump_of(records, analyse_trace(records, study.free_run.status, trace_thresholds(scene)));
+        if (study.free_run.status != RunStatus::completed)
+          say("  free slider stopped early (" + to_string(study.free_run.status) + "): " + study.free_run.message);
+      }
+
+      // The free run first: with two cores the second branch then goes to
+      // whichever of the free run and the first branch ends first, which is
+      // never later than starting both branches first (pcs_sweep_chain_time).
+      void run_all(const bool with_free_run)
+      {
+        const std::size_t first_branch = with_free_run ? 1 : 0;
+        parallel_for(first_branch + 2, 0, [&](const std::size_t i) {
+          if (i < first_branch)
+            free_slider();
+          else
+            sweep_branch(i == first_branch ? SweepDirection::up : SweepDirection::down);
+        });
+      }
+    };
+
+    // Whether each run reached its end: pcs.csv holds the positions a branch
+    // reached, which its rows alone cannot tell from a complete branch.
+    void write_run_rows(CsvWriter &runs, const PcsStudy &study, const long n_positions, const bool with_free_run)
+    {
+      for (const PcsBranch *branch : {&study.up, &study.down})
+        runs.row({to_string(branch->direction), to_string(branch->last_run.status), CsvWriter::cell(branch->points.size()),
+                  std::to_string(n_positions), CsvWriter::cell(branch->last_run.t_end)});
+      if (with_free_run)
+        runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
+    }
+
+    // The features the seed reads off the branches: the zero crossings of
+    // F̄_x and the jump of each branch.
+    void find_branch_features(PcsStudy &study)
+    {
+      study.crossings_up   = force_zero_crossings(study.up.points);
+      study.crossings_down = force_zero_crossings(study.down.points);
+      study.jump_up        = largest_amplitude_jump(study.up.points);
+      study.jump_down      = largest_amplitude_jump(study.down.points);
+    }
   } // namespace
 
   double pcs_sweep_chain_time(const PcsStudySettings &settings, const unsigned int cores)
@@ -43,7 +189,7 @@ namespace beamslider
       settings.sweep.positions(SweepDirection::up).size() * (settings.sweep.settle_time + settings.sweep.average_time);
     const double free_run = settings.free_time;
     // With two cores the second branch goes to whichever of the free run and
-    // the first branch ends first (the order of the parallel_for below).
+    // the first branch ends first (the order of the parallel_for in PcsRuns).
     return cores >= 3 ? std::max(branch, free_run)
            : cores == 2 ? std::max(free_run, std::min(branch, free_run) + branch)
                         : 2 * branch + free_run;
@@ -56,27 +202,12 @@ namespace beamslider
     settings.sweep.validate(scene);
     if (!(settings.free_time >= 0.))
       throw InputError("--free-time " + std::to_string(settings.free_time) + " s is outside [0, inf)");
-    const auto start        = std::chrono::steady_clock::now();
-    const ModalBasis basis  = modal_basis_of(scene);
-    const double L          = scene.beam.length;
+    const auto start       = std::chrono::steady_clock::now();
+    const ModalBasis basis = modal_basis_of(scene);
     PcsStudy study;
 
-    // The Eq. 5 resonance curve on a fine grid over the swept range (needs
-    // the geometric nonlinearity: without it the curve is a vertical line).
     if (scene.discretisation.geometric_nonlinearity)
-      {
-        const ReducedOrderModel rom(basis, scene.damping_ratio, true);
-        const ResonanceCurveData data =
-          ResonanceCurveData::from_model(rom, scene.slider_mass(), scene.slider_inertia(), scene.beam.thickness);
-        CsvWriter csv(dir + "/resonance.csv", {"x_over_L", "amplitude_over_h"});
-        const unsigned int n = 200;
-        for (unsigned int i = 0; i <= n; ++i)
-          {
-            const double x = settings.sweep.low_over_L + (settings.sweep.high_over_L - settings.sweep.low_over_L) * i / n;
-            const double a = resonance_amplitude_over_h(rom, data, x * L, scene.excitation.frequency_hz);
-            csv.row({CsvWriter::cell(x), std::isfinite(a) ? CsvWriter::cell(a) : ""});
-          }
-      }
+      write_resonance_curve(scene, basis, settings.sweep, dir);
 
     CsvOptions in_place; // rows as positions finish: kept by a stopped sweep
     in_place.in_place = true;
@@ -86,102 +217,14 @@ namespace beamslider
     // The grid's own count (the far end is a position of its own when the
     // range is not a whole number of steps).
     const long n_positions = static_cast<long>(settings.sweep.positions(SweepDirection::up).size());
-    // Whether each run reached its end: pcs.csv holds the positions a branch
-    // reached, which its rows alone cannot tell from a complete branch.
     CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"}, in_place);
 
-    // The two branches and the free slider are independent runs: each on its
-    // own core. Rows of pcs.csv are written as positions finish (a branch's
-    // rows stay in its order; the readers select by direction), and console
-    // lines whole, under one lock.
-    std::mutex output_mutex;
-    auto say = [&](const std::string &line) {
-      const std::lock_guard<std::mutex> lock(output_mutex);
-      console() << line << std::endl;
-    };
-    auto sweep_branch = [&](const SweepDirection direction) {
-      std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
-      long done                        = 0;
-      auto on_point                    = [&](const PcsPoint &p) {
-        const std::lock_guard<std::mutex> lock(output_mutex);
-        pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
-                 CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
-                 std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
-        ++done;
-        if (settings.verbose && (done % 10 == 0 || done == n_positions))
-          console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
-                    << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
-                    << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
-      };
-      PcsBranch branch = run_pcs_branch(scene, *beam, settings.sweep, model.time_step, direction, on_point);
-      if (branch.last_run.status != RunStatus::completed)
-        say("  sweep " + to_string(direction) + " stopped early (" + to_string(branch.last_run.status) +
-            "): " + branch.last_run.message);
-      (direction == SweepDirection::up ? study.up : study.down) = std::move(branch);
-    };
-
-    // The free slider from the scene's own start, for the overlay.
-    auto free_slider = [&]() {
-      std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
-      RunOptions options               = RunOptions::from_scene(scene, model.time_step);
-      options.end_time                 = settings.free_time;
-      options.output_rate              = 1.;
-      options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
-      AdaptationRun run(scene, *beam, options);
-      CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
-      std::vector<PeriodRecord> records;
-      run.on_period = [&periods, &records](const PeriodRecord &r) {
-        write_period_row(periods, r);
-        records.push_back(r);
-      };
-      if (settings.verbose)
-        run.on_progress = [&say](const RunProgress &p) {
-          say("  free slider: t = " + fixed(p.t, 1) + " / " + fixed(p.end_time, 1) + " s, x_C/L = " +
-              fixed(p.slider_x_over_L, 3) + ", amplitude " + fixed(p.amplitude_over_h, 3) + " h");
-        };
-      study.free_run            = run.run();
-      study.free_final_x_over_L = run.state().s[0] / L;
-
-      // The free slider's jump by the one trace analysis; the amplitude
-      // after it is the envelope one second later (where the rule checks
-      // that it lasts).
-      const TraceAnalysis analysis = analyse_trace(records, study.free_run.status, trace_thresholds(scene));
-      if (analysis.jumped)
-        {
-          std::size_t k = 0;
-          while (k + 1 < records.size() && records[k].t_end < analysis.jump_time)
-            ++k;
-          const std::size_t later = std::min(records.size() - 1, k + static_cast<std::size_t>(std::lround(
-                                                                       1. / (records[0].t_end - records[0].t_start))));
-          study.free_jump = PcsStudy::FreeJump{analysis.jump_time, records[k].slider_x_over_L,
-                                               analysis.level_before_jump, analysis.envelope[later]};
-        }
-      if (study.free_run.status != RunStatus::completed)
-        say("  free slider stopped early (" + to_string(study.free_run.status) + "): " + study.free_run.message);
-    };
-
-    // The free run first: with two cores the second branch then goes to
-    // whichever of the free run and the first branch ends first, which is
-    // never later than starting both branches first (pcs_sweep_chain_time).
     const bool with_free_run = settings.free_time > 0.;
-    const std::size_t first_branch = with_free_run ? 1 : 0;
-    parallel_for(first_branch + 2, 0, [&](const std::size_t i) {
-      if (i < first_branch)
-        free_slider();
-      else
-        sweep_branch(i == first_branch ? SweepDirection::up : SweepDirection::down);
-    });
+    PcsRuns branches_and_free_run{scene, model, settings, dir, pcs, n_positions, study};
+    branches_and_free_run.run_all(with_free_run);
 
-    for (const PcsBranch *branch : {&study.up, &study.down})
-      runs.row({to_string(branch->direction), to_string(branch->last_run.status), CsvWriter::cell(branch->points.size()),
-                std::to_string(n_positions), CsvWriter::cell(branch->last_run.t_end)});
-    if (with_free_run)
-      runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
-    study.crossings_up   = force_zero_crossings(study.up.points);
-    study.crossings_down = force_zero_crossings(study.down.points);
-    study.jump_up        = largest_amplitude_jump(study.up.points);
-    study.jump_down      = largest_amplitude_jump(study.down.points);
-
+    write_run_rows(runs, study, n_positions, with_free_run);
+    find_branch_features(study);
     study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return study;
   }

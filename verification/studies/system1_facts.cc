@@ -1,6 +1,7 @@
 // The seed's System 1 facts and the identification by maps; see
 // system1_facts.h for what a fact, a criterion and a score are.
 #include "verification/studies/system1_facts.h"
+#include "verification/studies/system1_fact_table.h"
 
 #include "contact/interruption.h"
 #include "meshes/scene.h"
@@ -81,186 +82,127 @@ namespace beamslider
                         to_string(a.outcome) + ", ends at " + number(a.final_amplitude, 2) + " h");
     }
 
+    // The check sets of system1_fact_table.h, each on the analysis of one
+    // run started at x_C/L = x0, with the row's target.
+    using CheckSetFunction = std::vector<FactCheck> (*)(const TraceAnalysis &, double x0, double target);
+
     // Figs. 10 and its mirror: away from the centre, a jump, a turn, and the
     // end within 0.03 L of `end_over_L`.
-    std::vector<FactCheck> out_jump_turn_stop_near(const TraceAnalysis &a, const double end_over_L)
+    std::vector<FactCheck> out_jump_turn_stop_near(const TraceAnalysis &a, double, const double end_over_L)
     {
       return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
               position_check("stops near x_C/L = " + number(end_over_L, 2), a.final_position, end_over_L, 0.03)};
     }
     // Figs. 11, 12 and 13: toward the centre from the start, no jump, no turn,
     // and the end at most half the start's distance from the centre.
-    std::vector<FactCheck> straight_to_the_centre(const TraceAnalysis &a, const double start_over_L)
+    std::vector<FactCheck> straight_to_the_centre(const TraceAnalysis &a, const double x0, double)
     {
       return {direction_check(a, "toward the centre"), jump_check(a, false), turn_check(a, false),
-              moves_in_check(a, start_over_L, 0.5)};
+              moves_in_check(a, x0, 0.5)};
+    }
+    // Fig. 12: the same on the upper branch all along.
+    std::vector<FactCheck> straight_to_the_centre_trivial(const TraceAnalysis &a, const double x0, const double target)
+    {
+      std::vector<FactCheck> checks = straight_to_the_centre(a, x0, target);
+      checks.push_back(outcome_check(a, AdaptationClass::trivial_adaption));
+      return checks;
+    }
+    // Fig. 6: a jump, no turn, on toward the clamp by at least `by` while the
+    // amplitude decays.
+    std::vector<FactCheck> jump_no_turn_on_to_the_clamp(const TraceAnalysis &a, const double x0, const double by)
+    {
+      return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, false),
+              moves_out_check(a, x0, by),
+              bound_check("the amplitude decays after the jump: ends below half the largest envelope",
+                          a.max_envelope > 0 ? a.final_amplitude / a.max_envelope : 1., 0.5, true, 0.5)};
+    }
+    // Fig. 7: jumps up again and again, and stays on the beam.
+    std::vector<FactCheck> recurrent_jumps(const TraceAnalysis &a, double, double)
+    {
+      FactCheck recurrent = bound_check("jumps up at least twice", a.n_upward_jumps, 2., false, 2.);
+      recurrent.met       = a.n_upward_jumps >= 2;
+      recurrent.value     = std::to_string(a.n_upward_jumps) + " upward jump(s)";
+      return {recurrent, completed_check(a)};
+    }
+    // Fig. 8a.
+    std::vector<FactCheck> signature_move(const TraceAnalysis &a, double, double)
+    {
+      return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
+              outcome_check(a, AdaptationClass::signature_move)};
+    }
+    // Fig. 8b: away from the centre and stays, no jump, no turn.
+    std::vector<FactCheck> out_no_jump_no_turn(const TraceAnalysis &a, double, double)
+    {
+      return {direction_check(a, "toward the clamp"), jump_check(a, false), turn_check(a, false),
+              completed_check(a)};
+    }
+    // Fig. 8c: oscillating, not passing through once: still moving in the
+    // last fifth of the run (its adaptation time, when it comes to rest for
+    // good, lies there).
+    std::vector<FactCheck> oscillates_about_the_centre(const TraceAnalysis &a, double, double)
+    {
+      return {flag_check("crosses the centre", a.crosses_centre, a.crosses_centre ? "crosses" : "does not cross"),
+              flag_check("keeps moving: no rest before the last fifth of the run",
+                         a.adaptation_time >= 0.8 * a.end_time,
+                         "comes to rest at " + number(a.adaptation_time, 1) + " s of " + number(a.end_time, 1) + " s"),
+              completed_check(a)};
+    }
+
+    CheckSetFunction check_set_function(const FactCheckSet set)
+    {
+      switch (set)
+        {
+          case FactCheckSet::out_jump_turn_stop_near:
+            return out_jump_turn_stop_near;
+          case FactCheckSet::straight_to_the_centre:
+            return straight_to_the_centre;
+          case FactCheckSet::straight_to_the_centre_trivial:
+            return straight_to_the_centre_trivial;
+          case FactCheckSet::jump_no_turn_on_to_the_clamp:
+            return jump_no_turn_on_to_the_clamp;
+          case FactCheckSet::recurrent_jumps:
+            return recurrent_jumps;
+          case FactCheckSet::signature_move:
+            return signature_move;
+          case FactCheckSet::out_no_jump_no_turn:
+            return out_no_jump_no_turn;
+          case FactCheckSet::oscillates_about_the_centre:
+            return oscillates_about_the_centre;
+        }
+      throw std::logic_error("unknown check set of a System 1 fact");
+    }
+
+    // The --set overrides of a row's scenario: frequency, acceleration,
+    // start, then what the figure changes.
+    std::vector<std::string> scenario_overrides(const System1FactRow &row)
+    {
+      std::vector<std::string> overrides = {set(frequency, row.frequency), set(acceleration, row.acceleration),
+                                            set(start, row.start)};
+      if (row.clearance > 0) // 0: the scene's
+        overrides.push_back(set(clearance, row.clearance));
+      if (*row.also != '\0')
+        overrides.push_back(row.also);
+      return overrides;
     }
 
     std::vector<System1Fact> make_facts()
     {
       std::vector<System1Fact> facts;
-
-      // Fig. 10: the signature move at 145 Hz from near the centre, ending at
-      // 0.57 (§4.3: x_C^ss/L ≈ 0.57). Tolerance 0.03 L: the spread of end
-      // positions between the published ROM and the converged FE on the
-      // default scene is ±0.04 L (README), so 0.03 is not loose. The seed
-      // gives no number for "near the centre"; 0.6 is a tenth of L from it
-      // (from 0.55 no candidate we tried moved at all: doc/verification.md).
-      {
-        System1Fact f;
-        f.id        = "fig10";
-        f.name      = "Fig. 10: toward the clamp, jump, turn, stop near x_C/L = 0.57";
-        f.seed      = "145 Hz, 20 m/s^2, slider initially near the centre (no number given; 0.6 here): first away "
-                      "from the centre on the low branch, jump, turn, stops at x_C^ss/L = 0.57 (seed 4.2-4.3)";
-        f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.6)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) { return out_jump_turn_stop_near(a, 0.57); };
-        facts.push_back(f);
-      }
-      // The same from the left half: by symmetry the end near 0.43.
-      {
-        System1Fact f = facts.back();
-        f.id          = "fig10-left";
-        f.name        = "Fig. 10 mirrored: from the left half, stop near x_C/L = 0.43";
-        f.seed        = "as Fig. 10, started at 0.4: the mirror image, ending at 1 - 0.57 = 0.43";
-        f.overrides   = {set(frequency, 145), set(acceleration, 20), set(start, 0.4)};
-        f.checks      = [](const TraceAnalysis &a, double) { return out_jump_turn_stop_near(a, 0.43); };
-        facts.push_back(f);
-      }
-      // Fig. 12: from near the clamp, x_C/L > 0.78 (only the high branch
-      // exists there) and below 0.85 (Fig. 14: the mean force points to the
-      // centre up to 0.85): monotonic to the centre, no jump, on the upper branch.
-      {
-        System1Fact f;
-        f.id        = "fig12";
-        f.name      = "Fig. 12: from near the clamp, monotonic to the centre, no jump";
-        f.seed      = "145 Hz, 20 m/s^2, start x_C/L > 0.78 (force toward the centre up to 0.85, Fig. 14): follows "
-                      "the high-level branch, moves monotonously toward the centre, no jump (seed 4.2)";
-        f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.82)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double x0) {
-          std::vector<FactCheck> checks = straight_to_the_centre(a, x0);
-          checks.push_back(outcome_check(a, AdaptationClass::trivial_adaption));
-          return checks;
-        };
-        facts.push_back(f);
-      }
-      // Fig. 11: tight fit, started near the centre like Fig. 10.
-      {
-        System1Fact f;
-        f.id        = "fig11";
-        f.name      = "Fig. 11: tight fit (R/h = 1.01), straight to the centre";
-        f.seed      = "145 Hz, 20 m/s^2, R/h = 1.01, start as Fig. 10: the slider moves directly toward the antinode "
-                      "at the centre (seed 4.2)";
-        f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.6), set(clearance, 1.01)};
-        f.end_time  = 60;
-        f.checks    = straight_to_the_centre;
-        facts.push_back(f);
-      }
-      // Fig. 13: tight fit, started near the clamp like Fig. 12.
-      {
-        System1Fact f;
-        f.id        = "fig13";
-        f.name      = "Fig. 13: tight fit (R/h = 1.01) from near the clamp, monotonic to the centre, no jump";
-        f.seed      = "145 Hz, 20 m/s^2, R/h = 1.01, start as Fig. 12: the same monotonic move to the centre "
-                      "without a jump (seed 4.2)";
-        f.overrides = {set(frequency, 145), set(acceleration, 20), set(start, 0.82), set(clearance, 1.01)};
-        f.end_time  = 60;
-        f.checks    = straight_to_the_centre;
-        facts.push_back(f);
-      }
-      // Fig. 6: large clearance, the unstable process. The seed gives no start;
-      // the one of Fig. 8 at the same frequency.
-      {
-        System1Fact f;
-        f.id        = "fig6";
-        f.name      = "Fig. 6: large clearance (R/h = 1.2), jump, no turn, on to the clamp";
-        f.seed      = "130 Hz, 20 m/s^2, R/h = 1.2: small amplitude while moving toward the clamp, a jump, then no "
-                      "turn: further toward the clamp with a continuous decrease of amplitude (seed 3.3)";
-        f.overrides = {set(frequency, 130), set(acceleration, 20), set(start, 0.75), set(clearance, 1.2)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double x0) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, false),
-                  moves_out_check(a, x0, 0.1),
-                  bound_check("the amplitude decays after the jump: ends below half the largest envelope",
-                              a.max_envelope > 0 ? a.final_amplitude / a.max_envelope : 1., 0.5, true, 0.5)};
-        };
-        facts.push_back(f);
-      }
-      // Fig. 7: the quasi-stable process, heavy slider. No start given; that of
-      // Fig. 10 (the experiment's amplitude was small at first).
-      {
-        System1Fact f;
-        f.id        = "fig7";
-        f.name      = "Fig. 7: heavy slider (mass and inertia x2, R/h = 1.1), recurrent jumps";
-        f.seed      = "150 Hz, 10 m/s^2, R/h = 1.1, slider mass and inertia doubled: the amplitude jumps between "
-                      "high and low level recurrently (seed 3.3)";
-        f.overrides = {set(frequency, 150), set(acceleration, 10), set(start, 0.6), set(clearance, 1.1),
-                       set("Slider/Mass factor", 2)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          FactCheck recurrent = bound_check("jumps up at least twice", a.n_upward_jumps, 2., false, 2.);
-          recurrent.met       = a.n_upward_jumps >= 2;
-          recurrent.value     = std::to_string(a.n_upward_jumps) + " upward jump(s)";
-          return {recurrent, completed_check(a)};
-        };
-        facts.push_back(f);
-      }
-      // Fig. 8a: the signature move of System 1 at 130 Hz, 30 m/s², from "a
-      // slightly different initial slider location, c.f. Fig. 5b", which starts
-      // at x_C/L ≈ 0.8: 0.75 here.
-      {
-        System1Fact f;
-        f.id        = "fig8";
-        f.name      = "Fig. 8a: signature move at 130 Hz, 30 m/s^2";
-        f.seed      = "130 Hz, 30 m/s^2, start 'slightly different' from Fig. 5b's 0.8 (0.75 here): the "
-                      "signature move (seed 4.1)";
-        f.overrides = {set(frequency, 130), set(acceleration, 30), set(start, 0.75)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the clamp"), jump_check(a, true), turn_check(a, true),
-                  outcome_check(a, AdaptationClass::signature_move)};
-        };
-        facts.push_back(f);
-      }
-      // Fig. 8b: without geometric nonlinearity.
-      {
-        System1Fact f;
-        f.id        = "fig8-linear";
-        f.name      = "Fig. 8b: without geometric nonlinearity, away from the centre, no jump, no turn";
-        f.seed      = "as Fig. 8a with the geometric nonlinearity off: the slider moves away from the centre and "
-                      "stays; no jump to a high level; no turn (seed 4.1)";
-        f.overrides = {set(frequency, 130), set(acceleration, 30), set(start, 0.75),
-                       "Discretisation/Geometric nonlinearity=false"};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          return {direction_check(a, "toward the clamp"), jump_check(a, false), turn_check(a, false),
-                  completed_check(a)};
-        };
-        facts.push_back(f);
-      }
-      // Fig. 8c: frictionless.
-      {
-        System1Fact f;
-        f.id        = "fig8-frictionless";
-        f.name      = "Fig. 8c: frictionless (mu = 0), the slider oscillates about the centre";
-        f.seed      = "as Fig. 8a with mu = 0: the slider oscillates axially around the centre while the vibration "
-                      "level modulates (seed 4.1)";
-        f.overrides = {set(frequency, 130), set(acceleration, 30), set(start, 0.75),
-                       set("Contact/Friction coefficient", 0)};
-        f.end_time  = 60;
-        f.checks    = [](const TraceAnalysis &a, double) -> std::vector<FactCheck> {
-          // Oscillating, not passing through once: still moving in the last
-          // fifth of the run (its adaptation time, when it comes to rest for
-          // good, lies there).
-          return {flag_check("crosses the centre", a.crosses_centre, a.crosses_centre ? "crosses" : "does not cross"),
-                  flag_check("keeps moving: no rest before the last fifth of the run",
-                             a.adaptation_time >= 0.8 * a.end_time,
-                             "comes to rest at " + number(a.adaptation_time, 1) + " s of " + number(a.end_time, 1) + " s"),
-                  completed_check(a)};
-        };
-        facts.push_back(f);
-      }
+      for (std::size_t i = 0; i < n_system1_fact_rows; ++i)
+        {
+          const System1FactRow &row = system1_fact_table[i];
+          System1Fact f;
+          f.id        = row.id;
+          f.name      = row.name;
+          f.seed      = row.seed;
+          f.overrides = scenario_overrides(row);
+          f.end_time  = row.end_time;
+          f.checks    = [checks = check_set_function(row.checks), target = row.target](const TraceAnalysis &a,
+                                                                                        const double x0) {
+            return checks(a, x0, target);
+          };
+          facts.push_back(f);
+        }
       return facts;
     }
   } // namespace
