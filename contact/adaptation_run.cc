@@ -221,6 +221,104 @@ namespace beamslider
     last_row_is_current_ = true;
   }
 
+  void AdaptationRun::emit_row_if_due(const double output_interval, const double eps)
+  {
+    const double t = stepper_.state().t;
+    if (t + eps >= next_output_)
+      {
+        if (on_trace_row)
+          on_trace_row(make_row());
+        last_row_is_current_ = true;
+        if (output_interval > 0.)
+          while (next_output_ <= t + eps)
+            next_output_ += output_interval;
+        else
+          next_output_ = t + eps;
+      }
+    else
+      last_row_is_current_ = false;
+  }
+
+  bool AdaptationRun::stop_if_interrupted(RunResult &result) const
+  {
+    if (!interruption_requested())
+      return false;
+    std::ostringstream m;
+    m << "interrupted by signal " << interruption_signal() << " at t = " << stepper_.state().t
+      << " s; every step up to then is complete";
+    result.status  = RunStatus::interrupted;
+    result.message = m.str();
+    return true;
+  }
+
+  const StepReport *AdaptationRun::step_or_stop(RunResult &result)
+  {
+    const double t_B = stepper_.state().t;
+    try
+      {
+        return &stepper_.step();
+      }
+    catch (const SliderAtSupport &e)
+      {
+        result.status  = RunStatus::slider_at_support;
+        result.message = e.what();
+      }
+    catch (const ContactSolverFailure &e)
+      {
+        result.status  = RunStatus::contact_solver_failure;
+        result.message = e.what();
+      }
+    catch (const NonFiniteState &e)
+      {
+        result.status  = RunStatus::non_finite_state;
+        result.message = e.what();
+      }
+    catch (const UnphysicalState &e)
+      {
+        result.status  = RunStatus::unphysical_state;
+        result.message = e.what();
+      }
+    catch (const std::runtime_error &e)
+      {
+        // The beam's own solver (e.g. the FE model's Newton iteration on
+        // the von Kármán forces) gave up: the state before the step stays.
+        std::ostringstream m;
+        m << "the beam model failed in the step from t = " << t_B
+          << " s (x_C/L = " << stepper_.state().s[0] / beam_.length() << "): " << e.what();
+        result.status  = RunStatus::beam_solver_failure;
+        result.message = m.str();
+      }
+    return nullptr;
+  }
+
+  void AdaptationRun::record_step(const StepReport &report, RunResult &result)
+  {
+    const SystemState &s = stepper_.state();
+    ++result.n_steps;
+    result.max_solver_iterations = std::max(result.max_solver_iterations, report.iterations);
+    if (report.n_active > 0)
+      ++result.n_contact_steps;
+    result.solver_iterations += report.iterations;
+    if (!period_open_)
+      return;
+    PeriodRecord &p = current_;
+    p.work_gravity += report.work_gravity;
+    p.work_damping += report.work_damping;
+    p.work_excitation += report.work_excitation;
+    p.work_impact += report.work_impact;
+    p.work_friction += report.work_friction;
+    p.work_base_contact += report.work_base_contact;
+    p.max_solver_iterations = std::max(p.max_solver_iterations, report.iterations);
+    impulse_x_ += report.slider_impulse[0];
+    x_sum_ += s.s[0];
+    ++period_steps_;
+    if (report.n_active > 0)
+      ++contact_steps_;
+    const double w_centre = centre_grad_w_.dot(s.q);
+    w_min_                = std::min(w_min_, w_centre);
+    w_max_                = std::max(w_max_, w_centre);
+  }
+
   RunResult AdaptationRun::run_until(const double t_end)
   {
     using clock      = std::chrono::steady_clock;
@@ -234,107 +332,25 @@ namespace beamslider
     const double output_interval = options_.output_rate > 0. ? 1. / options_.output_rate : 0.;
     const double eps             = 1e-9 * dt;
 
-    auto emit_row_if_due = [&]() {
-      const double t = stepper_.state().t;
-      if (t + eps >= next_output_)
-        {
-          if (on_trace_row)
-            on_trace_row(make_row());
-          last_row_is_current_ = true;
-          if (output_interval > 0.)
-            while (next_output_ <= t + eps)
-              next_output_ += output_interval;
-          else
-            next_output_ = t + eps;
-        }
-      else
-        last_row_is_current_ = false;
-    };
-
     // Periods run on the absolute grid k T; a run that starts off the grid
     // starts bookkeeping at the next grid point.
     auto on_grid = [&](const double t) { return std::abs(t - std::round(t / period_) * period_) < 0.5 * dt; };
     if (!period_open_ && on_grid(t0))
       begin_period(t0);
-    emit_row_if_due();
+    emit_row_if_due(output_interval, eps);
 
     for (unsigned long k = 0; k < n_steps; ++k)
       {
-        if (interruption_requested())
-          {
-            std::ostringstream m;
-            m << "interrupted by signal " << interruption_signal() << " at t = " << stepper_.state().t
-              << " s; every step up to then is complete";
-            result.status  = RunStatus::interrupted;
-            result.message = m.str();
-            break;
-          }
-        const double t_B = stepper_.state().t;
-        const StepReport *report = nullptr;
-        try
-          {
-            report = &stepper_.step();
-          }
-        catch (const SliderAtSupport &e)
-          {
-            result.status  = RunStatus::slider_at_support;
-            result.message = e.what();
-          }
-        catch (const ContactSolverFailure &e)
-          {
-            result.status  = RunStatus::contact_solver_failure;
-            result.message = e.what();
-          }
-        catch (const NonFiniteState &e)
-          {
-            result.status  = RunStatus::non_finite_state;
-            result.message = e.what();
-          }
-        catch (const UnphysicalState &e)
-          {
-            result.status  = RunStatus::unphysical_state;
-            result.message = e.what();
-          }
-        catch (const std::runtime_error &e)
-          {
-            // The beam's own solver (e.g. the FE model's Newton iteration on
-            // the von Kármán forces) gave up: the state before the step stays.
-            std::ostringstream m;
-            m << "the beam model failed in the step from t = " << t_B << " s (x_C/L = " << stepper_.state().s[0] / L
-              << "): " << e.what();
-            result.status  = RunStatus::beam_solver_failure;
-            result.message = m.str();
-          }
+        if (stop_if_interrupted(result))
+          break;
+        const double t_B         = stepper_.state().t;
+        const StepReport *report = step_or_stop(result);
         if (!report)
           break;
+        record_step(*report, result);
 
-        const SystemState &s = stepper_.state();
-        ++result.n_steps;
-        result.max_solver_iterations = std::max(result.max_solver_iterations, report->iterations);
-        if (report->n_active > 0)
-          ++result.n_contact_steps;
-        result.solver_iterations += report->iterations;
-
-        if (period_open_)
-          {
-            PeriodRecord &p = current_;
-            p.work_gravity += report->work_gravity;
-            p.work_damping += report->work_damping;
-            p.work_excitation += report->work_excitation;
-            p.work_impact += report->work_impact;
-            p.work_friction += report->work_friction;
-            p.work_base_contact += report->work_base_contact;
-            p.max_solver_iterations = std::max(p.max_solver_iterations, report->iterations);
-            impulse_x_ += report->slider_impulse[0];
-            x_sum_ += s.s[0];
-            ++period_steps_;
-            if (report->n_active > 0)
-              ++contact_steps_;
-            const double w_centre = centre_grad_w_.dot(s.q);
-            w_min_                = std::min(w_min_, w_centre);
-            w_max_                = std::max(w_max_, w_centre);
-          }
         // Period boundary crossed in this step?
+        const SystemState &s = stepper_.state();
         if (std::floor(s.t / period_ + 1e-9) > std::floor(t_B / period_ + 1e-9))
           {
             if (period_open_)
@@ -342,7 +358,7 @@ namespace beamslider
             begin_period(s.t);
           }
 
-        emit_row_if_due();
+        emit_row_if_due(output_interval, eps);
 
         if (on_progress && s.t + eps >= next_progress_)
           {

@@ -163,6 +163,15 @@ namespace beamslider
     void begin_period(double t);
     void close_period(double t);
     TraceRow make_row() const;
+    // The stages of run_until: a trace row if one is due on the output
+    // grid (or every step for a zero interval); the check for an
+    // interruption; one step of the stepper, or the status and message of
+    // its failure (null then); the step's counts and works, into the result
+    // and the open period.
+    void emit_row_if_due(double output_interval, double eps);
+    bool stop_if_interrupted(RunResult &result) const;
+    const StepReport *step_or_stop(RunResult &result);
+    void record_step(const StepReport &report, RunResult &result);
 
     BeamSystem &beam_;
     RunOptions options_;

@@ -2,10 +2,12 @@
 #include "contact/moreau_stepper.h"
 
 #include "contact/contact_products.h"
+#include "contact/moreau_step_skeleton.h"
 
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace beamslider
@@ -337,174 +339,177 @@ namespace beamslider
     ++steps_taken_;
   }
 
+  // The general form's stages (moreau_step_skeleton.h): everything through
+  // the BeamSystem interface and its BeamStep. A model with local kinematics
+  // (the FE beam) gives the directions' beam parts on the few coordinates
+  // they touch (contact/local_directions.h); the others dense, as columns of
+  // W_b. The dense form's products have 2m ≤ 8 columns or rows: written out
+  // (contact/contact_products.h) rather than calls into Eigen's product
+  // kernels, which cost more than their arithmetic for a reduced model's few
+  // modes.
+  namespace
+  {
+    struct General; // the tag of the general form's stages
+  } // namespace
+
+  template <>
+  class MoreauStepper::Stages<General>
+  {
+  public:
+    explicit Stages(MoreauStepper &stepper)
+      : st(stepper)
+      , theta(st.beam_.theta())
+      , dt_B((1. - theta) * st.dt_)
+      , dt_E(theta * st.dt_)
+      , local(st.beam_.has_local_kinematics())
+    {
+      st.local_directions_.clear();
+    }
+
+    MoreauStepper &st;
+    // The θ-scheme's weights (beam_system.h); θ = 1/2, the midpoint rule,
+    // gives 0.5 and 0.5 exactly.
+    const double theta;
+    const double dt_B; // from the start to the detection configuration
+    const double dt_E; // from there to the end
+    const bool local;  // the directions' beam parts in local form
+
+    SliderFrame detection_frame(const double t_M, const Eigen::Vector3d &s_M) const
+    {
+      return SliderGeometry::frame(t_M, st.base_, s_M[2]);
+    }
+
+    void free_velocity(const double t_M)
+    {
+      beam_step.emplace(st.beam_.free_velocity(t_M, st.q_M_, st.state_.u, st.dt_, st.u_free_));
+    }
+
+    bool closed_corner(const unsigned int k, const SliderFrame &frame, const Eigen::Vector3d &s_M, const double t_B,
+                       const unsigned int m)
+    {
+      CornerKinematics &corner = st.corner_;
+      st.geometry_.evaluate(k, frame, st.beam_, st.q_M_, s_M, corner, CornerDetail::for_step);
+      if (!st.corner_is_closed(k, corner.gap, corner.thickness, t_B))
+        return false;
+      if (local)
+        st.local_directions_.set_corner(2 * m, corner);
+      else
+        {
+          st.W_b_.col(2 * m)     = corner.beam_normal;
+          st.W_b_.col(2 * m + 1) = corner.beam_tangent;
+        }
+      st.W_s_.col(2 * m)     = corner.slider_normal;
+      st.W_s_.col(2 * m + 1) = corner.slider_tangent;
+      st.imposed_[2 * m]     = corner.imposed_normal;
+      st.imposed_[2 * m + 1] = corner.imposed_tangent;
+      return true;
+    }
+
+    // W_bᵀ u + W_sᵀ v + imposed, in the form of the directions' beam parts.
+    template <typename Out>
+    void relative_velocities(const Eigen::Index m2, const Eigen::VectorXd &u, const Eigen::Vector3d &v, Out &&out) const
+    {
+      const auto Ws  = st.W_s_.leftCols(m2);
+      const auto imp = st.imposed_.head(m2);
+      if (local)
+        st.local_directions_.relative_velocities(m2, Ws, imp, u, v, out);
+      else
+        beamslider::relative_velocities(st.W_b_.leftCols(m2), Ws, imp, u, v, out);
+    }
+
+    void contact_problem(const Eigen::Index m2, const Eigen::Vector3d &v_B, const Eigen::Vector3d &v_free,
+                         const Eigen::Vector3d &inv_mass)
+    {
+      const auto Wb = st.W_b_.leftCols(m2);
+      auto X        = st.X_b_.leftCols(m2);
+      auto G        = st.G_.topLeftCorner(m2, m2);
+      // S⁻¹ W_b for the dense form (the local one never forms it): for a
+      // unit iteration matrix (the explicit reduced model) that is W_b
+      // itself, neither solved for nor copied.
+      unit_S = !local && beam_step->iteration_matrix_is_identity();
+      if (!local && !unit_S)
+        beam_step->solve_iteration_matrix(Wb, X);
+
+      // G = W_bᵀ S⁻¹ W_b + W_sᵀ M_s⁻¹ W_s.
+      if (local)
+        {
+          // Wᵀ (Eᵀ S⁻¹ E) W on the K coordinates.
+          const unsigned int K = st.local_directions_.n_coordinates();
+          const auto W         = st.local_directions_.directions(m2);
+          auto S_block         = st.S_block_.topLeftCorner(K, K);
+          beam_step->inverse_iteration_matrix_block(st.local_directions_.index(), K, S_block);
+          auto SW      = st.SW_.topLeftCorner(K, m2);
+          SW.noalias() = S_block.lazyProduct(W);
+          G.noalias()  = W.transpose().lazyProduct(SW);
+        }
+      else if (unit_S && st.beam_.n_dofs() + 2 * m2 < EIGEN_GEMM_TO_COEFFBASED_THRESHOLD)
+        // Below Eigen's threshold for its blocked kernel, its product takes
+        // each entry as a dot product; with S = I these are symmetric to
+        // the bit (the same products, summed in the same order), so half of
+        // them suffice.
+        for (Eigen::Index j = 0; j < m2; ++j)
+          for (Eigen::Index i = 0; i <= j; ++i)
+            G(i, j) = G(j, i) = Wb.col(i).dot(Wb.col(j));
+      else if (unit_S)
+        G.noalias() = Wb.transpose() * Wb;
+      else
+        G.noalias() = Wb.transpose() * X;
+      add_slider_part(st.W_s_.leftCols(m2), inv_mass, G);
+
+      relative_velocities(m2, st.state_.u, v_B, st.gamma_B_.head(m2));
+      relative_velocities(m2, st.u_free_, v_free, st.c_.head(m2));
+    }
+
+    void add_beam_impulse(const Eigen::Index m2)
+    {
+      const auto P = st.P_.head(m2);
+      if (local)
+        {
+          const unsigned int K = st.local_directions_.n_coordinates();
+          auto y               = st.y_.head(K);
+          y.noalias()          = st.local_directions_.directions(m2).lazyProduct(P);
+          beam_step->add_inverse_iteration_matrix_times(st.local_directions_.index(), K, y.data(), st.u_E_);
+        }
+      else if (unit_S)
+        add_product(st.W_b_.leftCols(m2), P, st.u_E_);
+      else
+        add_product(st.X_b_.leftCols(m2), P, st.u_E_);
+    }
+
+    // The relative velocities at the mean velocities, from the beam's
+    // coordinates.
+    void contact_work(const Eigen::Index m2, const Eigen::Vector3d &v_B, const Eigen::Vector3d &v_E)
+    {
+      st.u_mean_ = st.state_.u;
+      st.u_mean_ += st.u_E_;
+      st.u_mean_ *= 0.5;
+      const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
+      auto gamma_mean              = st.gamma_mean_.head(m2);
+      relative_velocities(m2, st.u_mean_, v_mean, gamma_mean);
+      const auto P = st.P_.head(m2);
+      for (Eigen::Index i = 0; i < m2 / 2; ++i)
+        {
+          st.report_.work_impact += P[2 * i] * gamma_mean[2 * i];
+          st.report_.work_friction += P[2 * i + 1] * gamma_mean[2 * i + 1];
+        }
+    }
+
+    void finish_beam() const
+    {
+      beam_step->work(st.u_E_, st.report_.work_damping, st.report_.work_excitation);
+      beam_step->finish(st.state_.q, st.q_next_, st.u_E_);
+    }
+
+  private:
+    std::optional<BeamStep> beam_step; // from free_velocity on
+    bool unit_S = false;               // S = I: S⁻¹ W_b is W_b
+  };
+
   const StepReport &MoreauStepper::step()
   {
     if (modal_)
       return step_explicit_modal();
-    const unsigned int n = beam_.n_dofs();
-    const double t_B     = state_.t;
-    // The θ-scheme's weights (beam_system.h); θ = 1/2, the midpoint rule,
-    // gives 0.5 and 0.5 exactly.
-    const double theta   = beam_.theta();
-    const double dt_B    = (1. - theta) * dt_; // from the start to the detection configuration
-    const double dt_E    = theta * dt_;        // from there to the end
-    const double t_M     = t_B + dt_B;
-    report_              = StepReport();
-
-    // Midpoint configuration; no beam evaluation before the corners are known
-    // to lie on the beam.
-    Eigen::Vector3d v_B = state_.v;
-    if (prescribed_x_)
-      v_B[0] = 0.;
-    const Eigen::Vector3d s_M = state_.s + dt_B * v_B;
-    const SliderFrame frame   = SliderGeometry::frame(t_M, base_, s_M[2]);
-    check_corners_on_beam(t_B, s_M, frame);
-    q_M_ = state_.q + dt_B * state_.u;
-
-    // Free motion.
-    const BeamStep beam_step = beam_.free_velocity(t_M, q_M_, state_.u, dt_, u_free_);
-    Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
-    const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
-
-    // Active set and force directions at the midpoint. All storage below is
-    // sized once for the four corners (constructor); a step works on its
-    // leading blocks and allocates nothing. A model with local kinematics
-    // (the FE beam) gives the directions' beam parts on the few coordinates
-    // they touch (contact/local_directions.h); the others dense, as columns
-    // of W_b.
-    const bool local = beam_.has_local_kinematics();
-    local_directions_.clear();
-    std::array<unsigned int, n_slider_corners> active{};
-    unsigned int m = 0;
-    for (unsigned int k = 0; k < n_slider_corners; ++k)
-      {
-        geometry_.evaluate(k, frame, beam_, q_M_, s_M, corner_, CornerDetail::for_step);
-        if (!corner_is_closed(k, corner_.gap, corner_.thickness, t_B))
-          continue;
-        if (local)
-          local_directions_.set_corner(2 * m, corner_);
-        else
-          {
-            W_b_.col(2 * m)     = corner_.beam_normal;
-            W_b_.col(2 * m + 1) = corner_.beam_tangent;
-          }
-        W_s_.col(2 * m)     = corner_.slider_normal;
-        W_s_.col(2 * m + 1) = corner_.slider_tangent;
-        imposed_[2 * m]     = corner_.imposed_normal;
-        imposed_[2 * m + 1] = corner_.imposed_tangent;
-        active[m++]         = k;
-      }
-    report_.n_active = m;
-
-    Eigen::Vector3d v_E;
-    std::array<Eigen::Vector2d, n_slider_corners> new_warm;
-    for (auto &p : new_warm)
-      p.setZero();
-
-    u_E_ = u_free_;
-    if (m == 0)
-      v_E = v_free;
-    else
-      {
-        const Eigen::Index m2 = 2 * m;
-        const auto Wb  = W_b_.leftCols(m2);
-        const auto Ws  = W_s_.leftCols(m2);
-        const auto imp = imposed_.head(m2);
-        auto X         = X_b_.leftCols(m2);
-        auto G         = G_.topLeftCorner(m2, m2);
-        auto c         = c_.head(m2);
-        auto P         = P_.head(m2);
-        auto gamma     = gamma_B_.head(m2);
-        // The dense form's products have 2m ≤ 8 columns or rows: written
-        // out (contact/contact_products.h) rather than calls into Eigen's
-        // product kernels, which cost more than their arithmetic for a
-        // reduced model's few modes.
-        //
-        // W_bᵀ u + W_sᵀ v + imposed, in the form of the directions' beam parts.
-        auto relative = [&](const Eigen::VectorXd &u, const Eigen::Vector3d &v, auto &&out) {
-          if (local)
-            local_directions_.relative_velocities(m2, Ws, imp, u, v, out);
-          else
-            relative_velocities(Wb, Ws, imp, u, v, out);
-        };
-        // S⁻¹ W_b for the dense form (the local one never forms it): for a
-        // unit iteration matrix (the explicit reduced model) that is W_b
-        // itself, neither solved for nor copied.
-        const bool unit_S = !local && beam_step.iteration_matrix_is_identity();
-        if (!local && !unit_S)
-          beam_step.solve_iteration_matrix(Wb, X);
-        const auto &SinvWb = unit_S ? Wb : X;
-
-        // G = W_bᵀ S⁻¹ W_b + W_sᵀ M_s⁻¹ W_s.
-        if (local)
-          {
-            // Wᵀ (Eᵀ S⁻¹ E) W on the K coordinates.
-            const unsigned int K = local_directions_.n_coordinates();
-            const auto W         = local_directions_.directions(m2);
-            auto S_block         = S_block_.topLeftCorner(K, K);
-            beam_step.inverse_iteration_matrix_block(local_directions_.index(), K, S_block);
-            auto SW         = SW_.topLeftCorner(K, m2);
-            SW.noalias()    = S_block.lazyProduct(W);
-            G.noalias()     = W.transpose().lazyProduct(SW);
-          }
-        else if (unit_S && n + 2 * m2 < EIGEN_GEMM_TO_COEFFBASED_THRESHOLD)
-          // Below Eigen's threshold for its blocked kernel, its product takes
-          // each entry as a dot product; with S = I these are symmetric to
-          // the bit (the same products, summed in the same order), so half of
-          // them suffice.
-          for (Eigen::Index j = 0; j < m2; ++j)
-            for (Eigen::Index i = 0; i <= j; ++i)
-              G(i, j) = G(j, i) = Wb.col(i).dot(Wb.col(j));
-        else
-          G.noalias() = Wb.transpose() * SinvWb;
-        add_slider_part(Ws, inv_mass, G);
-
-        relative(state_.u, v_B, gamma);
-        relative(u_free_, v_free, c);
-        solve_contact_impulses(t_B, active, m, gamma_B_);
-
-        // u_E = u_free + S⁻¹ W_b P.
-        if (local)
-          {
-            const unsigned int K = local_directions_.n_coordinates();
-            auto y               = y_.head(K);
-            y.noalias()          = local_directions_.directions(m2).lazyProduct(P);
-            beam_step.add_inverse_iteration_matrix_times(local_directions_.index(), K, y.data(), u_E_);
-          }
-        else
-          add_product(SinvWb, P, u_E_);
-        report_.slider_impulse.noalias() = Ws.lazyProduct(P);
-        v_E = v_free + inv_mass.asDiagonal() * report_.slider_impulse;
-        for (unsigned int i = 0; i < m; ++i)
-          new_warm[active[i]] = P.segment<2>(2 * i);
-
-        // Contact work: impulse × mean relative velocity, per direction.
-        u_mean_ = state_.u;
-        u_mean_ += u_E_;
-        u_mean_ *= 0.5;
-        const Eigen::Vector3d v_mean = 0.5 * (v_B + v_E);
-        auto gamma_mean              = gamma_mean_.head(m2);
-        relative(u_mean_, v_mean, gamma_mean);
-        for (unsigned int i = 0; i < m; ++i)
-          {
-            report_.work_impact += P[2 * i] * gamma_mean[2 * i];
-            report_.work_friction += P[2 * i + 1] * gamma_mean[2 * i + 1];
-          }
-        report_.work_base_contact = -P.dot(imp);
-      }
-
-    // The end state, checked before it replaces the old one.
-    q_next_ = q_M_;
-    q_next_.noalias() += dt_E * u_E_;
-    const Eigen::Vector3d s_E = s_M + dt_E * v_E;
-    if (!q_next_.allFinite() || !u_E_.allFinite() || !s_E.allFinite() || !v_E.allFinite())
-      throw_non_finite_end(t_B);
-
-    report_.work_gravity = -slider_.mass * slider_.gravity * (s_E[1] - state_.s[1]);
-    beam_step.work(u_E_, report_.work_damping, report_.work_excitation);
-    beam_step.finish(state_.q, q_next_, u_E_);
-
-    accept_step(s_E, v_E, new_warm);
-    return report_;
+    Stages<General> stages(*this);
+    return take_step(stages);
   }
 } // namespace beamslider

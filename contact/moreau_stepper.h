@@ -187,6 +187,14 @@ namespace beamslider
 
   private:
     const StepReport &step_explicit_modal();
+    // The step's skeleton (moreau_step_skeleton.h), taken with the stages of
+    // one of its two forms, each specialised in its own file for a tag
+    // local to it: the general one (moreau_stepper.cc) and the explicit
+    // modal one (explicit_modal_step.cc).
+    template <typename FormStages>
+    const StepReport &take_step(FormStages &stages);
+    template <typename Form>
+    class Stages;
     // What both steps share: the support check of the corners at the
     // detection configuration; the check of one corner's gap (throws for a
     // corner through the beam or a non-finite gap; true if it is closed);

@@ -88,6 +88,183 @@ namespace beamslider
       const Eigen::FullPivLU<Eigen::Matrix<double, K, K>> lu(A.template topLeftCorner<K, K>());
       z = lu.solve(b.template head<K>());
     }
+
+    constexpr int max_n = 8; // unknowns of the mode-guess solve: four corners, the slider's most
+    using Small         = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_n, max_n>;
+    using SmallVector   = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_n, 1>;
+    using Trial         = Eigen::Matrix<double, max_n, 1>;
+    using MatrixRef     = Eigen::Ref<const Eigen::MatrixXd>;
+    using VectorRef     = Eigen::Ref<const Eigen::VectorXd>;
+
+    enum class Mode : unsigned char
+    {
+      open,
+      stick,
+      slide_positive, // P_T = +μ P_N
+      slide_negative  // P_T = −μ P_N
+    };
+
+    // A guess of each contact's mode, and the k linear equations it implies.
+    struct ModeSet
+    {
+      std::array<Mode, max_n / 2> mode;
+      Eigen::Index k = 0;
+      std::array<Eigen::Index, max_n> equation, unknown; // ξ row of each equation, P entry of each unknown
+      std::array<double, max_n> slope;                    // P_T = slope · P_N for a sliding contact's unknown
+    };
+
+    // The modes the warm start P points to.
+    void guess_from_warm_start(const Eigen::Ref<Eigen::VectorXd> &P, const VectorRef &mu, const Eigen::Index m,
+                               ModeSet &set)
+    {
+      for (Eigen::Index i = 0; i < m; ++i)
+        {
+          const double p_N = P[2 * i], p_T = P[2 * i + 1];
+          if (!(p_N > 0.))
+            set.mode[i] = Mode::open;
+          else if (std::abs(p_T) >= mu[i] * p_N * (1. - 1e-12) && mu[i] > 0.)
+            set.mode[i] = p_T > 0. ? Mode::slide_positive : Mode::slide_negative;
+          else
+            set.mode[i] = Mode::stick;
+        }
+    }
+
+    // Unknowns and equations of the mode set.
+    void set_up_equations(const VectorRef &mu, const Eigen::Index m, ModeSet &set)
+    {
+      Eigen::Index &k = set.k;
+      k               = 0;
+      for (Eigen::Index i = 0; i < m; ++i)
+        switch (set.mode[i])
+          {
+            case Mode::open:
+              break;
+            case Mode::stick:
+              set.equation[k] = 2 * i, set.unknown[k] = 2 * i, set.slope[k] = 0., ++k;
+              set.equation[k] = 2 * i + 1, set.unknown[k] = 2 * i + 1, set.slope[k] = 0., ++k;
+              break;
+            case Mode::slide_positive:
+            case Mode::slide_negative:
+              set.equation[k] = 2 * i, set.unknown[k] = 2 * i;
+              set.slope[k]    = (set.mode[i] == Mode::slide_positive ? 1. : -1.) * mu[i];
+              ++k;
+              break;
+          }
+    }
+
+    // The impulses of the mode set (trial, zero but for its k > 0
+    // unknowns) from its equations A z = −E c; false if they are
+    // inconsistent (no solution in this mode set).
+    bool solve_equations(const MatrixRef &G, const VectorRef &c, const double c_scale, const ModeSet &set,
+                         Trial &trial)
+    {
+      const Eigen::Index k = set.k;
+      Small A(k, k);
+      SmallVector b(k), z;
+      for (Eigen::Index r = 0; r < k; ++r)
+        {
+          b[r] = -c[set.equation[r]];
+          for (Eigen::Index j = 0; j < k; ++j)
+            {
+              // A sliding contact's unknown P_N also moves its P_T = slope · P_N.
+              A(r, j) = G(set.equation[r], set.unknown[j]);
+              if (set.slope[j] != 0.)
+                A(r, j) += set.slope[j] * G(set.equation[r], set.unknown[j] + 1);
+            }
+        }
+      if (k == 1)
+        {
+          // One equation a z = b, the commonest mode set (a single
+          // sliding corner; over half of the solves on the signature
+          // move), where the LU's set-up costs more than the solve:
+          // what Eigen's full-pivoting LU returns, to the bit: rank
+          // 0 (z = 0) unless a is finite and nonzero, and a zero
+          // right-hand side left as it is (its sign kept).
+          const double a = A(0, 0);
+          z.resize(1);
+          z[0] = std::isfinite(a) && a != 0. ? (b[0] != 0. ? b[0] / a : b[0]) : 0.;
+        }
+      else
+        switch (k)
+          {
+            // Two to four unknowns (two corners on one face, or a
+            // sticking one): Eigen's LU at the size it has, whose
+            // loops unroll, rather than at the capacity's run-time size.
+            case 2:
+              solve_fixed_size<2>(A, b, z);
+              break;
+            case 3:
+              solve_fixed_size<3>(A, b, z);
+              break;
+            case 4:
+              solve_fixed_size<4>(A, b, z);
+              break;
+            default:
+              {
+                const Eigen::FullPivLU<Small> lu(A);
+                z = lu.solve(b);
+              }
+          }
+      // The residual inlined (≤ 64 products): it only decides
+      // acceptance against a tolerance seven orders above round-off.
+      if (!z.allFinite() || (A.lazyProduct(z) - b).cwiseAbs().maxCoeff() > 1e-9 * std::max(c_scale, 1e-300))
+        return false;
+      for (Eigen::Index j = 0; j < k; ++j)
+        {
+          trial[set.unknown[j]] = z[j];
+          if (set.slope[j] != 0.)
+            trial[set.unknown[j] + 1] = set.slope[j] * z[j];
+        }
+      return true;
+    }
+
+    // The conditions each mode leaves to be checked; a contact whose check
+    // fails moves to the mode it points to. True if all hold.
+    bool modes_hold(const MatrixRef &G, const VectorRef &c, const VectorRef &mu, const double c_scale,
+                    const Trial &trial, ModeSet &set)
+    {
+      const Eigen::Index n = c.size(), m = n / 2;
+      // Into storage of fixed capacity (no heap), inlined: a call into
+      // Eigen's matrix–vector kernel costs more than these ≤ 64 products.
+      SmallVector xi(n);
+      xi.noalias() = G.lazyProduct(trial.head(n));
+      xi += c;
+      double scale = c_scale;
+      for (Eigen::Index i = 0; i < n; ++i)
+        scale = std::max(scale, G(i, i) * std::abs(trial[i]));
+      const double tol = 1e-12 * scale;
+      bool all_hold    = true;
+      for (Eigen::Index i = 0; i < m; ++i)
+        {
+          const double p_N = trial[2 * i], p_T = trial[2 * i + 1];
+          const double gN = G(2 * i, 2 * i), gT = G(2 * i + 1, 2 * i + 1);
+          Mode &mode = set.mode[i];
+          switch (mode)
+            {
+              case Mode::open:
+                if (xi[2 * i] < -tol)
+                  mode = Mode::stick, all_hold = false;
+                break;
+              case Mode::stick:
+                if (gN * p_N < -tol)
+                  mode = Mode::open, all_hold = false;
+                else if (gT * std::abs(p_T) > gT * mu[i] * p_N + tol)
+                  mode = p_T > 0. ? Mode::slide_positive : Mode::slide_negative, all_hold = false;
+                break;
+              case Mode::slide_positive:
+              case Mode::slide_negative:
+                {
+                  const double s = mode == Mode::slide_positive ? 1. : -1.;
+                  if (gN * p_N < -tol)
+                    mode = Mode::open, all_hold = false;
+                  else if (s * xi[2 * i + 1] > tol)
+                    mode = Mode::stick, all_hold = false;
+                  break;
+                }
+            }
+        }
+      return all_hold;
+    }
   } // namespace
 
   // Each contact's conditions in a given mode are linear:
@@ -106,151 +283,20 @@ namespace beamslider
   bool ProxSolver::solve_by_modes(const Eigen::Ref<const Eigen::MatrixXd> &G, const Eigen::Ref<const Eigen::VectorXd> &c,
                                   const Eigen::Ref<const Eigen::VectorXd> &mu, Eigen::Ref<Eigen::VectorXd> P) const
   {
-    constexpr int max_n = 8; // four corners, the slider's most
     const Eigen::Index n = c.size(), m = n / 2;
     if (n > max_n)
       return false;
-    using Small       = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_n, max_n>;
-    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_n, 1>;
-
-    std::array<Mode, max_n / 2> mode;
-    for (Eigen::Index i = 0; i < m; ++i)
-      {
-        const double p_N = P[2 * i], p_T = P[2 * i + 1];
-        if (!(p_N > 0.))
-          mode[i] = Mode::open;
-        else if (std::abs(p_T) >= mu[i] * p_N * (1. - 1e-12) && mu[i] > 0.)
-          mode[i] = p_T > 0. ? Mode::slide_positive : Mode::slide_negative;
-        else
-          mode[i] = Mode::stick;
-      }
-
+    ModeSet set;
+    guess_from_warm_start(P, mu, m, set);
     const double c_scale = c.cwiseAbs().maxCoeff();
-    Small A;
-    SmallVector b, z, xi(n);
-    Eigen::Matrix<double, max_n, 1> trial;
-    std::array<Eigen::Index, max_n> equation, unknown; // ξ row of each equation, P entry of each unknown
-    std::array<double, max_n> slope;                    // P_T = slope · P_N for a sliding contact's unknown
+    Trial trial;
     for (unsigned int attempt = 0; attempt < settings_.mode_trials; ++attempt)
       {
-        // Unknowns and equations of this mode set.
-        Eigen::Index k = 0;
-        for (Eigen::Index i = 0; i < m; ++i)
-          switch (mode[i])
-            {
-              case Mode::open:
-                break;
-              case Mode::stick:
-                equation[k] = 2 * i, unknown[k] = 2 * i, slope[k] = 0., ++k;
-                equation[k] = 2 * i + 1, unknown[k] = 2 * i + 1, slope[k] = 0., ++k;
-                break;
-              case Mode::slide_positive:
-              case Mode::slide_negative:
-                equation[k] = 2 * i, unknown[k] = 2 * i;
-                slope[k]    = (mode[i] == Mode::slide_positive ? 1. : -1.) * mu[i];
-                ++k;
-                break;
-            }
+        set_up_equations(mu, m, set);
         trial.head(n).setZero();
-        if (k > 0)
-          {
-            A.resize(k, k);
-            b.resize(k);
-            for (Eigen::Index r = 0; r < k; ++r)
-              {
-                b[r] = -c[equation[r]];
-                for (Eigen::Index j = 0; j < k; ++j)
-                  {
-                    // A sliding contact's unknown P_N also moves its P_T = slope · P_N.
-                    A(r, j) = G(equation[r], unknown[j]);
-                    if (slope[j] != 0.)
-                      A(r, j) += slope[j] * G(equation[r], unknown[j] + 1);
-                  }
-              }
-            if (k == 1)
-              {
-                // One equation a z = b, the commonest mode set (a single
-                // sliding corner; over half of the solves on the signature
-                // move), where the LU's set-up costs more than the solve:
-                // what Eigen's full-pivoting LU returns, to the bit: rank
-                // 0 (z = 0) unless a is finite and nonzero, and a zero
-                // right-hand side left as it is (its sign kept).
-                const double a = A(0, 0);
-                z.resize(1);
-                z[0] = std::isfinite(a) && a != 0. ? (b[0] != 0. ? b[0] / a : b[0]) : 0.;
-              }
-            else
-              switch (k)
-                {
-                  // Two to four unknowns (two corners on one face, or a
-                  // sticking one): Eigen's LU at the size it has, whose
-                  // loops unroll, rather than at the capacity's run-time size.
-                  case 2:
-                    solve_fixed_size<2>(A, b, z);
-                    break;
-                  case 3:
-                    solve_fixed_size<3>(A, b, z);
-                    break;
-                  case 4:
-                    solve_fixed_size<4>(A, b, z);
-                    break;
-                  default:
-                    {
-                      const Eigen::FullPivLU<Small> lu(A);
-                      z = lu.solve(b);
-                    }
-                }
-            // The residual inlined (≤ 64 products): it only decides
-            // acceptance against a tolerance seven orders above round-off.
-            if (!z.allFinite() || (A.lazyProduct(z) - b).cwiseAbs().maxCoeff() > 1e-9 * std::max(c_scale, 1e-300))
-              return false; // inconsistent equations: no solution in this mode set
-            for (Eigen::Index j = 0; j < k; ++j)
-              {
-                trial[unknown[j]] = z[j];
-                if (slope[j] != 0.)
-                  trial[unknown[j] + 1] = slope[j] * z[j];
-              }
-          }
-
-        // The conditions each mode leaves to be checked.
-        // Into storage of fixed capacity (no heap), inlined: a call into
-        // Eigen's matrix–vector kernel costs more than these ≤ 64 products.
-        xi.noalias() = G.lazyProduct(trial.head(n));
-        xi += c;
-        double scale = c_scale;
-        for (Eigen::Index i = 0; i < n; ++i)
-          scale = std::max(scale, G(i, i) * std::abs(trial[i]));
-        const double tol = 1e-12 * scale;
-        bool all_hold    = true;
-        for (Eigen::Index i = 0; i < m; ++i)
-          {
-            const double p_N = trial[2 * i], p_T = trial[2 * i + 1];
-            const double gN = G(2 * i, 2 * i), gT = G(2 * i + 1, 2 * i + 1);
-            switch (mode[i])
-              {
-                case Mode::open:
-                  if (xi[2 * i] < -tol)
-                    mode[i] = Mode::stick, all_hold = false;
-                  break;
-                case Mode::stick:
-                  if (gN * p_N < -tol)
-                    mode[i] = Mode::open, all_hold = false;
-                  else if (gT * std::abs(p_T) > gT * mu[i] * p_N + tol)
-                    mode[i] = p_T > 0. ? Mode::slide_positive : Mode::slide_negative, all_hold = false;
-                  break;
-                case Mode::slide_positive:
-                case Mode::slide_negative:
-                  {
-                    const double s = mode[i] == Mode::slide_positive ? 1. : -1.;
-                    if (gN * p_N < -tol)
-                      mode[i] = Mode::open, all_hold = false;
-                    else if (s * xi[2 * i + 1] > tol)
-                      mode[i] = Mode::stick, all_hold = false;
-                    break;
-                  }
-              }
-          }
-        if (all_hold)
+        if (set.k > 0 && !solve_equations(G, c, c_scale, set, trial))
+          return false;
+        if (modes_hold(G, c, mu, c_scale, trial, set))
           {
             // Round-off below the tolerance moved back inside the cones.
             for (Eigen::Index i = 0; i < m; ++i)

@@ -71,13 +71,6 @@ namespace beamslider
     const ProxSolverSettings &settings() const { return settings_; }
 
   private:
-    enum class Mode : unsigned char
-    {
-      open,
-      stick,
-      slide_positive, // P_T = +μ P_N
-      slide_negative  // P_T = −μ P_N
-    };
     // The mode-guess solve (ProxSolverSettings::guess_modes): true and P set
     // if a guess satisfied every condition.
     bool solve_by_modes(const Eigen::Ref<const Eigen::MatrixXd> &G, const Eigen::Ref<const Eigen::VectorXd> &c,
