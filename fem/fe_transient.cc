@@ -46,9 +46,24 @@ namespace beamslider
       throw std::invalid_argument("FE transient: theta = " + std::to_string(settings_.theta) +
                                   " of the Moreau-Jean scheme is outside the allowed range [0.5, 1] (0.5: the "
                                   "midpoint rule, no numerical damping; above: the unresolved modes are damped)");
-    const FEBeam &beam = *beam_;
-    const unsigned int n = beam.n_dofs();
-    const auto &c        = beam.constraints();
+    find_support_constraints();
+    assemble_mass_and_base_load();
+    set_up_modal_damping(scene.discretisation.n_modes);
+    set_up_iteration_matrix_pattern();
+    collect_cells();
+    cache_cell_quadrature();
+    pair_cell_quadrature();
+    set_up_support_springs();
+
+    const unsigned int n = beam_->n_dofs();
+    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &u_theta_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
+      v->setZero(n);
+  }
+
+  void FETransientBeam::find_support_constraints()
+  {
+    const unsigned int n = beam_->n_dofs();
+    const auto &c        = beam_->constraints();
 
     // The supports are homogeneous single-DoF constraints (w = 0, and θ = u =
     // 0 for the clamp): keeping those DoFs at zero is all they ask.
@@ -66,8 +81,13 @@ namespace beamslider
     for (unsigned int i = 0; i < n; ++i)
       if (constrained_[i])
         constrained_list_.push_back(i);
+  }
 
-    beam.assemble_mass_matrix(M_, c);
+  void FETransientBeam::assemble_mass_and_base_load()
+  {
+    const FEBeam &beam = *beam_;
+    const unsigned int n = beam.n_dofs();
+    beam.assemble_mass_matrix(M_, beam.constraints());
     if (!settings_.axial_inertia)
       {
         // The free axial DoFs lose their mass: the axial block of M (it has
@@ -84,10 +104,13 @@ namespace beamslider
       }
     beam.assemble_base_load(r_);
     to_eigen(r_, r_eigen_);
+  }
 
-    const unsigned int n_kept = scene.discretisation.n_modes;
+  void FETransientBeam::set_up_modal_damping(const unsigned int n_kept)
+  {
+    const unsigned int n = beam_->n_dofs();
     if (n_kept > 0)
-      modes_ = compute_bending_modes(beam, n_kept);
+      modes_ = compute_bending_modes(*beam_, n_kept);
     damping_ = std::make_unique<ModalDamping>(M_, modes_, damping_ratio_ > 0. ? n_kept : 0, damping_ratio_);
     const unsigned int rank = damping_->rank();
     U_.resize(n, rank);
@@ -98,6 +121,7 @@ namespace beamslider
           U_(i, k) = damping_->mass_weighted_modes()[k][i];
         modal_c_[k] = damping_->modal_coefficients()[k];
       }
+    // The scratch of the solves, sized by n and the damping's rank.
     woodbury_rhs_.resize(rank);
     woodbury_v_.resize(rank);
     block_rhs_.resize(n, max_block_columns);
@@ -111,37 +135,41 @@ namespace beamslider
     Dg_.resize(rank);
     capacitance_matrix_.resize(rank, rank);
     capacitance_ = Eigen::PartialPivLU<Eigen::MatrixXd>(rank);
+  }
 
+  void FETransientBeam::set_up_iteration_matrix_pattern()
+  {
     // M in row-major form for the residual's product; S₀'s upper triangle
     // on the FE matrices' pattern with M's values in it, analysed once.
-    {
-      std::vector<Eigen::Triplet<double>> triplets, upper;
-      for (auto e = M_.begin(); e != M_.end(); ++e)
-        {
-          triplets.emplace_back(e->row(), e->column(), e->value());
-          if (e->row() <= e->column())
-            upper.emplace_back(e->row(), e->column(), e->value());
-        }
-      M_eigen_.resize(n, n);
-      M_eigen_.setFromTriplets(triplets.begin(), triplets.end());
-      M_eigen_.makeCompressed();
-      M_blocks_.assign(M_eigen_); // empty on a band wider than 8: M_eigen_ multiplies then
-      S0_.resize(n, n);
-      S0_.setFromTriplets(upper.begin(), upper.end());
-      S0_.makeCompressed();
-      M_in_S0_ = Eigen::Map<const Eigen::VectorXd>(S0_.valuePtr(), S0_.nonZeros());
-      ldlt_.analyzePattern(S0_);
-    }
-    const auto entry_of = [&](const unsigned int i, const unsigned int j) -> std::ptrdiff_t {
-      if (constrained_[i] || constrained_[j] || i > j)
-        return -1;
-      return &S0_.coeffRef(i, j) - S0_.valuePtr(); // in the pattern: i, j share a cell
-    };
+    const unsigned int n = beam_->n_dofs();
+    std::vector<Eigen::Triplet<double>> triplets, upper;
+    for (auto e = M_.begin(); e != M_.end(); ++e)
+      {
+        triplets.emplace_back(e->row(), e->column(), e->value());
+        if (e->row() <= e->column())
+          upper.emplace_back(e->row(), e->column(), e->value());
+      }
+    M_eigen_.resize(n, n);
+    M_eigen_.setFromTriplets(triplets.begin(), triplets.end());
+    M_eigen_.makeCompressed();
+    M_blocks_.assign(M_eigen_); // empty on a band wider than 8: M_eigen_ multiplies then
+    S0_.resize(n, n);
+    S0_.setFromTriplets(upper.begin(), upper.end());
+    S0_.makeCompressed();
+    M_in_S0_ = Eigen::Map<const Eigen::VectorXd>(S0_.valuePtr(), S0_.nonZeros());
+    ldlt_.analyzePattern(S0_);
+  }
 
-    // Quadrature data: the Gauss rule FEBeam::assemble_internal_force uses
-    // (max(5, p + 2) points, exact for N w' N_a'), shape values from FEBeam.
-    const unsigned int degree = beam.get_dof_handler().get_fe().degree;
-    const dealii::QGauss<1> gauss(std::max(5u, degree + 2));
+  std::ptrdiff_t FETransientBeam::iteration_matrix_entry(const unsigned int i, const unsigned int j)
+  {
+    if (constrained_[i] || constrained_[j] || i > j)
+      return -1;
+    return &S0_.coeffRef(i, j) - S0_.valuePtr(); // in the pattern: i, j share a cell
+  }
+
+  void FETransientBeam::collect_cells()
+  {
+    const FEBeam &beam = *beam_;
     for (const auto &cell : beam.get_dof_handler().active_cell_iterators())
       {
         CellData data;
@@ -152,6 +180,15 @@ namespace beamslider
         cells_.push_back(std::move(data));
       }
     std::sort(cells_.begin(), cells_.end(), [](const CellData &a, const CellData &b) { return a.x0 < b.x0; });
+  }
+
+  void FETransientBeam::cache_cell_quadrature()
+  {
+    // Quadrature data: the Gauss rule FEBeam::assemble_internal_force uses
+    // (max(5, p + 2) points, exact for N w' N_a'), shape values from FEBeam.
+    const FEBeam &beam = *beam_;
+    const unsigned int degree = beam.get_dof_handler().get_fe().degree;
+    const dealii::QGauss<1> gauss(std::max(5u, degree + 2));
     for (CellData &cell : cells_)
       {
         cell.first_qp = quadrature_.size();
@@ -188,8 +225,12 @@ namespace beamslider
         cell.entry.resize(n_local * n_local);
         for (unsigned int i = 0; i < n_local; ++i)
           for (unsigned int j = 0; j < n_local; ++j)
-            cell.entry[i * n_local + j] = entry_of(global(i), global(j));
+            cell.entry[i * n_local + j] = iteration_matrix_entry(global(i), global(j));
       }
+  }
+
+  void FETransientBeam::pair_cell_quadrature()
+  {
     // Cells in pairs; an odd last cell fills both lanes of its pair.
     for (std::size_t c = 0; c < cells_.size(); c += 2)
       {
@@ -211,6 +252,11 @@ namespace beamslider
             paired_quadrature_.push_back(pair);
           }
       }
+  }
+
+  void FETransientBeam::set_up_support_springs()
+  {
+    const FEBeam &beam = *beam_;
     if (beam.support_data().elastic())
       for (unsigned int end = 0; end < 2; ++end)
         {
@@ -219,10 +265,7 @@ namespace beamslider
           springs_.emplace_back(u, beam.support_data().axial_spring_per_end());
         }
     for (const auto &[dof, k] : springs_)
-      spring_entry_.push_back(entry_of(dof, dof));
-
-    for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &u_theta_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
-      v->setZero(n);
+      spring_entry_.push_back(iteration_matrix_entry(dof, dof));
   }
 
   void FETransientBeam::gather(const CellData &cell, const Eigen::VectorXd &q, std::array<double, 4> &qw,

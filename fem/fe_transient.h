@@ -416,6 +416,23 @@ namespace beamslider
     std::vector<QuadraturePointPair> paired_quadrature_; // [pair][point], the pairs of cells_ (an odd last one twice)
     std::vector<std::pair<unsigned int, double>> springs_; // (DoF, k_r or 2 k_t)
 
+    // The constructor's stages, in their order: the supports' constrained
+    // DoFs; M (without axial inertia: its free axial block zeroed) and r;
+    // the modes, the damping's U and 2 D ω_n and the solves' scratch; M in
+    // Eigen form and S₀'s pattern; the cells from x = 0 to L; their
+    // quadrature data and S₀ entries; the cells in pairs; the springs.
+    void find_support_constraints();
+    void assemble_mass_and_base_load();
+    void set_up_modal_damping(unsigned int n_kept);
+    void set_up_iteration_matrix_pattern();
+    void collect_cells();
+    void cache_cell_quadrature();
+    void pair_cell_quadrature();
+    void set_up_support_springs();
+    // The index of S₀'s entry (i, j) in its values, −1 for a constrained
+    // row or column or below the diagonal.
+    std::ptrdiff_t iteration_matrix_entry(unsigned int i, unsigned int j);
+
     mutable FETransientStatistics stats_; // counts solves in const solve_iteration_matrix too
     // Scratch of the Newton loop.
     Eigen::VectorXd q_bar_, u_, res_, du_, f_, tmp_;

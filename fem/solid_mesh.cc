@@ -1,6 +1,7 @@
 #include "fem/solid_mesh.h"
 
 #include "meshes/deal_ii_message.h"
+#include "meshes/number_with_digits.h"
 #include "meshes/printable.h"
 
 #include <deal.II/base/exceptions.h>
@@ -64,13 +65,7 @@ namespace beamslider
 
   namespace
   {
-    std::string number(const double x)
-    {
-      std::ostringstream s;
-      s.precision(6);
-      s << x;
-      return s.str();
-    }
+    std::string number(const double x) { return number_with_digits(x, 6); }
 
     template <int dim>
     std::string at(const Point<dim> &p)
@@ -179,15 +174,32 @@ namespace beamslider
         }
     }
 
-    template <int dim>
-    SolidMeshGroups read_mesh_file(const Scene &scene, Triangulation<dim> &tria)
+    // The text deal.II's Abaqus reader printed before it threw: the lines
+    // after "Additional information:" up to the first blank one, joined.
+    std::string reader_explanation(const std::string &reader_output)
     {
-      const SolidData &solid = scene.solid;
-      const std::string &path = solid.mesh_file;
-      const std::string where = "Solid mesh '" + path + "'";
-      const bool abaqus = path.size() > 4 && path.compare(path.size() - 4, 4, ".inp") == 0;
-      const std::string kind = dim == 3 ? "3D (hexahedra or tetrahedra, for Continuum = 3d)"
-                                        : "2D (quadrilaterals or triangles, for Continuum = plane stress)";
+      std::string inner;
+      std::istringstream printed(reader_output);
+      bool explanation = false;
+      for (std::string line; std::getline(printed, line);)
+        {
+          const auto b = line.find_first_not_of(" \t");
+          if (explanation && b == std::string::npos && !inner.empty())
+            break;
+          if (explanation && b != std::string::npos)
+            inner += (inner.empty() ? "" : " ") + line.substr(b);
+          explanation = explanation || line.find("Additional information:") != std::string::npos;
+        }
+      return printable(inner, 300);
+    }
+
+    // Reads the Gmsh or Abaqus file at `path` into `tria` with GridIn; a
+    // file it does not take is an InputError (`where`: the file, `kind`: the
+    // mesh the scene expects).
+    template <int dim>
+    void read_with_grid_in(const std::string &path, const bool abaqus, const std::string &where,
+                           const std::string &kind, Triangulation<dim> &tria)
+    {
       // GridIn reads into a serial triangulation; the caller distributes it.
       std::ifstream in(path);
       if (!in)
@@ -212,21 +224,7 @@ namespace beamslider
         }
       catch (const ExceptionBase &e)
         {
-          std::string inner;
-          std::istringstream printed(reader_output.str());
-          // The explanation: the lines after "Additional information:" up
-          // to the first blank one, joined.
-          bool explanation = false;
-          for (std::string line; std::getline(printed, line);)
-            {
-              const auto b = line.find_first_not_of(" \t");
-              if (explanation && b == std::string::npos && !inner.empty())
-                break;
-              if (explanation && b != std::string::npos)
-                inner += (inner.empty() ? "" : " ") + line.substr(b);
-              explanation = explanation || line.find("Additional information:") != std::string::npos;
-            }
-          inner = printable(inner, 300);
+          const std::string inner = reader_explanation(reader_output.str());
           // (The Abaqus reader's own text points to the message "printed above".)
           const std::string reason =
             abaqus && !inner.empty() ? "converting the deck failed: " + inner + " (a truncated or incomplete deck?)"
@@ -238,17 +236,21 @@ namespace beamslider
         {
           throw InputError(where + " cannot be read: " + e.what());
         }
-      if (tria.n_active_cells() == 0)
-        throw InputError(where + " has no " + kind + " cells: a mesh of another dimension?");
-      if (!tria.all_reference_cells_are_hyper_cube() && !tria.all_reference_cells_are_simplex())
-        throw InputError(where + " mixes cell types (hexahedra with tetrahedra, or prisms/pyramids): give one "
-                                 "kind, all " + std::string(dim == 3 ? "hexahedra or all tetrahedra" :
-                                                                        "quadrilaterals or all triangles"));
-      check_cells(tria, where);
+    }
 
-      const auto names = abaqus ? std::map<std::string, std::pair<int, unsigned int>>() : gmsh_physical_names(path);
-      std::set<types::boundary_id> face_ids;
-      std::set<types::material_id> cell_ids;
+    using PhysicalNames = std::map<std::string, std::pair<int, unsigned int>>;
+
+    // The physical tags a mesh carries: on its boundary faces, on its cells.
+    struct MeshTags
+    {
+      std::set<types::boundary_id> faces;
+      std::set<types::material_id> cells;
+    };
+
+    template <int dim>
+    MeshTags collect_physical_tags(const Triangulation<dim> &tria, const std::string &where)
+    {
+      MeshTags tags;
       // GridIn reads a physical tag as unsigned: -1 arrives as 4294967295.
       const auto require_tag = [&where](const unsigned int id, const std::string &of) {
         if (id > static_cast<unsigned int>(std::numeric_limits<int>::max()))
@@ -258,20 +260,27 @@ namespace beamslider
       for (const auto &cell : tria.active_cell_iterators())
         {
           require_tag(cell->material_id(), "the cell at " + at(cell->center()));
-          cell_ids.insert(cell->material_id());
+          tags.cells.insert(cell->material_id());
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary())
               {
                 require_tag(face->boundary_id(), "the boundary face at " + at(face->center()));
-                face_ids.insert(face->boundary_id());
+                tags.faces.insert(face->boundary_id());
               }
         }
+      return tags;
+    }
 
-      SolidMeshGroups groups;
+    // The clamped faces (each must be on the mesh's boundary) and the loaded face, if any.
+    template <int dim>
+    void resolve_boundary_groups(const SolidData &solid, const PhysicalNames &names, const MeshTags &tags,
+                                 SolidMeshGroups &groups)
+    {
+      const std::string &path = solid.mesh_file;
       for (const std::string &spec : solid.clamped_boundaries)
         {
           const unsigned int tag = resolve_group(spec, dim - 1, names, "Solid/Clamped boundaries", path);
-          if (tag == 0 || !face_ids.count(tag))
+          if (tag == 0 || !tags.faces.count(tag))
             throw InputError("Parameter 'Solid/Clamped boundaries': no boundary face of the mesh '" + path +
                              "' carries the group '" + spec + "' (tag " + std::to_string(tag) +
                              "); a solid mesh needs its clamped faces in a physical group");
@@ -282,18 +291,27 @@ namespace beamslider
         try
           {
             const unsigned int tag = resolve_group(solid.loaded_boundary, dim - 1, names, "Solid/Loaded boundary", path);
-            if (tag != 0 && face_ids.count(tag))
+            if (tag != 0 && tags.faces.count(tag))
               groups.loaded = tag;
           }
         catch (const InputError &)
           {}
+    }
 
+    // Each cell region's material: the Materials entry of its group, or
+    // without entries the Beam's E and rho with the solid's nu.
+    template <int dim>
+    void assign_materials(const Scene &scene, const PhysicalNames &names, const MeshTags &tags,
+                          SolidMeshGroups &groups)
+    {
+      const SolidData &solid = scene.solid;
+      const std::string &path = solid.mesh_file;
       if (solid.materials.empty())
         {
-          for (const types::material_id id : cell_ids)
+          for (const types::material_id id : tags.cells)
             groups.materials[id] = SolidMaterial::from(scene.beam.youngs_modulus, solid.poissons_ratio,
                                                        scene.beam.density, dim);
-          return groups;
+          return;
         }
       // The entries are checked (numbers, ranges, no group twice) with the
       // scene; here a name and a tag may still give one region twice.
@@ -301,7 +319,7 @@ namespace beamslider
       for (const SolidMaterialEntry &m : solid_material_entries(solid.materials))
         {
           const unsigned int tag = resolve_group(m.group, dim, names, "Solid/Materials", path);
-          if (!cell_ids.count(tag))
+          if (!tags.cells.count(tag))
             throw InputError("Parameter 'Solid/Materials' gives the region '" + printable(m.group) + "' (tag " +
                              std::to_string(tag) + "), which no cell of the mesh '" + path + "' carries");
           if (const auto [it, inserted] = given_as.emplace(tag, m.group); !inserted)
@@ -310,11 +328,36 @@ namespace beamslider
                              "'; give each region once");
           groups.materials[tag] = SolidMaterial::from(m.youngs_modulus, m.poissons_ratio, m.density, dim);
         }
-      for (const types::material_id id : cell_ids)
+      for (const types::material_id id : tags.cells)
         if (!groups.materials.count(id))
           throw InputError("Solid mesh '" + path + "': cells of region " + std::to_string(id) +
                            " have no material: 'Solid/Materials' = '" + solid.materials +
                            "' lists no 'group: E nu rho' entry for that region's name or tag");
+    }
+
+    template <int dim>
+    SolidMeshGroups read_mesh_file(const Scene &scene, Triangulation<dim> &tria)
+    {
+      const SolidData &solid = scene.solid;
+      const std::string &path = solid.mesh_file;
+      const std::string where = "Solid mesh '" + path + "'";
+      const bool abaqus = path.size() > 4 && path.compare(path.size() - 4, 4, ".inp") == 0;
+      const std::string kind = dim == 3 ? "3D (hexahedra or tetrahedra, for Continuum = 3d)"
+                                        : "2D (quadrilaterals or triangles, for Continuum = plane stress)";
+      read_with_grid_in(path, abaqus, where, kind, tria);
+      if (tria.n_active_cells() == 0)
+        throw InputError(where + " has no " + kind + " cells: a mesh of another dimension?");
+      if (!tria.all_reference_cells_are_hyper_cube() && !tria.all_reference_cells_are_simplex())
+        throw InputError(where + " mixes cell types (hexahedra with tetrahedra, or prisms/pyramids): give one "
+                                 "kind, all " + std::string(dim == 3 ? "hexahedra or all tetrahedra" :
+                                                                        "quadrilaterals or all triangles"));
+      check_cells(tria, where);
+
+      const auto names = abaqus ? PhysicalNames() : gmsh_physical_names(path);
+      const MeshTags tags = collect_physical_tags(tria, where);
+      SolidMeshGroups groups;
+      resolve_boundary_groups<dim>(solid, names, tags, groups);
+      assign_materials<dim>(scene, names, tags, groups);
       return groups;
     }
   } // namespace

@@ -141,6 +141,24 @@ namespace beamslider
 
   std::string VtkAnimationWriter::pvd_file() const { return directory_ + "/" + name_ + ".pvd"; }
 
+  // The slider as drawn: the window centre S at m times its true height,
+  // turned by atan(m tan β); a point given in the window's frame (origin
+  // S, x along the window) goes to S_drawn + R(β_drawn) local.
+  struct VtkAnimationWriter::DrawnSlider
+  {
+    DrawnSlider(const SliderFrameGeometry &s, const double m)
+      : rot_drawn(std::atan(m * std::tan(s.s[2])))
+    {
+      const Eigen::Rotation2Dd rot_true(s.s[2]);
+      const Eigen::Vector2d S_true = s.s.head<2>() + rot_true * Eigen::Vector2d(0., s.com_offset);
+      S_drawn = Eigen::Vector2d(S_true[0], m * S_true[1]);
+    }
+    Eigen::Vector2d operator()(const Eigen::Vector2d &local) const { return S_drawn + rot_drawn * local; }
+
+    Eigen::Rotation2Dd rot_drawn;
+    Eigen::Vector2d S_drawn;
+  };
+
   void VtkAnimationWriter::write(const AnimationFrame &frame)
   {
     const unsigned int index = times_.size();
@@ -151,125 +169,10 @@ namespace beamslider
         b.axial_force.size() != n_x || b.thickness.size() != n_x)
       throw std::invalid_argument("animation: beam samples of inconsistent length");
 
-    // Beam: bottom and top surface points of the drawn axis.
-    {
-      vtkNew<vtkPoints> points;
-      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
-      auto displacement = make_array("displacement", 3);
-      auto deflection   = make_array("deflection", 1);
-      auto axial_force  = make_array("axial_force", 1);
-      auto curvature    = make_array("curvature", 1);
-      std::vector<Eigen::Vector2d> top, bottom;
-      for (unsigned int i = 0; i < n_x; ++i)
-        {
-          const double z_axis = m * (b.base_displacement + b.w[i]), slope = m * b.dw[i], h = b.thickness[i];
-          const double c = 1. / std::sqrt(1. + slope * slope);
-          for (const double zeta : {-1., 1.})
-            {
-              const Eigen::Vector2d p(b.x[i] + m * b.u[i] - zeta * 0.5 * h * slope * c, z_axis + zeta * 0.5 * h * c);
-              points->InsertNextPoint(p[0], 0., p[1]);
-              (zeta < 0 ? bottom : top).push_back(p);
-              const double d[3] = {b.u[i] - zeta * 0.5 * h * b.dw[i], 0., b.base_displacement + b.w[i]};
-              displacement->InsertNextTuple(d);
-              deflection->InsertNextValue(b.w[i]);
-              axial_force->InsertNextValue(b.axial_force[i]);
-              curvature->InsertNextValue(b.curvature[i]);
-            }
-        }
-      vtkNew<vtkUnstructuredGrid> grid;
-      grid->SetPoints(points);
-      for (unsigned int i = 0; i + 1 < n_x; ++i)
-        {
-          const vtkIdType ids[4] = {vtkIdType(2 * i), vtkIdType(2 * i + 2), vtkIdType(2 * i + 3), vtkIdType(2 * i + 1)};
-          grid->InsertNextCell(VTK_QUAD, 4, ids);
-        }
-      for (auto *a : {displacement.Get(), deflection.Get(), axial_force.Get(), curvature.Get()})
-        grid->GetPointData()->AddArray(a);
-      add_field(*grid, "TimeValue", frame.t);
-      add_field(*grid, "magnification", m);
-      add_field(*grid, "base_displacement", b.base_displacement);
-      write_vtk_xml<vtkXMLUnstructuredGridWriter>(*grid, directory_ + "/" + frame_file("beam", index, ".vtu"));
-
-      for (const auto &[part, line] : {std::pair{"beam_top", &top}, std::pair{"beam_bottom", &bottom}})
-        for (const auto &p : *line)
-          csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
-    }
-
-    // Slider: drawn window centre S and rotation; outer box and window as closed polylines.
-    const SliderFrameGeometry &s = frame.slider;
-    const double B = s.window_width, R = s.window_height, d = s.com_offset, wall = 0.2 * B;
-    const double beta_drawn = std::atan(m * std::tan(s.s[2]));
-    const Eigen::Rotation2Dd rot_true(s.s[2]), rot_drawn(beta_drawn);
-    const Eigen::Vector2d S_true = s.s.head<2>() + rot_true * Eigen::Vector2d(0., d);
-    const Eigen::Vector2d S_drawn(S_true[0], m * S_true[1]);
-    auto drawn = [&](const Eigen::Vector2d &local) -> Eigen::Vector2d { return S_drawn + rot_drawn * local; };
-    {
-      const double top = 0.5 * R + wall, bottom = -2. * d - 0.5 * R - wall; // centroid at the centre of mass (0, −d)
-      const std::array<Eigen::Vector2d, 4> outer = {{Eigen::Vector2d(-0.5 * B - wall, bottom),
-                                                     Eigen::Vector2d(0.5 * B + wall, bottom),
-                                                     Eigen::Vector2d(0.5 * B + wall, top),
-                                                     Eigen::Vector2d(-0.5 * B - wall, top)}};
-      const std::array<Eigen::Vector2d, 4> window = {{Eigen::Vector2d(-0.5 * B, -0.5 * R),
-                                                      Eigen::Vector2d(0.5 * B, -0.5 * R),
-                                                      Eigen::Vector2d(0.5 * B, 0.5 * R),
-                                                      Eigen::Vector2d(-0.5 * B, 0.5 * R)}};
-      vtkNew<vtkPoints> points;
-      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
-      vtkNew<vtkCellArray> lines;
-      for (const auto &[part, box] : {std::pair{"slider_outer", &outer}, std::pair{"slider_window", &window}})
-        {
-          const vtkIdType first = points->GetNumberOfPoints();
-          for (const auto &local : *box)
-            {
-              const Eigen::Vector2d p = drawn(local);
-              points->InsertNextPoint(p[0], 0., p[1]);
-            }
-          const vtkIdType ids[5] = {first, first + 1, first + 2, first + 3, first};
-          lines->InsertNextCell(5, ids);
-          for (unsigned int k = 0; k <= 4; ++k)
-            {
-              const Eigen::Vector2d p = drawn((*box)[k % 4]);
-              csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
-            }
-        }
-      vtkNew<vtkPolyData> poly;
-      poly->SetPoints(points);
-      poly->SetLines(lines);
-      add_field(*poly, "TimeValue", frame.t);
-      add_field(*poly, "magnification", m);
-      add_field(*poly, "x_C", s.s[0]);
-      add_field(*poly, "z_C", s.s[1]);
-      add_field(*poly, "beta", s.s[2]);
-      write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("slider", index, ".vtp"));
-    }
-
-    // Contacts: the four window corners (drawn) with the force on the slider.
-    {
-      vtkNew<vtkPoints> points;
-      points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
-      vtkNew<vtkCellArray> vertices;
-      auto force  = make_array("contact_force", 3);
-      auto normal = make_array("force_magnitude", 1);
-      for (unsigned int k = 0; k < n_slider_corners; ++k)
-        {
-          const Eigen::Vector2d p = drawn(Eigen::Vector2d(corner_side(k) * 0.5 * B, corner_zeta(k) * 0.5 * R));
-          const vtkIdType id      = points->InsertNextPoint(p[0], 0., p[1]);
-          vertices->InsertNextCell(1, &id);
-          const double F[3] = {s.force[k][0], 0., s.force[k][1]};
-          force->InsertNextTuple(F);
-          normal->InsertNextValue(s.force[k].norm());
-          csv_row(index, frame.t, "contact", p, s.force[k]);
-        }
-      vtkNew<vtkPolyData> poly;
-      poly->SetPoints(points);
-      poly->SetVerts(vertices);
-      poly->GetPointData()->AddArray(force);
-      poly->GetPointData()->AddArray(normal);
-      poly->GetPointData()->SetActiveVectors("contact_force");
-      add_field(*poly, "TimeValue", frame.t);
-      add_field(*poly, "magnification", m);
-      write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("contacts", index, ".vtp"));
-    }
+    write_beam(frame, index);
+    const DrawnSlider drawn(frame.slider, m);
+    write_slider(frame, index, drawn);
+    write_contacts(frame, index, drawn);
 
     times_.push_back(frame.t);
     if (times_.size() % 25 == 0)
@@ -277,6 +180,133 @@ namespace beamslider
         write_pvd();
         csv_->flush();
       }
+  }
+
+  // Beam: bottom and top surface points of the drawn axis.
+  void VtkAnimationWriter::write_beam(const AnimationFrame &frame, const unsigned int index)
+  {
+    const double m             = magnification_;
+    const BeamFrameGeometry &b = frame.beam;
+    const unsigned int n_x     = b.x.size();
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+    auto displacement = make_array("displacement", 3);
+    auto deflection   = make_array("deflection", 1);
+    auto axial_force  = make_array("axial_force", 1);
+    auto curvature    = make_array("curvature", 1);
+    std::vector<Eigen::Vector2d> top, bottom;
+    for (unsigned int i = 0; i < n_x; ++i)
+      {
+        const double z_axis = m * (b.base_displacement + b.w[i]), slope = m * b.dw[i], h = b.thickness[i];
+        const double c = 1. / std::sqrt(1. + slope * slope);
+        for (const double zeta : {-1., 1.})
+          {
+            const Eigen::Vector2d p(b.x[i] + m * b.u[i] - zeta * 0.5 * h * slope * c, z_axis + zeta * 0.5 * h * c);
+            points->InsertNextPoint(p[0], 0., p[1]);
+            (zeta < 0 ? bottom : top).push_back(p);
+            const double d[3] = {b.u[i] - zeta * 0.5 * h * b.dw[i], 0., b.base_displacement + b.w[i]};
+            displacement->InsertNextTuple(d);
+            deflection->InsertNextValue(b.w[i]);
+            axial_force->InsertNextValue(b.axial_force[i]);
+            curvature->InsertNextValue(b.curvature[i]);
+          }
+      }
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(points);
+    for (unsigned int i = 0; i + 1 < n_x; ++i)
+      {
+        const vtkIdType ids[4] = {vtkIdType(2 * i), vtkIdType(2 * i + 2), vtkIdType(2 * i + 3), vtkIdType(2 * i + 1)};
+        grid->InsertNextCell(VTK_QUAD, 4, ids);
+      }
+    for (auto *a : {displacement.Get(), deflection.Get(), axial_force.Get(), curvature.Get()})
+      grid->GetPointData()->AddArray(a);
+    add_field(*grid, "TimeValue", frame.t);
+    add_field(*grid, "magnification", m);
+    add_field(*grid, "base_displacement", b.base_displacement);
+    write_vtk_xml<vtkXMLUnstructuredGridWriter>(*grid, directory_ + "/" + frame_file("beam", index, ".vtu"));
+
+    for (const auto &[part, line] : {std::pair{"beam_top", &top}, std::pair{"beam_bottom", &bottom}})
+      for (const auto &p : *line)
+        csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
+  }
+
+  // Slider: drawn window centre S and rotation; outer box and window as closed polylines.
+  void VtkAnimationWriter::write_slider(const AnimationFrame &frame, const unsigned int index,
+                                        const DrawnSlider &drawn)
+  {
+    const double m = magnification_;
+    const SliderFrameGeometry &s = frame.slider;
+    const double B = s.window_width, R = s.window_height, d = s.com_offset, wall = 0.2 * B;
+    const double top = 0.5 * R + wall, bottom = -2. * d - 0.5 * R - wall; // centroid at the centre of mass (0, −d)
+    const std::array<Eigen::Vector2d, 4> outer = {{Eigen::Vector2d(-0.5 * B - wall, bottom),
+                                                   Eigen::Vector2d(0.5 * B + wall, bottom),
+                                                   Eigen::Vector2d(0.5 * B + wall, top),
+                                                   Eigen::Vector2d(-0.5 * B - wall, top)}};
+    const std::array<Eigen::Vector2d, 4> window = {{Eigen::Vector2d(-0.5 * B, -0.5 * R),
+                                                    Eigen::Vector2d(0.5 * B, -0.5 * R),
+                                                    Eigen::Vector2d(0.5 * B, 0.5 * R),
+                                                    Eigen::Vector2d(-0.5 * B, 0.5 * R)}};
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+    vtkNew<vtkCellArray> lines;
+    for (const auto &[part, box] : {std::pair{"slider_outer", &outer}, std::pair{"slider_window", &window}})
+      {
+        const vtkIdType first = points->GetNumberOfPoints();
+        for (const auto &local : *box)
+          {
+            const Eigen::Vector2d p = drawn(local);
+            points->InsertNextPoint(p[0], 0., p[1]);
+          }
+        const vtkIdType ids[5] = {first, first + 1, first + 2, first + 3, first};
+        lines->InsertNextCell(5, ids);
+        for (unsigned int k = 0; k <= 4; ++k)
+          {
+            const Eigen::Vector2d p = drawn((*box)[k % 4]);
+            csv_row(index, frame.t, part, p, Eigen::Vector2d::Zero());
+          }
+      }
+    vtkNew<vtkPolyData> poly;
+    poly->SetPoints(points);
+    poly->SetLines(lines);
+    add_field(*poly, "TimeValue", frame.t);
+    add_field(*poly, "magnification", m);
+    add_field(*poly, "x_C", s.s[0]);
+    add_field(*poly, "z_C", s.s[1]);
+    add_field(*poly, "beta", s.s[2]);
+    write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("slider", index, ".vtp"));
+  }
+
+  // Contacts: the four window corners (drawn) with the force on the slider.
+  void VtkAnimationWriter::write_contacts(const AnimationFrame &frame, const unsigned int index,
+                                          const DrawnSlider &drawn)
+  {
+    const double m = magnification_;
+    const SliderFrameGeometry &s = frame.slider;
+    const double B = s.window_width, R = s.window_height;
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToDouble(); // µm deflections on a 0.14 m beam
+    vtkNew<vtkCellArray> vertices;
+    auto force  = make_array("contact_force", 3);
+    auto normal = make_array("force_magnitude", 1);
+    for (unsigned int k = 0; k < n_slider_corners; ++k)
+      {
+        const Eigen::Vector2d p = drawn(Eigen::Vector2d(corner_side(k) * 0.5 * B, corner_zeta(k) * 0.5 * R));
+        const vtkIdType id      = points->InsertNextPoint(p[0], 0., p[1]);
+        vertices->InsertNextCell(1, &id);
+        const double F[3] = {s.force[k][0], 0., s.force[k][1]};
+        force->InsertNextTuple(F);
+        normal->InsertNextValue(s.force[k].norm());
+        csv_row(index, frame.t, "contact", p, s.force[k]);
+      }
+    vtkNew<vtkPolyData> poly;
+    poly->SetPoints(points);
+    poly->SetVerts(vertices);
+    poly->GetPointData()->AddArray(force);
+    poly->GetPointData()->AddArray(normal);
+    poly->GetPointData()->SetActiveVectors("contact_force");
+    add_field(*poly, "TimeValue", frame.t);
+    add_field(*poly, "magnification", m);
+    write_vtk_xml<vtkXMLPolyDataWriter>(*poly, directory_ + "/" + frame_file("contacts", index, ".vtp"));
   }
 
   void VtkAnimationWriter::write_pvd() const

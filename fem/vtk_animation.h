@@ -98,6 +98,12 @@ namespace beamslider
 
   private:
     void write_pvd() const;
+    // The three parts of frame `index` (write() in this order), each with its
+    // rows of frames.csv; the slider and the contacts where the slider is drawn.
+    struct DrawnSlider;
+    void write_beam(const AnimationFrame &frame, unsigned int index);
+    void write_slider(const AnimationFrame &frame, unsigned int index, const DrawnSlider &drawn);
+    void write_contacts(const AnimationFrame &frame, unsigned int index, const DrawnSlider &drawn);
 
     std::string directory_, name_;
     double magnification_;

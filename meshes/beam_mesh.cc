@@ -3,6 +3,7 @@
 // the checks below turn what a beam mesh must be into clear errors.
 #include "meshes/beam_mesh.h"
 
+#include "meshes/number_with_digits.h"
 #include "meshes/printable.h"
 
 #include <deal.II/base/exceptions.h>
@@ -20,13 +21,7 @@ namespace beamslider
 {
   namespace
   {
-    std::string number(const double x)
-    {
-      std::ostringstream s;
-      s.precision(10);
-      s << x;
-      return s.str();
-    }
+    std::string number(const double x) { return number_with_digits(x, 10); }
 
     // The first line of a deal.II exception's explanation, without the
     // banner of source files and line numbers.

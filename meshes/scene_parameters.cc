@@ -191,14 +191,9 @@ namespace beamslider
       std::string section_;
     };
 
-    // Every entry of a scene, with the values of `s` as defaults, bound to
-    // the fields of `s` (and to `tables` for the Sections and Point masses
-    // tables, which build_beam() assembles into the beam afterwards): Scene{}
-    // (the default scene, mueller2023) for reading and the template, a run's
-    // own scene for the effective parameters it writes (scene_file_text).
-    void bind_scene(ParameterHandler &prm, Scene &s, SceneTables &tables)
+    // Beam: the uniform beam, or the mesh file of a beam of sections.
+    void bind_beam(SceneBinder &e, Scene &s)
     {
-      SceneBinder e(prm);
       e.enter("Beam");
       e.bind("Length", s.beam.length, Double(1e-3, 10), "L, distance between the supports [m], in [1e-3, 10]");
       e.bind("Width", s.beam.width, Double(0), "b, beam width [m]");
@@ -212,8 +207,11 @@ namespace beamslider
              "With a mesh, Length is the mesh's and Width, Thickness, Young's modulus and Density are the "
              "thickest section's (R/h and amplitudes in thicknesses refer to it): leave them unset");
       e.leave();
+    }
 
-      // Tables "tag: value, tag: value" of a mesh beam's sections.
+    // Tables "tag: value, tag: value" of a mesh beam's sections.
+    void bind_section_tables(SceneBinder &e, Scene &s, SceneTables &tables)
+    {
       e.enter("Sections");
       const auto section_table = [&](const char *name, double BeamSection::*field, const char *doc) {
         std::string text;
@@ -230,8 +228,11 @@ namespace beamslider
       section_table("Young's modulus", &BeamSection::youngs_modulus, "E per physical tag [Pa], in [1e6, 1e13]");
       section_table("Density", &BeamSection::density, "rho per physical tag [kg/m^3], in [1, 1e5]");
       e.leave();
+    }
 
-      // Rigid bodies fixed to the beam, "x: value, ..." with x in metres.
+    // Rigid bodies fixed to the beam, "x: value, ..." with x in metres.
+    void bind_point_masses(SceneBinder &e, Scene &s, SceneTables &tables)
+    {
       e.enter("Point masses");
       {
         std::string masses, inertias;
@@ -251,7 +252,10 @@ namespace beamslider
                   });
       }
       e.leave();
+    }
 
+    void bind_supports(SceneBinder &e, Scene &s)
+    {
       e.enter("Supports");
       e.declare("Type", s.supports.type(), Selection("elastic|clamped|pinned|clamped-pinned"),
                 "elastic: w = 0 with a rotational spring k_r at each end and the axial stiffness k_t of the clamping; "
@@ -264,7 +268,10 @@ namespace beamslider
       e.bind("Rotational stiffness", s.supports.rotational_stiffness, Double(0), "k_r, on w' at each end [N m/rad]");
       e.bind("Axial stiffness", s.supports.axial_stiffness, Double(0), "k_t, the clamping's TOTAL axial stiffness as published (Mueller, Beck & Krack 2023): in series with the beam, k_ax = (L/(EA) + 1/k_t)^-1; the FE model puts 2 k_t at each end [N/m]");
       e.leave();
+    }
 
+    void bind_slider(SceneBinder &e, Scene &s)
+    {
       e.enter("Slider");
       e.bind("Mass", s.slider.mass, Double(0), "m [kg], > 0");
       e.bind("Rotary inertia", s.slider.inertia, Double(0), "J_C about the centre of mass [kg m^2], > 0; the radius of gyration sqrt(J_C/m) must be at least 3 % of the corners' distance sqrt(d^2 + B^2/4) from the centre of mass (a rigid frame around the window cannot have less)");
@@ -273,7 +280,10 @@ namespace beamslider
       e.bind("Centre of mass offset", s.slider.com_offset, Double(0), "d, centre of mass below the window centre [m]");
       e.bind("Mass factor", s.slider.mass_factor, Double(0), "ablation: multiplies mass and rotary inertia [-], > 0");
       e.leave();
+    }
 
+    void bind_contact(SceneBinder &e, Scene &s)
+    {
       e.enter("Contact");
       e.bind("Friction coefficient", s.contact.friction_coefficient, Double(0), "mu, Coulomb [-]");
       e.bind("Restitution", s.contact.restitution, Double(0, 1), "e_N, Newton's normal restitution [-] in [0, 1]");
@@ -282,7 +292,10 @@ namespace beamslider
              "contact impulses per step: projected Gauss-Seidel (as the authors' code) or exact-local "
              "(each contact's 2x2 problem solved exactly, block Gauss-Seidel; same solution, fewer sweeps)");
       e.leave();
+    }
 
+    void bind_damping_excitation_and_initial_state(SceneBinder &e, Scene &s)
+    {
       e.enter("Damping");
       e.bind("Modal damping ratio", s.damping_ratio, Double(0, 1), "D, the same for every mode [-] in [0, 1)");
       e.leave();
@@ -296,7 +309,10 @@ namespace beamslider
       e.enter("Initial state");
       e.bind("Slider position", s.initial.slider_position_over_L, Double(0, 1), "x_C/L at t = 0 [-]; the window must lie inside the beam");
       e.leave();
+    }
 
+    void bind_discretisation_and_time_stepping(SceneBinder &e, Scene &s)
+    {
       e.enter("Discretisation");
       e.bind("Number of elements", s.discretisation.n_elements, Integer(1, 4096), "beam elements of the FE model, at least N + 1 (Number of modes)");
       e.bind("Axial degree", s.discretisation.axial_degree, Integer(1, 6), "polynomial degree of the axial displacement u");
@@ -318,7 +334,10 @@ namespace beamslider
       e.bind("End time", s.time_stepping.end_time, Double(0), "[s], at most 1e11 time steps");
       e.bind("Output rate", s.time_stepping.output_rate, Double(0), "samples per second in trace.csv [1/s]");
       e.leave();
+    }
 
+    void bind_solvers(SceneBinder &e, Scene &s)
+    {
       e.enter("Solvers");
       e.bind("Contact tolerance", s.solvers.contact_tolerance, Double(1e-16, 1e-2),
              "contact impulses of a step: converged when the relative change of G P + c per sweep is below "
@@ -334,7 +353,10 @@ namespace beamslider
              "FE time step: cap on Newton iterations per step, refactorisations included; a step that "
              "reaches it stops the run with a message");
       e.leave();
+    }
 
+    void bind_solid(SceneBinder &e, Scene &s)
+    {
       e.enter("Solid");
       e.bind("Continuum", s.solid.continuum, Selection("none|plane stress|3d"),
              "the strip of subsection Beam as a St. Venant-Kirchhoff continuum clamped at both end faces "
@@ -368,6 +390,26 @@ namespace beamslider
              "rho [kg/m^3]), comma-separated; empty: every cell has Beam/Young's modulus, Beam/Density and "
              "the Poisson's ratio above");
       e.leave();
+    }
+
+    // Every entry of a scene, with the values of `s` as defaults, bound to
+    // the fields of `s` (and to `tables` for the Sections and Point masses
+    // tables, which build_beam() assembles into the beam afterwards): Scene{}
+    // (the default scene, mueller2023) for reading and the template, a run's
+    // own scene for the effective parameters it writes (scene_file_text).
+    void bind_scene(ParameterHandler &prm, Scene &s, SceneTables &tables)
+    {
+      SceneBinder e(prm);
+      bind_beam(e, s);
+      bind_section_tables(e, s, tables);
+      bind_point_masses(e, s, tables);
+      bind_supports(e, s);
+      bind_slider(e, s);
+      bind_contact(e, s);
+      bind_damping_excitation_and_initial_state(e, s);
+      bind_discretisation_and_time_stepping(e, s);
+      bind_solvers(e, s);
+      bind_solid(e, s);
     }
 
     std::string info(const dealii::ExceptionBase &e) { return " " + deal_ii_message(e); }
@@ -908,6 +950,196 @@ namespace beamslider
               "with a mesh file it must be a multiple of the mesh's " + std::to_string(n_cells) +
                 " elements (each is split into equal parts); leave it unset to take the mesh as it is");
     }
+
+    // The slider's mass and rotary inertia: positive, and J_C not negligible.
+    void validate_slider_mass(const Scene &s)
+    {
+      require(std::isfinite(s.slider.mass) && s.slider.mass > 0, "Slider/Mass", s.slider.mass, "must be > 0 kg");
+      require(std::isfinite(s.slider.inertia) && s.slider.inertia > 0, "Slider/Rotary inertia", s.slider.inertia,
+              "must be > 0 kg m^2");
+      {
+        // The Delassus matrix carries 1/m and lever²/J_C; a J_C negligible
+        // against m × lever² makes it singular in effect (the slider would
+        // spin through the beam within one step).
+        const double lever2 = s.slider.com_offset * s.slider.com_offset + 0.25 * s.slider.window_width * s.slider.window_width;
+        const double minimum = 0.03 * 0.03 * s.slider.mass * lever2;
+        require(s.slider.inertia >= minimum, "Slider/Rotary inertia", s.slider.inertia,
+                "must be >= " + num(minimum) + " kg m^2: the radius of gyration sqrt(J_C/m) must be at least 3 % of "
+                "the corners' distance sqrt(d^2 + B^2/4) = " + num(std::sqrt(lever2)) + " m from the centre of mass");
+      }
+    }
+
+    // The solid continuum: its material, supports and shape, or its mesh file.
+    void validate_solid(const Scene &s)
+    {
+      if (s.solid.enabled())
+        {
+          require(s.solid.poissons_ratio >= 0 && s.solid.poissons_ratio < 0.5, "Solid/Poisson's ratio",
+                  s.solid.poissons_ratio, "must be in [0, 0.5)");
+          if (s.beam.from_mesh())
+            throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum +
+                             "' is not allowed with 'Beam/Mesh file': the solid is generated from a uniform strip");
+          if (s.supports.type() != "clamped" && s.supports.type() != "elastic")
+            throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum + "' is not allowed with "
+                             "'Supports/Type' = " + s.supports.type() + ": a solid is clamped (its clamped faces, or "
+                             "both end faces of the generated strip) or on the elastic supports (rigid end plates "
+                             "on springs); set 'Supports/Type' = clamped or elastic");
+          require(std::isfinite(s.solid.arch_rise) && s.solid.arch_rise >= 0 && s.solid.arch_rise <= s.beam.length / 10,
+                  "Solid/Arch rise", s.solid.arch_rise,
+                  "must be in [0, L/10 = " + num(s.beam.length / 10) + "] m (a shallow arch)");
+          if (s.solid.from_mesh())
+            {
+              if (s.solid.arch_rise != 0)
+                throw InputError("Parameter 'Solid/Arch rise' = " + num(s.solid.arch_rise) + " is not allowed with "
+                                 "'Solid/Mesh file': the rise shapes the generated strip; a mesh carries its own shape");
+              if (s.solid.clamped_boundaries.empty())
+                throw InputError("Parameter 'Solid/Clamped boundaries' is empty: a solid mesh needs at least one "
+                                 "clamped physical group (or it floats)");
+              const std::string ext = std::filesystem::path(s.solid.mesh_file).extension().string();
+              if (ext != ".msh" && ext != ".inp")
+                throw InputError("Parameter 'Solid/Mesh file' = '" + printable(s.solid.mesh_file) + "' is not allowed: the "
+                                 "extension must be .msh (Gmsh) or .inp (Abaqus)");
+              solid_material_entries(s.solid.materials);
+            }
+          else
+            require_strip_fits_in_memory(s);
+        }
+      else if (s.solid.from_mesh())
+        throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is set, but 'Solid/Continuum' is "
+                         "none: set Continuum to 3d or plane stress to use the mesh");
+    }
+
+    // The beam's section (or its mesh's sections) and its point masses.
+    void validate_beam(const Scene &s)
+    {
+      require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
+      require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
+      require(s.beam.thickness < s.beam.length / 20., "Beam/Thickness", s.beam.thickness,
+              "must be < L/20 = " + num(s.beam.length / 20.) + " m for Euler-Bernoulli theory to hold");
+      require(s.beam.youngs_modulus > 0, "Beam/Young's modulus", s.beam.youngs_modulus, "must be > 0 Pa");
+      require(s.beam.density > 0, "Beam/Density", s.beam.density, "must be > 0 kg/m^3");
+      {
+        // Width and thickness have no upper or lower bound of their own, but
+        // the section's stiffnesses and mass per length must be doubles of
+        // normal size: h^3 underflows to 0 for h below ~1e-103 m (the beam
+        // would have no bending stiffness: a singular stiffness matrix, PETSc's
+        // "zero pivot"), E b overflows for b near 1e308 m.
+        const BeamData &b = s.beam;
+        for (const auto &[name, value] : {std::pair<const char *, double>{"bending stiffness EI = E b h^3/12", b.bending_stiffness()},
+                                          {"axial stiffness EA = E b h", b.axial_stiffness()},
+                                          {"mass per length rho b h", b.mass_per_length()}})
+          if (!std::isnormal(value))
+            throw InputError("Parameters 'Beam/Width' = " + num(b.width) + " and 'Beam/Thickness' = " + num(b.thickness) +
+                             " are not allowed: they give the " + name + " = " + num(value) +
+                             ", outside the doubles of normal size [2.2e-308, 1.8e308]");
+      }
+      if (s.beam.from_mesh())
+        validate_mesh_beam(s);
+      for (const PointMass &m : s.beam.point_masses)
+        {
+          require(m.position >= 0 && m.position <= s.beam.length, "Point masses (position)", m.position,
+                  "a body must sit on the beam, x in [0, L = " + num(s.beam.length) + "] m");
+          require(std::isfinite(m.mass) && m.mass >= 0, "Point masses/Masses", m.mass, "must be >= 0 kg");
+          require(std::isfinite(m.rotary_inertia) && m.rotary_inertia >= 0, "Point masses/Rotary inertias",
+                  m.rotary_inertia, "must be >= 0 kg m^2");
+        }
+    }
+
+    // The slider's window on the beam, its mass factor and its initial position.
+    void validate_slider_window(const Scene &s)
+    {
+      require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
+              s.beam.from_mesh()
+                ? "R/h must be > 1, h = " + num(s.beam.thickness) + " m being the beam's thickest section: the slider "
+                  "travels along the whole beam, so its window must clear the largest thickness it can meet"
+                : "R/h must be > 1: the slider's window must be taller than the beam is thick");
+      require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
+      require(s.slider.window_width < s.beam.length, "Slider/Window width", s.slider.window_width,
+              "the slider must be narrower than the beam length L = " + num(s.beam.length) + " m");
+      {
+        // The corners are the slider's only contacts: a window lower than it
+        // is wide (R < B) lets the slider turn by less than 45 degrees before
+        // they meet the beam; a taller one is a loose ring the model does not
+        // describe (and R/h = 1e300 overflows the gaps to NaN).
+        const double largest = s.slider.window_width / s.beam.thickness;
+        require(s.slider.window_height_ratio < largest, "Slider/Window height ratio", s.slider.window_height_ratio,
+                "R/h must be in (1, B/h = " + num(largest) + "): the window (R = " +
+                  num(s.slider.window_height_ratio * s.beam.thickness) + " m) must be lower than it is wide (B = " +
+                  num(s.slider.window_width) + " m), as the model's only contacts are its four corners");
+      }
+      require(s.slider.mass_factor > 0, "Slider/Mass factor", s.slider.mass_factor, "must be > 0");
+      const double half_window_over_L = 0.5 * s.slider.window_width / s.beam.length;
+      require(s.initial.slider_position_over_L >= half_window_over_L &&
+                s.initial.slider_position_over_L <= 1. - half_window_over_L,
+              "Initial state/Slider position", s.initial.slider_position_over_L,
+              "x_C/L must lie in [" + num(half_window_over_L) + ", " + num(1 - half_window_over_L) +
+                "] so that the slider's window is on the beam");
+    }
+
+    void validate_damping_and_excitation(const Scene &s)
+    {
+      require(s.damping_ratio >= 0 && s.damping_ratio < 1, "Damping/Modal damping ratio", s.damping_ratio, "must be in [0, 1)");
+      require(s.excitation.frequency_hz > 0, "Excitation/Frequency", s.excitation.frequency_hz, "must be > 0 Hz");
+      {
+        // The slider's coordinates are absolute, the beam's relative to the
+        // base (contact/base_excitation.h): the base displacement amplitude
+        // a/Omega^2 enters every gap, from t = 0 on. A frequency so low that it
+        // overflows (e.g. 1e-182 Hz at 14 m/s^2) gives an infinite initial state.
+        const double omega = 2. * M_PI * s.excitation.frequency_hz;
+        const double base_amplitude = s.excitation.acceleration_amplitude / (omega * omega);
+        require(std::isfinite(base_amplitude), "Excitation/Frequency", s.excitation.frequency_hz,
+                "the base displacement amplitude a/(2 pi f)^2 = " + num(base_amplitude) + " m (a = " +
+                  num(s.excitation.acceleration_amplitude) + " m/s^2) must be finite");
+      }
+    }
+
+    // The two time steps against the excitation period, theta, the end time and the output rate.
+    void validate_time_stepping(const Scene &s)
+    {
+      require(std::isfinite(s.time_stepping.time_step) && s.time_stepping.time_step > 0, "Time stepping/Time step",
+              s.time_stepping.time_step, "must be > 0 s");
+      {
+        const double period = 1. / s.excitation.frequency_hz;
+        require(s.time_stepping.time_step <= period / 20., "Time stepping/Time step", s.time_stepping.time_step,
+                "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
+                  " s, to resolve the excitation");
+      }
+      require(std::isfinite(s.time_stepping.fe_time_step) && s.time_stepping.fe_time_step > 0,
+              "Time stepping/FE time step", s.time_stepping.fe_time_step, "must be > 0 s");
+      {
+        const double period = 1. / s.excitation.frequency_hz;
+        require(s.time_stepping.fe_time_step <= period / 20., "Time stepping/FE time step",
+                s.time_stepping.fe_time_step,
+                "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
+                  " s, to resolve the excitation");
+      }
+      require(s.time_stepping.fe_theta >= 0.5 && s.time_stepping.fe_theta <= 1., "Time stepping/FE theta",
+              s.time_stepping.fe_theta, "must be in [0.5, 1] (0.5: the midpoint rule; 1: the implicit Euler step)");
+      require(std::isfinite(s.time_stepping.end_time) && s.time_stepping.end_time >= 0, "Time stepping/End time",
+              s.time_stepping.end_time, "must be >= 0 s");
+      {
+        // The smaller of the two steps sets the longest run.
+        const double dt = std::min(s.time_stepping.time_step, s.time_stepping.fe_time_step);
+        const std::string which =
+          dt == s.time_stepping.time_step ? "Time stepping/Time step" : "Time stepping/FE time step";
+        require(s.time_stepping.end_time / dt <= max_time_steps, "Time stepping/End time", s.time_stepping.end_time,
+                "would need " + num(s.time_stepping.end_time / dt) + " time steps of " + num(dt) + " s (" + which +
+                  "); at most " + num(max_time_steps) + " (End time <= " + num(max_time_steps * dt) +
+                  " s) are allowed");
+      }
+      require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
+    }
+
+    void validate_supports(const Scene &s)
+    {
+      if (s.supports.elastic())
+        {
+          require(s.supports.rotational_stiffness > 0, "Supports/Rotational stiffness", s.supports.rotational_stiffness,
+                  "must be > 0 N m/rad for elastic supports (use Type = clamped for the ideal clamp)");
+          require(s.supports.axial_stiffness > 0, "Supports/Axial stiffness", s.supports.axial_stiffness,
+                  "must be > 0 N/m for elastic supports");
+        }
+    }
   } // namespace
 
   void validate_scene(const Scene &s)
@@ -915,19 +1147,7 @@ namespace beamslider
     require_recordable(s);
     // NaN and infinity pass no check below silently: every comparison with
     // NaN is false, so each require() states the allowed set positively.
-    require(std::isfinite(s.slider.mass) && s.slider.mass > 0, "Slider/Mass", s.slider.mass, "must be > 0 kg");
-    require(std::isfinite(s.slider.inertia) && s.slider.inertia > 0, "Slider/Rotary inertia", s.slider.inertia,
-            "must be > 0 kg m^2");
-    {
-      // The Delassus matrix carries 1/m and lever²/J_C; a J_C negligible
-      // against m × lever² makes it singular in effect (the slider would
-      // spin through the beam within one step).
-      const double lever2 = s.slider.com_offset * s.slider.com_offset + 0.25 * s.slider.window_width * s.slider.window_width;
-      const double minimum = 0.03 * 0.03 * s.slider.mass * lever2;
-      require(s.slider.inertia >= minimum, "Slider/Rotary inertia", s.slider.inertia,
-              "must be >= " + num(minimum) + " kg m^2: the radius of gyration sqrt(J_C/m) must be at least 3 % of "
-              "the corners' distance sqrt(d^2 + B^2/4) = " + num(std::sqrt(lever2)) + " m from the centre of mass");
-    }
+    validate_slider_mass(s);
     require(std::isfinite(s.contact.gravity), "Contact/Gravity", s.contact.gravity, "must be finite");
     require(std::isfinite(s.excitation.acceleration_amplitude), "Excitation/Acceleration amplitude",
             s.excitation.acceleration_amplitude, "must be finite");
@@ -939,150 +1159,12 @@ namespace beamslider
             "must be at least Number of modes + 1 = " + std::to_string(s.discretisation.n_modes + 1) +
               " so that the mesh carries the reduced model's modes");
     require(s.beam.length > 0, "Beam/Length", s.beam.length, "must be > 0 m");
-    if (s.solid.enabled())
-      {
-        require(s.solid.poissons_ratio >= 0 && s.solid.poissons_ratio < 0.5, "Solid/Poisson's ratio",
-                s.solid.poissons_ratio, "must be in [0, 0.5)");
-        if (s.beam.from_mesh())
-          throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum +
-                           "' is not allowed with 'Beam/Mesh file': the solid is generated from a uniform strip");
-        if (s.supports.type() != "clamped" && s.supports.type() != "elastic")
-          throw InputError("Parameter 'Solid/Continuum' = '" + s.solid.continuum + "' is not allowed with "
-                           "'Supports/Type' = " + s.supports.type() + ": a solid is clamped (its clamped faces, or "
-                           "both end faces of the generated strip) or on the elastic supports (rigid end plates "
-                           "on springs); set 'Supports/Type' = clamped or elastic");
-        require(std::isfinite(s.solid.arch_rise) && s.solid.arch_rise >= 0 && s.solid.arch_rise <= s.beam.length / 10,
-                "Solid/Arch rise", s.solid.arch_rise,
-                "must be in [0, L/10 = " + num(s.beam.length / 10) + "] m (a shallow arch)");
-        if (s.solid.from_mesh())
-          {
-            if (s.solid.arch_rise != 0)
-              throw InputError("Parameter 'Solid/Arch rise' = " + num(s.solid.arch_rise) + " is not allowed with "
-                               "'Solid/Mesh file': the rise shapes the generated strip; a mesh carries its own shape");
-            if (s.solid.clamped_boundaries.empty())
-              throw InputError("Parameter 'Solid/Clamped boundaries' is empty: a solid mesh needs at least one "
-                               "clamped physical group (or it floats)");
-            const std::string ext = std::filesystem::path(s.solid.mesh_file).extension().string();
-            if (ext != ".msh" && ext != ".inp")
-              throw InputError("Parameter 'Solid/Mesh file' = '" + printable(s.solid.mesh_file) + "' is not allowed: the "
-                               "extension must be .msh (Gmsh) or .inp (Abaqus)");
-            solid_material_entries(s.solid.materials);
-          }
-        else
-          require_strip_fits_in_memory(s);
-      }
-    else if (s.solid.from_mesh())
-      throw InputError("Parameter 'Solid/Mesh file' = '" + s.solid.mesh_file + "' is set, but 'Solid/Continuum' is "
-                       "none: set Continuum to 3d or plane stress to use the mesh");
-    require(s.beam.width > 0, "Beam/Width", s.beam.width, "must be > 0 m");
-    require(s.beam.thickness > 0, "Beam/Thickness", s.beam.thickness, "must be > 0 m");
-    require(s.beam.thickness < s.beam.length / 20., "Beam/Thickness", s.beam.thickness,
-            "must be < L/20 = " + num(s.beam.length / 20.) + " m for Euler-Bernoulli theory to hold");
-    require(s.beam.youngs_modulus > 0, "Beam/Young's modulus", s.beam.youngs_modulus, "must be > 0 Pa");
-    require(s.beam.density > 0, "Beam/Density", s.beam.density, "must be > 0 kg/m^3");
-    {
-      // Width and thickness have no upper or lower bound of their own, but
-      // the section's stiffnesses and mass per length must be doubles of
-      // normal size: h^3 underflows to 0 for h below ~1e-103 m (the beam
-      // would have no bending stiffness: a singular stiffness matrix, PETSc's
-      // "zero pivot"), E b overflows for b near 1e308 m.
-      const BeamData &b = s.beam;
-      for (const auto &[name, value] : {std::pair<const char *, double>{"bending stiffness EI = E b h^3/12", b.bending_stiffness()},
-                                        {"axial stiffness EA = E b h", b.axial_stiffness()},
-                                        {"mass per length rho b h", b.mass_per_length()}})
-        if (!std::isnormal(value))
-          throw InputError("Parameters 'Beam/Width' = " + num(b.width) + " and 'Beam/Thickness' = " + num(b.thickness) +
-                           " are not allowed: they give the " + name + " = " + num(value) +
-                           ", outside the doubles of normal size [2.2e-308, 1.8e308]");
-    }
-    if (s.beam.from_mesh())
-      validate_mesh_beam(s);
-    for (const PointMass &m : s.beam.point_masses)
-      {
-        require(m.position >= 0 && m.position <= s.beam.length, "Point masses (position)", m.position,
-                "a body must sit on the beam, x in [0, L = " + num(s.beam.length) + "] m");
-        require(std::isfinite(m.mass) && m.mass >= 0, "Point masses/Masses", m.mass, "must be >= 0 kg");
-        require(std::isfinite(m.rotary_inertia) && m.rotary_inertia >= 0, "Point masses/Rotary inertias",
-                m.rotary_inertia, "must be >= 0 kg m^2");
-      }
-    require(s.slider.window_height_ratio > 1., "Slider/Window height ratio", s.slider.window_height_ratio,
-            s.beam.from_mesh()
-              ? "R/h must be > 1, h = " + num(s.beam.thickness) + " m being the beam's thickest section: the slider "
-                "travels along the whole beam, so its window must clear the largest thickness it can meet"
-              : "R/h must be > 1: the slider's window must be taller than the beam is thick");
-    require(s.slider.window_width > 0, "Slider/Window width", s.slider.window_width, "must be > 0 m");
-    require(s.slider.window_width < s.beam.length, "Slider/Window width", s.slider.window_width,
-            "the slider must be narrower than the beam length L = " + num(s.beam.length) + " m");
-    {
-      // The corners are the slider's only contacts: a window lower than it
-      // is wide (R < B) lets the slider turn by less than 45 degrees before
-      // they meet the beam; a taller one is a loose ring the model does not
-      // describe (and R/h = 1e300 overflows the gaps to NaN).
-      const double largest = s.slider.window_width / s.beam.thickness;
-      require(s.slider.window_height_ratio < largest, "Slider/Window height ratio", s.slider.window_height_ratio,
-              "R/h must be in (1, B/h = " + num(largest) + "): the window (R = " +
-                num(s.slider.window_height_ratio * s.beam.thickness) + " m) must be lower than it is wide (B = " +
-                num(s.slider.window_width) + " m), as the model's only contacts are its four corners");
-    }
-    require(s.slider.mass_factor > 0, "Slider/Mass factor", s.slider.mass_factor, "must be > 0");
-    const double half_window_over_L = 0.5 * s.slider.window_width / s.beam.length;
-    require(s.initial.slider_position_over_L >= half_window_over_L &&
-              s.initial.slider_position_over_L <= 1. - half_window_over_L,
-            "Initial state/Slider position", s.initial.slider_position_over_L,
-            "x_C/L must lie in [" + num(half_window_over_L) + ", " + num(1 - half_window_over_L) +
-              "] so that the slider's window is on the beam");
-    require(s.damping_ratio >= 0 && s.damping_ratio < 1, "Damping/Modal damping ratio", s.damping_ratio, "must be in [0, 1)");
-    require(s.excitation.frequency_hz > 0, "Excitation/Frequency", s.excitation.frequency_hz, "must be > 0 Hz");
-    {
-      // The slider's coordinates are absolute, the beam's relative to the
-      // base (contact/base_excitation.h): the base displacement amplitude
-      // a/Omega^2 enters every gap, from t = 0 on. A frequency so low that it
-      // overflows (e.g. 1e-182 Hz at 14 m/s^2) gives an infinite initial state.
-      const double omega = 2. * M_PI * s.excitation.frequency_hz;
-      const double base_amplitude = s.excitation.acceleration_amplitude / (omega * omega);
-      require(std::isfinite(base_amplitude), "Excitation/Frequency", s.excitation.frequency_hz,
-              "the base displacement amplitude a/(2 pi f)^2 = " + num(base_amplitude) + " m (a = " +
-                num(s.excitation.acceleration_amplitude) + " m/s^2) must be finite");
-    }
-    require(std::isfinite(s.time_stepping.time_step) && s.time_stepping.time_step > 0, "Time stepping/Time step",
-            s.time_stepping.time_step, "must be > 0 s");
-    {
-      const double period = 1. / s.excitation.frequency_hz;
-      require(s.time_stepping.time_step <= period / 20., "Time stepping/Time step", s.time_stepping.time_step,
-              "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
-                " s, to resolve the excitation");
-    }
-    require(std::isfinite(s.time_stepping.fe_time_step) && s.time_stepping.fe_time_step > 0,
-            "Time stepping/FE time step", s.time_stepping.fe_time_step, "must be > 0 s");
-    {
-      const double period = 1. / s.excitation.frequency_hz;
-      require(s.time_stepping.fe_time_step <= period / 20., "Time stepping/FE time step",
-              s.time_stepping.fe_time_step,
-              "must be <= " + num(period / 20.) + " s, a twentieth of the excitation period " + num(period) +
-                " s, to resolve the excitation");
-    }
-    require(s.time_stepping.fe_theta >= 0.5 && s.time_stepping.fe_theta <= 1., "Time stepping/FE theta",
-            s.time_stepping.fe_theta, "must be in [0.5, 1] (0.5: the midpoint rule; 1: the implicit Euler step)");
-    require(std::isfinite(s.time_stepping.end_time) && s.time_stepping.end_time >= 0, "Time stepping/End time",
-            s.time_stepping.end_time, "must be >= 0 s");
-    {
-      // The smaller of the two steps sets the longest run.
-      const double dt = std::min(s.time_stepping.time_step, s.time_stepping.fe_time_step);
-      const std::string which =
-        dt == s.time_stepping.time_step ? "Time stepping/Time step" : "Time stepping/FE time step";
-      require(s.time_stepping.end_time / dt <= max_time_steps, "Time stepping/End time", s.time_stepping.end_time,
-              "would need " + num(s.time_stepping.end_time / dt) + " time steps of " + num(dt) + " s (" + which +
-                "); at most " + num(max_time_steps) + " (End time <= " + num(max_time_steps * dt) +
-                " s) are allowed");
-    }
-    require(s.time_stepping.output_rate > 0, "Time stepping/Output rate", s.time_stepping.output_rate, "must be > 0 1/s");
-    if (s.supports.elastic())
-      {
-        require(s.supports.rotational_stiffness > 0, "Supports/Rotational stiffness", s.supports.rotational_stiffness,
-                "must be > 0 N m/rad for elastic supports (use Type = clamped for the ideal clamp)");
-        require(s.supports.axial_stiffness > 0, "Supports/Axial stiffness", s.supports.axial_stiffness,
-                "must be > 0 N/m for elastic supports");
-      }
+    validate_solid(s);
+    validate_beam(s);
+    validate_slider_window(s);
+    validate_damping_and_excitation(s);
+    validate_time_stepping(s);
+    validate_supports(s);
   }
 
   void check_overrides_unique(const std::vector<std::string> &overrides)
