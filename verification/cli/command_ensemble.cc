@@ -24,6 +24,7 @@
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/elapsed.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_convergence.h"
 #include "verification/studies/console.h"
@@ -247,26 +248,133 @@ namespace beamslider
       return md.str();
     }
 
+    // One ensemble on rank 0, shared by the stages that run and report it:
+    // the scene and settings, the folder, the members and the FE's check in
+    // Δt, and the cost.
+    struct EnsembleRun
+    {
+      Scene scene;
+      EnsembleSettings settings;
+      std::string dir;
+      std::vector<EnsembleMember> members;
+      std::optional<ConvergenceCheck> check; // the FE's, unless --unchecked
+      std::size_t n_kept  = 0; // members read back from member_runs.csv
+      double wall_seconds = 0;
+    };
+
+    // The scene (and case) with --end-time, checked before any member runs.
+    Scene ensemble_scene(const CommonOptions &common, const EnsembleOptions &options)
+    {
+      if (options.model != "rom" && options.model != "fe")
+        throw InputError("--model '" + options.model + "' is not one of rom, fe");
+      Scene scene = read_command_scene(common, options.case_name);
+      if (options.end_time)
+        {
+          scene.time_stepping.end_time = *options.end_time;
+          validate_scene(scene);
+        }
+      const double x_last = scene.initial.slider_position_over_L + (options.members - 1) * options.perturbation;
+      if (!(x_last <= 1.))
+        throw InputError("--perturbation " + std::to_string(options.perturbation) +
+                         " moves the last member's start beyond the beam");
+      return scene;
+    }
+
+    void announce_ensemble(const EnsembleRun &e, const EnsembleOptions &options, const bool checked)
+    {
+      console() << "ensemble " << e.scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name)
+                << ": " << e.settings.n_members << " members of " << e.settings.model.label() << ", "
+                << e.scene.time_stepping.end_time << " s each, start x_C/L + m x " << e.settings.perturbation
+                << ", into " << e.dir << std::endl;
+      if (checked)
+        console() << "  checked in Δt: the same members at Δt/2 beside them, halved further (at most "
+                  << reference_max_halvings << " times) until two steps end alike" << std::endl;
+    }
+
+    // Runs the members (and, when checked, the refinements) on rank 0's
+    // share; false when a signal stopped them.
+    bool run_members(EnsembleRun &e, const RefinementPlan &plan, const MemberRunsSettings &runs, const bool checked)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      try
+        {
+          const ConvergenceCheck result = run_plan(e.scene, plan, e.settings, runs);
+          e.members        = result.reference().members;
+          e.settings.model = result.reference().model;
+          if (checked)
+            e.check = result;
+        }
+      catch (const MemberRunsStopped &stopped)
+        {
+          std::cerr << "ensemble: " << stopped.what() << std::endl;
+          return false;
+        }
+      e.wall_seconds = elapsed_seconds(start);
+      return true;
+    }
+
+    // summary.md's head: the model, members, cost and how the outcomes are defined.
+    std::string ensemble_description(const EnsembleRun &e, const EnsembleOptions &options, const unsigned int n_ranks)
+    {
+      const Scene &scene = e.scene;
+      std::ostringstream md;
+      md << "# Ensemble: scene `" << scene.name << "`" << (options.case_name.empty() ? "" : ", case `" + options.case_name + "`")
+         << "\n\n- Model: " << e.settings.model.label() << "; " << e.settings.n_members << " members, member m starts at x_C/L = "
+         << scene.initial.slider_position_over_L << " + m × " << e.settings.perturbation << "; " << scene.time_stepping.end_time
+         << " s simulated each.\n- Wall time of this run: " << fixed(e.wall_seconds, 1) << " s on "
+         << (n_ranks > 1 ? std::to_string(n_ranks) + " MPI ranks" : std::string("the cores of one process"))
+         << "; " << e.n_kept << " of the members read back from member_runs.csv (an earlier, stopped run of this "
+            "build and settings), the others computed now.\n"
+         << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
+            "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
+            "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("
+         << fixed(trace_thresholds(scene).high_level_over_h, 2)
+         << " h, where Eq. 4 lies 5 % above f1); the turn is the period-mean position farthest from the centre when the "
+            "end lies 0.02 L back from it; the final state is the mean over the last 1 s.\n\n";
+      return md.str();
+    }
+
+    // summary.md, with statistics.csv, convergence.csv (checked) and
+    // comparison.csv (--against) beside it.
+    std::string ensemble_summary(const EnsembleRun &e, const EnsembleOptions &options, const unsigned int n_ranks,
+                                 const std::optional<OutcomeSamples> &other)
+    {
+      const OutcomeSamples samples = outcome_samples(e.members);
+      const NamedSamples outcomes = {
+        {"jump_time_s", &samples.jump_time},
+        {"turn_x_over_L", &samples.turn_position},
+        {"final_x_over_L", &samples.final_position},
+        {"final_amplitude_over_h", &samples.final_amplitude}};
+      std::ostringstream md;
+      md << ensemble_description(e, options, n_ranks) << statistics_table(e.dir, outcomes);
+      std::map<std::string, unsigned int> classes;
+      for (const auto &m : e.members)
+        ++classes[to_string(m.analysis.outcome)];
+      if (e.check)
+        {
+          md << convergence_section(*e.check);
+          write_convergence_csv(e.dir, {*e.check});
+        }
+      else if (options.model == "fe")
+        md << "\n**Unchecked** (`--unchecked`): whether the FE has converged in Δt at this step was not tested.\n";
+      md << "\nOutcome classes:";
+      for (const auto &[name, count] : classes)
+        md << " " << name << " × " << count << ";";
+      md << "\n";
+
+      if (other)
+        md << comparison_section(e.dir, outcomes, *other, options.against);
+      return md.str();
+    }
   } // namespace
 
   int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options)
   {
     // Under mpirun every rank runs this; only rank 0 writes and prints.
     MpiSession mpi(launched_by_mpi_launcher());
-    if (options.model != "rom" && options.model != "fe")
-      throw InputError("--model '" + options.model + "' is not one of rom, fe");
-    Scene scene = read_command_scene(common, options.case_name);
-    if (options.end_time)
-      {
-        scene.time_stepping.end_time = *options.end_time;
-        validate_scene(scene);
-      }
-    const double x_last = scene.initial.slider_position_over_L + (options.members - 1) * options.perturbation;
-    if (!(x_last <= 1.))
-      throw InputError("--perturbation " + std::to_string(options.perturbation) +
-                       " moves the last member's start beyond the beam");
-
-    EnsembleSettings settings = ensemble_settings(scene, options);
+    EnsembleRun e;
+    e.scene     = ensemble_scene(common, options);
+    e.settings  = ensemble_settings(e.scene, options);
     // Another ensemble to compare with, read before any member runs.
     std::optional<OutcomeSamples> other;
     if (!options.against.empty())
@@ -276,7 +384,7 @@ namespace beamslider
     // same code runs the model alone (a plan without refinements), so that
     // every rank takes part in the same rounds either way.
     const bool checked = options.model == "fe" && !options.unchecked;
-    const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", settings.model,
+    const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", e.settings.model,
                                                                 checked ? reference_max_halvings : 0)};
     MemberRunsSettings runs;
     runs.study           = "ensemble";
@@ -285,89 +393,28 @@ namespace beamslider
     if (mpi.rank() != 0)
       {
         // Computes what rank 0 hands out: the ensemble and the check's rounds.
-        work_on_check_rounds(scene, plans, {0}, settings.n_members, settings.perturbation, runs);
+        work_on_check_rounds(e.scene, plans, {0}, e.settings.n_members, e.settings.perturbation, runs);
         return 0;
       }
     const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
 
-    const std::string dir =
-      prepare_output_dir(common, scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
-    runs.dir = dir;
-    std::size_t n_kept = 0;
-    runs.n_kept        = &n_kept;
-    console() << "ensemble " << scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name) << ": "
-              << settings.n_members << " members of " << settings.model.label() << ", "
-              << scene.time_stepping.end_time << " s each, start x_C/L + m x " << settings.perturbation
-              << ", into " << dir << std::endl;
-    if (checked)
-      console() << "  checked in Δt: the same members at Δt/2 beside them, halved further (at most "
-                << reference_max_halvings << " times) until two steps end alike" << std::endl;
+    e.dir =
+      prepare_output_dir(common, e.scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
+    runs.dir    = e.dir;
+    runs.n_kept = &e.n_kept;
+    announce_ensemble(e, options, checked);
+    if (!run_members(e, plans.front(), runs, checked))
+      return interruption_exit_code();
 
-    const auto start = std::chrono::steady_clock::now();
-    std::vector<EnsembleMember> members;
-    std::optional<ConvergenceCheck> check;
-    try
+    write_member_tables(e.dir, e.members);
+    const std::string md = ensemble_summary(e, options, mpi.size(), other);
+    write_text_file(e.dir + "/summary.md", md);
+    run_plot_script("plot_ensemble.py", {e.dir, e.scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
+                                                  " (" + e.settings.model.label() + ")"});
+    console() << md;
+    if (e.check && !e.check->converged)
       {
-        const ConvergenceCheck result = run_plan(scene, plans.front(), settings, runs);
-        members        = result.reference().members;
-        settings.model = result.reference().model;
-        if (checked)
-          check = result;
-      }
-    catch (const MemberRunsStopped &e)
-      {
-        std::cerr << "ensemble: " << e.what() << std::endl;
-        return interruption_exit_code();
-      }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    write_member_tables(dir, members);
-
-    const OutcomeSamples samples = outcome_samples(members);
-    const NamedSamples outcomes = {
-      {"jump_time_s", &samples.jump_time},
-      {"turn_x_over_L", &samples.turn_position},
-      {"final_x_over_L", &samples.final_position},
-      {"final_amplitude_over_h", &samples.final_amplitude}};
-    std::ostringstream md;
-    md << "# Ensemble: scene `" << scene.name << "`" << (options.case_name.empty() ? "" : ", case `" + options.case_name + "`")
-       << "\n\n- Model: " << settings.model.label() << "; " << settings.n_members << " members, member m starts at x_C/L = "
-       << scene.initial.slider_position_over_L << " + m × " << settings.perturbation << "; " << scene.time_stepping.end_time
-       << " s simulated each.\n- Wall time of this run: " << fixed(wall, 1) << " s on "
-       << (mpi.size() > 1 ? std::to_string(mpi.size()) + " MPI ranks" : std::string("the cores of one process"))
-       << "; " << n_kept << " of the members read back from member_runs.csv (an earlier, stopped run of this "
-          "build and settings), the others computed now.\n"
-       << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
-          "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
-          "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("
-       << fixed(trace_thresholds(scene).high_level_over_h, 2)
-       << " h, where Eq. 4 lies 5 % above f1); the turn is the period-mean position farthest from the centre when the "
-          "end lies 0.02 L back from it; the final state is the mean over the last 1 s.\n\n"
-       << statistics_table(dir, outcomes);
-    std::map<std::string, unsigned int> classes;
-    for (const auto &m : members)
-      ++classes[to_string(m.analysis.outcome)];
-    if (check)
-      {
-        md << convergence_section(*check);
-        write_convergence_csv(dir, {*check});
-      }
-    else if (options.model == "fe")
-      md << "\n**Unchecked** (`--unchecked`): whether the FE has converged in Δt at this step was not tested.\n";
-    md << "\nOutcome classes:";
-    for (const auto &[name, count] : classes)
-      md << " " << name << " × " << count << ";";
-    md << "\n";
-
-    if (other)
-      md << comparison_section(dir, outcomes, *other, options.against);
-    write_text_file(dir + "/summary.md", md.str());
-    run_plot_script("plot_ensemble.py", {dir, scene.name + (options.case_name.empty() ? "" : " / " + options.case_name) +
-                                                " (" + settings.model.label() + ")"});
-    console() << md.str();
-    if (check && !check->converged)
-      {
-        std::cerr << "ensemble: " << check->verdict() << " (" << dir << "/summary.md)" << std::endl;
+        std::cerr << "ensemble: " << e.check->verdict() << " (" << e.dir << "/summary.md)" << std::endl;
         return not_converged_exit_code;
       }
     return 0;

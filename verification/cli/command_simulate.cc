@@ -22,6 +22,7 @@
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/elapsed.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/model_choice.h"
@@ -268,6 +269,460 @@ namespace beamslider
         d.periods.push_back(load_period(in));
       return d;
     }
+
+    // The state of one `simulate` run, shared by its stages: the options
+    // (with --resume, those of the checkpoint's run), the checkpoint it
+    // continues, the scene, what defines the run, and what it has written.
+    struct SimulationRun
+    {
+      CommonOptions common;
+      SimulateOptions options;
+      bool resuming = false;
+      std::optional<CheckpointReader> checkpoint; // --resume: read up to the run's state
+      RunDescription saved;                       // --resume: the checkpoint's run
+      std::string scene_file;                     // absolute
+      const SimulationCase *the_case = nullptr;
+      std::vector<std::string> modified; // the case's own parameters the user changed
+      // What defines this run, as its checkpoints record it: the scene as
+      // parameters.prm holds it, and (for the digest) without its end time.
+      std::string command_label, scene_text, timeless_scene_text;
+      FileDigest trace_digest, period_digest; // of the files' bytes up to the last checkpoint
+      std::chrono::steady_clock::time_point start; // of the time stepping
+      SimulationOutcome outcome; // the scene, model, folder, result and period records
+    };
+
+    // --resume DIR: the scene, overrides, case and model come from DIR's
+    // checkpoint, which is read up to the run's state.
+    void load_checkpoint_to_resume(SimulationRun &r)
+    {
+      SimulateOptions &options = r.options;
+      if (options.animate)
+        throw InputError("--resume cannot be combined with --animate; animate the end of the resumed run with "
+                         "`beamslider animate`");
+      // Held before anything in it is read: a live run there would change
+      // the files being checked (exit 1, "in use").
+      if (std::filesystem::is_directory(options.resume_dir))
+        lock_output_folder(options.resume_dir);
+      const std::string checkpoint_file = options.resume_dir + "/checkpoint.bin";
+      try
+        {
+          r.checkpoint.emplace(read_checkpoint_file(checkpoint_file));
+        }
+      catch (const CheckpointError &e)
+        {
+          throw InputError(std::string("--resume: ") + e.what());
+        }
+      try
+        {
+          r.saved = load_description(*r.checkpoint);
+        }
+      catch (const CheckpointError &e)
+        {
+          throw InputError("--resume: '" + checkpoint_file + "': " + e.what());
+        }
+      r.common.scene_file = r.saved.scene_file;
+      r.common.overrides  = r.saved.overrides;
+      r.common.output_dir = options.resume_dir;
+      options.case_name   = r.saved.case_name;
+      options.model       = r.saved.setting.family;
+      if (!options.end_time)
+        options.end_time = r.saved.end_time;
+    }
+
+    // The checkpoint must be of the scene it names, as it is now, and of the
+    // run the folder holds (a checkpoint left by an earlier run, or copied
+    // in, is not), and the files it continues must be as that run left them.
+    // Checked before anything in the folder is touched.
+    void check_checkpoint_is_folders_run(const SimulationRun &r)
+    {
+      const RunDescription &saved    = r.saved;
+      const std::string &resume_dir = r.options.resume_dir;
+      std::uint64_t scene_hash       = 0;
+      try
+        {
+          scene_hash = scene_content_hash(saved.scene_file, saved.overrides, saved.case_name);
+        }
+      catch (const FileReadError &e)
+        {
+          throw InputError("--resume: the checkpoint in '" + resume_dir + "' was written for the scene '" +
+                           saved.scene_file + "', which cannot be read now: " + e.what());
+        }
+      if (scene_hash != saved.scene_hash)
+        throw InputError("--resume: the checkpoint in '" + resume_dir + "' was written for another scene: '" +
+                         saved.scene_file + "' or its parameters changed since; a resumed run would not continue "
+                         "the same computation");
+      std::string folder_scene;
+      try
+        {
+          folder_scene = read_text_file(resume_dir + "/parameters.prm");
+        }
+      catch (const FileReadError &e)
+        {
+          throw InputError("--resume: the folder's scene cannot be read, so the run it holds is not known: " +
+                           std::string(e.what()));
+        }
+      const std::string difference = first_difference(folder_scene, saved.scene_text);
+      if (!difference.empty())
+        throw InputError("--resume: the checkpoint in '" + resume_dir + "' is of another run than the folder's: " +
+                         difference + "; not resumed");
+      check_continued_file(resume_dir, "trace.csv", saved.trace_bytes, saved.trace_digest);
+      check_continued_file(resume_dir, "periods.csv", saved.period_bytes, saved.period_digest);
+    }
+
+    void check_simulate_options(const SimulateOptions &options)
+    {
+      if (options.checkpoint_every && options.animate)
+        throw InputError("--checkpoint-every cannot be combined with --animate");
+
+      if (options.model != "rom" && options.model != "fe" && options.model != "auto")
+        throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
+      if (options.model == "auto" && !options.tolerance)
+        throw InputError("--model auto needs --tolerance (the largest acceptable distance of the end position x_C/L to the FE reference's, e.g. 0.03)");
+      if (options.end_time && !(*options.end_time > 0.))
+        throw InputError("--end-time " + std::to_string(*options.end_time) + " s must be > 0");
+    }
+
+    // The scene (and case) as the run uses it, with --end-time; refused if
+    // its trace would be too large.
+    void read_simulation_scene(SimulationRun &r)
+    {
+      const SimulateOptions &options = r.options;
+      r.scene_file = std::filesystem::absolute(resolve_scene_path(r.common.scene_file)).string();
+      r.the_case   = options.case_name.empty() ? nullptr : &find_case(options.case_name);
+      Scene &scene = r.outcome.scene;
+      scene        = read_command_scene(r.common, options.case_name, &r.modified);
+      if (options.end_time)
+        {
+          scene.time_stepping.end_time = *options.end_time;
+          validate_scene(scene); // the step count limit
+        }
+      const double n_rows = scene.time_stepping.end_time * scene.time_stepping.output_rate;
+      if (n_rows > SimulateOptions::max_trace_rows && !options.allow_large_output)
+        {
+          std::ostringstream m;
+          m << "End time " << scene.time_stepping.end_time << " s at Output rate " << scene.time_stepping.output_rate
+            << " 1/s would write " << n_rows << " rows to trace.csv, more than " << SimulateOptions::max_trace_rows
+            << " (about 1 GB); lower 'Time stepping/Output rate' or pass --allow-large-output";
+          throw InputError(m.str());
+        }
+    }
+
+    // The run goes in pieces of --checkpoint-every, each ending in a
+    // checkpoint: pieces shorter than a time step hold no step, and the run
+    // writes checkpoints without getting on (it never ended). The bound is
+    // the step of the model the run uses; --model auto has not chosen yet,
+    // so it takes the larger of the ROM's and the FE's.
+    void check_checkpoint_interval(const SimulationRun &r)
+    {
+      const SimulateOptions &options = r.options;
+      const Scene &scene             = r.outcome.scene;
+      const double rom_step = scene_model(scene, "rom").time_step, fe_step = scene_model(scene, "fe").time_step;
+      const double step = r.resuming                 ? r.saved.setting.time_step
+                          : options.model == "rom"   ? rom_step
+                          : options.model == "fe"    ? fe_step
+                                                     : std::max(rom_step, fe_step);
+      const std::string which =
+        r.resuming ? "the resumed run's time step"
+        : options.model == "rom" ? "the ROM's 'Time stepping/Time step'"
+        : options.model == "fe"  ? "the FE's 'Time stepping/FE time step'"
+                                 : "the larger of the ROM's and the FE's time steps (--model auto may run either)";
+      if (!(*options.checkpoint_every >= step))
+        {
+          std::ostringstream m;
+          m << "--checkpoint-every " << *options.checkpoint_every << " s is outside the allowed range [" << step
+            << ", inf): at least " << which << ", " << step << " s";
+          throw InputError(m.str());
+        }
+    }
+
+    // What defines this run (its command, scene and scene without end time)
+    // and, on --resume, that it is the checkpoint's run.
+    void describe_run(SimulationRun &r)
+    {
+      const Scene &scene = r.outcome.scene;
+      r.command_label    = r.the_case ? "simulate/" + r.the_case->name : std::string("simulate");
+      r.scene_text       = scene_file_text(scene);
+      {
+        Scene timeless                  = scene;
+        timeless.time_stepping.end_time = 0.;
+        r.timeless_scene_text           = scene_file_text(timeless);
+      }
+      if (!r.resuming)
+        return;
+      const std::string identity = run_identity(r.command_label, r.saved.setting, r.timeless_scene_text);
+      if (fnv1a(identity) != r.saved.identity_digest)
+        {
+          // The scene file reads differently now (another build's defaults):
+          // the first line in which the two runs differ.
+          std::istringstream now(identity), then(r.saved.identity);
+          std::string a, b;
+          while (std::getline(now, a) && std::getline(then, b) && a == b)
+            ;
+          throw InputError("--resume: the checkpoint in '" + r.options.resume_dir +
+                           "' is of another run: this run has '" + a + "' where the checkpoint's has '" + b +
+                           "'; not resumed");
+        }
+    }
+
+    // The model: as asked, or the cheapest whose ensemble end state the
+    // scene's error ladder puts within the tolerance of the FE reference's.
+    void choose_model(SimulationRun &r)
+    {
+      const Scene &scene    = r.outcome.scene;
+      ModelSetting &setting = r.outcome.setting;
+      setting = scene_model(scene, r.options.model == "fe" ? "fe" : "rom"); // the FE at the scene's FE time step
+      if (r.resuming)
+        {
+          setting      = r.saved.setting;
+          r.outcome.why = r.saved.why;
+        }
+      else if (r.options.model == "auto")
+        {
+          if (scene.solid.enabled())
+            throw InputError("--model auto chooses on the beam's error ladder, which a solid scene (Solid/Continuum = '" +
+                             scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
+                             "--model fe (the 1D beam)");
+          // The ladder is cached beside the scene's reports, keyed by its content.
+          const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
+          setting = choose_model(scene, *r.options.tolerance, cache, r.outcome.why);
+          console() << r.outcome.why << std::endl;
+        }
+    }
+
+    void check_stable_time_step(const ModelSetting &setting, const BeamSystem &beam)
+    {
+      if (!(setting.time_step <= beam.max_stable_time_step()))
+        {
+          std::ostringstream m;
+          m << "Parameter 'Time stepping/" << (setting.family == "fe" ? "FE time step" : "Time step")
+            << "' = " << setting.time_step
+            << " s is not allowed: the " << setting.label() << " is stable only for time steps up to "
+            << beam.max_stable_time_step() << " s (explicit scheme: 2/omega_max)";
+          throw InputError(m.str());
+        }
+    }
+
+    // --resume: the run's state from the checkpoint, and its files cut back
+    // to it. Rows written after the checkpoint by the run that stopped are
+    // dropped; the resumed run writes them again, identically. (Only ever
+    // shorter: the files were checked to be at least this long.)
+    void restore_checkpointed_run(SimulationRun &r, AdaptationRun &run)
+    {
+      const std::string &dir = r.outcome.dir;
+      try
+        {
+          run.load(*r.checkpoint);
+          if (!r.checkpoint->at_end())
+            throw CheckpointError("the checkpoint holds more than this model's state");
+        }
+      catch (const CheckpointError &e)
+        {
+          throw InputError("--resume: checkpoint in '" + dir + "' does not fit the model: " + e.what());
+        }
+      const double end_time = r.outcome.scene.time_stepping.end_time;
+      if (!(end_time > run.state().t))
+        {
+          std::ostringstream m;
+          m << "--resume: --end-time " << end_time << " s must lie after the checkpoint's time " << run.state().t
+            << " s";
+          throw InputError(m.str());
+        }
+      for (const auto &[file, size] : {std::pair(dir + "/trace.csv", r.saved.trace_bytes),
+                                       std::pair(dir + "/periods.csv", r.saved.period_bytes)})
+        {
+          std::error_code ec;
+          std::filesystem::resize_file(file, size, ec);
+          if (ec)
+            throw OutputError("--resume: '" + file + "' cannot be cut back to the checkpoint: " + ec.message());
+        }
+      r.outcome.periods = r.saved.periods;
+      r.trace_digest    = {r.saved.trace_bytes, r.saved.trace_digest};
+      r.period_digest   = {r.saved.period_bytes, r.saved.period_digest};
+      console() << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
+    }
+
+    // trace.csv and periods.csv, streams that a stopped run keeps; a resumed
+    // run appends to the files it continues. The trace (1000 rows per
+    // simulated second) is flushed every 1000 rows, periods.csv every row.
+    CsvOptions run_csv_options(const bool append, const unsigned int flush_every)
+    {
+      CsvOptions options;
+      options.append      = append;
+      options.in_place    = true;
+      options.flush_every = flush_every;
+      return options;
+    }
+
+    struct RunCsvFiles
+    {
+      RunCsvFiles(const std::string &dir, const bool append)
+        : trace(dir + "/trace.csv", trace_csv_columns(), run_csv_options(append, 1000))
+        , periods(dir + "/periods.csv", period_csv_columns(), run_csv_options(append, 1))
+      {}
+      CsvWriter trace, periods;
+    };
+
+    // The run's rows into the files (and its period records into the
+    // outcome); with `verbose`, its progress on the console.
+    void connect_outputs(AdaptationRun &run, RunCsvFiles &files, std::vector<PeriodRecord> &periods,
+                         const bool verbose)
+    {
+      run.on_trace_row = [&files](const TraceRow &row) { write_trace_row(files.trace, row); };
+      run.on_period    = [&files, &periods](const PeriodRecord &r) {
+        write_period_row(files.periods, r);
+        periods.push_back(r);
+      };
+      if (verbose)
+        run.on_progress = [](const RunProgress &p) {
+          console() << "  t = " << std::fixed << std::setprecision(1) << p.t << " / " << p.end_time
+                    << " s, x_C/L = " << std::setprecision(3) << p.slider_x_over_L << ", amplitude "
+                    << p.amplitude_over_h << " h, " << std::setprecision(0) << p.steps_per_second << " steps/s"
+                    << std::endl
+                    << std::defaultfloat;
+        };
+    }
+
+    // --animate: the run up to the animation window, then frame by frame
+    // to the end, each frame into animation.pvd.
+    RunResult run_with_animation(AdaptationRun &run, const std::string &dir, const double end_time)
+    {
+      const double t_first = std::max(0., end_time - animation_window);
+      RunResult result     = run.run_until(t_first);
+      VtkAnimationWriter animation(dir, 1.);
+      for (long k = 0; result.status == RunStatus::completed; ++k)
+        {
+          const double t_frame = t_first + k / animation_rate;
+          if (t_frame > end_time + 1e-12)
+            break;
+          const RunResult part = run.run_until(t_frame);
+          result.status        = part.status;
+          result.message       = part.message;
+          result.n_steps += part.n_steps;
+          result.t_end = part.t_end;
+          if (part.status != RunStatus::completed)
+            break;
+          animation.write(make_animation_frame(run.stepper()));
+        }
+      animation.finish();
+      return result;
+    }
+
+    // checkpoint.bin: how the run was asked for, where its files end, its
+    // period records and its state. The files are flushed first, so the
+    // sizes it records are on disk.
+    void write_checkpoint(SimulationRun &r, const AdaptationRun &run, RunCsvFiles &files, const std::uint64_t n_steps)
+    {
+      files.trace.flush();
+      files.periods.flush();
+      RunDescription d;
+      d.scene_file      = r.scene_file;
+      d.overrides       = r.common.overrides;
+      d.case_name       = r.the_case ? r.the_case->name : std::string();
+      d.scene_hash      = scene_content_hash(r.scene_file, d.overrides, d.case_name);
+      d.setting         = r.outcome.setting;
+      d.end_time        = r.outcome.scene.time_stepping.end_time;
+      d.why             = r.outcome.why;
+      d.identity        = run_identity(r.command_label, r.outcome.setting, r.timeless_scene_text);
+      d.identity_digest = fnv1a(d.identity);
+      d.scene_text      = r.scene_text;
+      d.trace_bytes     = std::filesystem::file_size(files.trace.path());
+      d.period_bytes    = std::filesystem::file_size(files.periods.path());
+      extend_digest(files.trace.path(), r.trace_digest, d.trace_bytes);
+      extend_digest(files.periods.path(), r.period_digest, d.period_bytes);
+      d.trace_digest  = r.trace_digest.hash;
+      d.period_digest = r.period_digest.hash;
+      d.n_steps       = r.saved.n_steps + n_steps;
+      d.wall_seconds  = r.saved.wall_seconds + elapsed_seconds(r.start);
+      d.periods       = r.outcome.periods;
+      CheckpointWriter out;
+      save_description(out, d);
+      run.save(out);
+      write_file_atomically(r.outcome.dir + "/checkpoint.bin", checkpoint_file_bytes(out.bytes()));
+    }
+
+    // The run in pieces of --checkpoint-every, each followed by a
+    // checkpoint; one piece without it. The trace is the same either way.
+    RunResult run_in_pieces(SimulationRun &r, AdaptationRun &run, RunCsvFiles &files)
+    {
+      const double end_time = r.outcome.scene.time_stepping.end_time;
+      const double every    = r.options.checkpoint_every.value_or(0.);
+      const double eps      = 1e-9 * r.outcome.setting.time_step;
+      double t_stop         = every > 0. ? (std::floor(run.state().t / every + 1e-9) + 1.) * every : end_time;
+      RunResult result;
+      while (true)
+        {
+          t_stop                = std::min(t_stop, end_time);
+          const RunResult piece = run.run_until(t_stop);
+          result.status         = piece.status;
+          result.message        = piece.message;
+          result.n_steps += piece.n_steps;
+          result.t_end           = piece.t_end;
+          result.slider_x_over_L = piece.slider_x_over_L;
+          result.max_solver_iterations = std::max(result.max_solver_iterations, piece.max_solver_iterations);
+          if (piece.status != RunStatus::completed)
+            break;
+          if (every > 0.)
+            write_checkpoint(r, run, files, result.n_steps);
+          if (t_stop >= end_time - eps)
+            break;
+          t_stop += every;
+        }
+      run.finish_trace();
+      return result;
+    }
+
+    // summary.md: settings, cost, status and the verdict, against the
+    // case's published behaviour where the run keeps the case as it is.
+    std::string summary_text(const SimulationRun &r)
+    {
+      const Scene &scene          = r.outcome.scene;
+      const SimulationCase *the_case = r.the_case;
+      const RunResult &result     = r.outcome.result;
+      const double wall           = r.outcome.wall_seconds;
+      std::ostringstream summary;
+      summary << "# simulate: scene `" << scene.name << "`" << (the_case ? ", case `" + the_case->name + "`" : "") << "\n\n";
+      if (the_case && !r.modified.empty())
+        {
+          summary << "- Case: " << the_case->name << ", modified: ";
+          for (std::size_t i = 0; i < r.modified.size(); ++i)
+            summary << (i ? "; " : "") << r.modified[i];
+          summary << ".\n- Not compared with the published behaviour (" << the_case->published
+                  << "): the run changes parameters the case fixes.\n";
+        }
+      else if (the_case)
+        {
+          summary << "- Case: " << the_case->description << ".\n- Published: " << the_case->published << ".\n";
+          const std::string differs = disagreements(r.outcome.verdict, the_case->expected);
+          summary << "- Against the published behaviour: " << (differs.empty() ? "agrees on every stated feature" : "differs: " + differs) << ".\n";
+        }
+      const std::string &why = r.outcome.why;
+      summary << "- Model: " << r.outcome.setting.label() << ".\n"
+              << (why.empty() ? "" : "- Chosen by --model auto:\n\n```\n" + why + "\n```\n\n")
+              << (r.resuming ? "- Resumed from the checkpoint in this folder (" + std::to_string(r.saved.n_steps) +
+                                 " steps done before).\n"
+                             : std::string())
+              << (r.options.checkpoint_every ? "- Checkpoint every " + std::to_string(*r.options.checkpoint_every) +
+                                                 " s simulated: checkpoint.bin (resume with `beamslider simulate --resume " +
+                                                 r.outcome.dir + "`).\n"
+                                             : std::string())
+              << "- Simulated " << result.t_end << " s of " << scene.time_stepping.end_time << " s in " << wall << " s wall ("
+              << (wall > 0 ? result.n_steps / wall : 0.) << " steps/s).\n"
+              << "- Status: " << to_string(result.status) << (result.message.empty() ? "" : ": " + result.message) << ".\n"
+              << "- Verdict: " << r.outcome.verdict.line << ".\n"
+              << "\nFiles: trace.csv, periods.csv" << (r.options.animate ? ", animation.pvd" : "") << ", trace.png.\n";
+      return summary.str();
+    }
+
+    // trace.png; none of an interrupted run: the user asked it to stop.
+    void draw_trace_chart(EarlyPlot &chart, const SimulationRun &r)
+    {
+      if (r.outcome.result.status == RunStatus::interrupted)
+        return;
+      std::ostringstream title;
+      title << r.outcome.scene.name << (r.the_case ? " / " + r.the_case->name : std::string()) << " ("
+            << r.outcome.setting.label() << ")";
+      chart.draw({r.outcome.dir, title.str(), std::to_string(r.outcome.scene.beam.thickness)});
+    }
   } // namespace
 
   SimulationOutcome run_simulation(const CommonOptions &given_common, const SimulateOptions &given_options,
@@ -275,396 +730,59 @@ namespace beamslider
   {
     // --resume DIR: the scene, overrides, case and model come from DIR's
     // checkpoint; the run continues from its state into the same files.
-    CommonOptions common    = given_common;
-    SimulateOptions options = given_options;
-    std::optional<CheckpointReader> checkpoint;
-    RunDescription saved;
-    const bool resuming = !options.resume_dir.empty();
-    if (resuming)
+    SimulationRun r;
+    r.common   = given_common;
+    r.options  = given_options;
+    r.resuming = !r.options.resume_dir.empty();
+    if (r.resuming)
       {
-        if (options.animate)
-          throw InputError("--resume cannot be combined with --animate; animate the end of the resumed run with "
-                           "`beamslider animate`");
-        // Held before anything in it is read: a live run there would change
-        // the files being checked (exit 1, "in use").
-        if (std::filesystem::is_directory(options.resume_dir))
-          lock_output_folder(options.resume_dir);
-        const std::string checkpoint_file = options.resume_dir + "/checkpoint.bin";
-        try
-          {
-            checkpoint.emplace(read_checkpoint_file(checkpoint_file));
-          }
-        catch (const CheckpointError &e)
-          {
-            throw InputError(std::string("--resume: ") + e.what());
-          }
-        try
-          {
-            saved = load_description(*checkpoint);
-          }
-        catch (const CheckpointError &e)
-          {
-            throw InputError("--resume: '" + checkpoint_file + "': " + e.what());
-          }
-        common.scene_file  = saved.scene_file;
-        common.overrides   = saved.overrides;
-        common.output_dir  = options.resume_dir;
-        options.case_name  = saved.case_name;
-        options.model      = saved.setting.family;
-        if (!options.end_time)
-          options.end_time = saved.end_time;
-        std::uint64_t scene_hash = 0;
-        try
-          {
-            scene_hash = scene_content_hash(saved.scene_file, saved.overrides, saved.case_name);
-          }
-        catch (const FileReadError &e)
-          {
-            throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for the scene '" +
-                             saved.scene_file + "', which cannot be read now: " + e.what());
-          }
-        if (scene_hash != saved.scene_hash)
-          throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' was written for another scene: '" +
-                           saved.scene_file + "' or its parameters changed since; a resumed run would not continue "
-                           "the same computation");
-        // The checkpoint must be of the run the folder holds (a checkpoint
-        // left by an earlier run, or copied in, is not), and the files it
-        // continues must be as that run left them. Checked before anything
-        // in the folder is touched.
-        std::string folder_scene;
-        try
-          {
-            folder_scene = read_text_file(options.resume_dir + "/parameters.prm");
-          }
-        catch (const FileReadError &e)
-          {
-            throw InputError("--resume: the folder's scene cannot be read, so the run it holds is not known: " +
-                             std::string(e.what()));
-          }
-        const std::string difference = first_difference(folder_scene, saved.scene_text);
-        if (!difference.empty())
-          throw InputError("--resume: the checkpoint in '" + options.resume_dir +
-                           "' is of another run than the folder's: " + difference + "; not resumed");
-        check_continued_file(options.resume_dir, "trace.csv", saved.trace_bytes, saved.trace_digest);
-        check_continued_file(options.resume_dir, "periods.csv", saved.period_bytes, saved.period_digest);
+        load_checkpoint_to_resume(r);
+        check_checkpoint_is_folders_run(r);
       }
-    if (options.checkpoint_every && options.animate)
-      throw InputError("--checkpoint-every cannot be combined with --animate");
-
-    if (options.model != "rom" && options.model != "fe" && options.model != "auto")
-      throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
-    if (options.model == "auto" && !options.tolerance)
-      throw InputError("--model auto needs --tolerance (the largest acceptable distance of the end position x_C/L to the FE reference's, e.g. 0.03)");
-    if (options.end_time && !(*options.end_time > 0.))
-      throw InputError("--end-time " + std::to_string(*options.end_time) + " s must be > 0");
-
-    const std::string scene_file = std::filesystem::absolute(resolve_scene_path(common.scene_file)).string();
-    const SimulationCase *the_case = options.case_name.empty() ? nullptr : &find_case(options.case_name);
-    SimulationOutcome outcome;
-    Scene &scene = outcome.scene;
-    std::vector<std::string> modified; // the case's own parameters the user changed
-    scene = read_command_scene(common, options.case_name, &modified);
-    if (options.end_time)
-      {
-        scene.time_stepping.end_time = *options.end_time;
-        validate_scene(scene); // the step count limit
-      }
-    const double n_rows = scene.time_stepping.end_time * scene.time_stepping.output_rate;
-    if (n_rows > SimulateOptions::max_trace_rows && !options.allow_large_output)
-      {
-        std::ostringstream m;
-        m << "End time " << scene.time_stepping.end_time << " s at Output rate " << scene.time_stepping.output_rate
-          << " 1/s would write " << n_rows << " rows to trace.csv, more than " << SimulateOptions::max_trace_rows
-          << " (about 1 GB); lower 'Time stepping/Output rate' or pass --allow-large-output";
-        throw InputError(m.str());
-      }
-    // The run goes in pieces of --checkpoint-every, each ending in a
-    // checkpoint: pieces shorter than a time step hold no step, and the run
-    // writes checkpoints without getting on (it never ended). The bound is
-    // the step of the model the run uses; --model auto has not chosen yet,
-    // so it takes the larger of the ROM's and the FE's.
-    if (options.checkpoint_every)
-      {
-        const double rom_step = scene_model(scene, "rom").time_step, fe_step = scene_model(scene, "fe").time_step;
-        const double step = resuming                   ? saved.setting.time_step
-                            : options.model == "rom"   ? rom_step
-                            : options.model == "fe"    ? fe_step
-                                                       : std::max(rom_step, fe_step);
-        const std::string which =
-          resuming ? "the resumed run's time step"
-          : options.model == "rom" ? "the ROM's 'Time stepping/Time step'"
-          : options.model == "fe"  ? "the FE's 'Time stepping/FE time step'"
-                                   : "the larger of the ROM's and the FE's time steps (--model auto may run either)";
-        if (!(*options.checkpoint_every >= step))
-          {
-            std::ostringstream m;
-            m << "--checkpoint-every " << *options.checkpoint_every << " s is outside the allowed range [" << step
-              << ", inf): at least " << which << ", " << step << " s";
-            throw InputError(m.str());
-          }
-      }
-    // What defines this run, as its checkpoints record it: the scene as
-    // parameters.prm holds it, and (for the digest) without its end time.
-    const std::string command_label = the_case ? "simulate/" + the_case->name : std::string("simulate");
-    const std::string scene_text    = scene_file_text(scene);
-    std::string timeless_scene_text;
-    {
-      Scene timeless                    = scene;
-      timeless.time_stepping.end_time = 0.;
-      timeless_scene_text               = scene_file_text(timeless);
-    }
-    if (resuming && fnv1a(run_identity(command_label, saved.setting, timeless_scene_text)) != saved.identity_digest)
-      {
-        // The scene file reads differently now (another build's defaults):
-        // the first line in which the two runs differ.
-        std::istringstream now(run_identity(command_label, saved.setting, timeless_scene_text)), then(saved.identity);
-        std::string a, b;
-        while (std::getline(now, a) && std::getline(then, b) && a == b)
-          ;
-        throw InputError("--resume: the checkpoint in '" + options.resume_dir + "' is of another run: this run has '" +
-                         a + "' where the checkpoint's has '" + b + "'; not resumed");
-      }
-    const std::string dir = outcome.dir =
-      prepare_output_dir(common, scene, command_label, resuming ? RunRecord::append : RunRecord::replace);
+    check_simulate_options(r.options);
+    read_simulation_scene(r);
+    if (r.options.checkpoint_every)
+      check_checkpoint_interval(r);
+    describe_run(r);
+    const Scene &scene     = r.outcome.scene;
+    const std::string &dir = r.outcome.dir =
+      prepare_output_dir(r.common, scene, r.command_label, r.resuming ? RunRecord::append : RunRecord::replace);
     // The chart's Python starts now and loads matplotlib while the run
     // computes; it draws once the CSV files are complete.
     EarlyPlot chart("plot_trace.py");
 
-    // The model: as asked, or the cheapest whose ensemble end state the
-    // scene's error ladder puts within the tolerance of the FE reference's.
-    ModelSetting &setting = outcome.setting;
-    setting = scene_model(scene, options.model == "fe" ? "fe" : "rom"); // the FE at the scene's FE time step
-    std::string &why = outcome.why;
-    if (resuming)
-      {
-        setting = saved.setting;
-        why     = saved.why;
-      }
-    else if (options.model == "auto")
-      {
-        if (scene.solid.enabled())
-          throw InputError("--model auto chooses on the beam's error ladder, which a solid scene (Solid/Continuum = '" +
-                           scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
-                           "--model fe (the 1D beam)");
-        // The ladder is cached beside the scene's reports, keyed by its content.
-        const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
-        setting = choose_model(scene, *options.tolerance, cache, why);
-        console() << why << std::endl;
-      }
+    choose_model(r);
+    const ModelSetting &setting = r.outcome.setting;
     std::unique_ptr<BeamSystem> beam = make_beam_model(scene, setting);
-
     const double end_time = scene.time_stepping.end_time;
-    console() << "simulate " << scene.name << (the_case ? " --case " + the_case->name : std::string()) << ": "
+    console() << "simulate " << scene.name << (r.the_case ? " --case " + r.the_case->name : std::string()) << ": "
               << setting.label() << ", " << end_time << " s (" << std::llround(end_time / setting.time_step)
               << " steps), output in " << dir << std::endl;
-
     RunOptions run_options        = RunOptions::from_scene(scene, setting.time_step);
     run_options.progress_interval = std::max(1., end_time / 20.);
-    if (!(setting.time_step <= beam->max_stable_time_step()))
-      {
-        std::ostringstream m;
-        m << "Parameter 'Time stepping/" << (setting.family == "fe" ? "FE time step" : "Time step")
-          << "' = " << setting.time_step
-          << " s is not allowed: the " << setting.label() << " is stable only for time steps up to "
-          << beam->max_stable_time_step() << " s (explicit scheme: 2/omega_max)";
-        throw InputError(m.str());
-      }
+    check_stable_time_step(setting, *beam);
     AdaptationRun run(scene, *beam, run_options);
-    std::vector<PeriodRecord> periods;
-    FileDigest trace_digest, period_digest; // of the files' bytes up to the last checkpoint
-    if (resuming)
-      {
-        try
-          {
-            run.load(*checkpoint);
-            if (!checkpoint->at_end())
-              throw CheckpointError("the checkpoint holds more than this model's state");
-          }
-        catch (const CheckpointError &e)
-          {
-            throw InputError("--resume: checkpoint in '" + dir + "' does not fit the model: " + e.what());
-          }
-        if (!(end_time > run.state().t))
-          {
-            std::ostringstream m;
-            m << "--resume: --end-time " << end_time << " s must lie after the checkpoint's time " << run.state().t
-              << " s";
-            throw InputError(m.str());
-          }
-        // Rows written after the checkpoint by the run that stopped are
-        // dropped; the resumed run writes them again, identically. (Only
-        // ever shorter: the files were checked to be at least this long.)
-        for (const auto &[file, size] : {std::pair(dir + "/trace.csv", saved.trace_bytes),
-                                         std::pair(dir + "/periods.csv", saved.period_bytes)})
-          {
-            std::error_code ec;
-            std::filesystem::resize_file(file, size, ec);
-            if (ec)
-              throw OutputError("--resume: '" + file + "' cannot be cut back to the checkpoint: " + ec.message());
-          }
-        periods = saved.periods;
-        trace_digest  = {saved.trace_bytes, saved.trace_digest};
-        period_digest = {saved.period_bytes, saved.period_digest};
-        console() << "resuming from t = " << run.state().t << " s (checkpoint in " << dir << ")" << std::endl;
-      }
-    // A resumed run appends to the files it continues. The trace (1000 rows
-    // per simulated second) is flushed every 1000 rows, periods.csv every row.
-    CsvOptions trace_options, period_options;
-    trace_options.append      = resuming;
-    trace_options.flush_every = 1000;
-    period_options.append     = resuming;
-    trace_options.in_place = period_options.in_place = true; // streams that a stopped run keeps
-    CsvWriter trace(dir + "/trace.csv", trace_csv_columns(), trace_options);
-    CsvWriter period_writer(dir + "/periods.csv", period_csv_columns(), period_options);
-    run.on_trace_row = [&trace](const TraceRow &row) { write_trace_row(trace, row); };
-    run.on_period    = [&](const PeriodRecord &r) {
-      write_period_row(period_writer, r);
-      periods.push_back(r);
-    };
-    if (verbose)
-      run.on_progress = [](const RunProgress &p) {
-        console() << "  t = " << std::fixed << std::setprecision(1) << p.t << " / " << p.end_time
-                  << " s, x_C/L = " << std::setprecision(3) << p.slider_x_over_L << ", amplitude "
-                  << p.amplitude_over_h << " h, " << std::setprecision(0) << p.steps_per_second << " steps/s"
-                  << std::endl
-                  << std::defaultfloat;
-      };
+    if (r.resuming)
+      restore_checkpointed_run(r, run);
 
-    const auto start = std::chrono::steady_clock::now();
-    RunResult result;
-    std::unique_ptr<VtkAnimationWriter> animation;
-    if (options.animate)
-      {
-        const double t_first = std::max(0., end_time - animation_window);
-        result               = run.run_until(t_first);
-        animation            = std::make_unique<VtkAnimationWriter>(dir, 1.);
-        for (long k = 0; result.status == RunStatus::completed; ++k)
-          {
-            const double t_frame = t_first + k / animation_rate;
-            if (t_frame > end_time + 1e-12)
-              break;
-            const RunResult part = run.run_until(t_frame);
-            result.status        = part.status;
-            result.message       = part.message;
-            result.n_steps += part.n_steps;
-            result.t_end = part.t_end;
-            if (part.status != RunStatus::completed)
-              break;
-            animation->write(make_animation_frame(run.stepper()));
-          }
-        animation->finish();
-      }
-    else
-      {
-        // In pieces of --checkpoint-every, each followed by a checkpoint
-        // (files flushed first, so the sizes it records are on disk); one
-        // piece without it. The trace is the same either way.
-        const double every = options.checkpoint_every.value_or(0.);
-        auto write_checkpoint = [&] {
-          trace.flush();
-          period_writer.flush();
-          RunDescription d;
-          d.scene_file   = scene_file;
-          d.overrides    = common.overrides;
-          d.case_name    = the_case ? the_case->name : std::string();
-          d.scene_hash   = scene_content_hash(scene_file, d.overrides, d.case_name);
-          d.setting      = setting;
-          d.end_time     = end_time;
-          d.why          = why;
-          d.identity        = run_identity(command_label, setting, timeless_scene_text);
-          d.identity_digest = fnv1a(d.identity);
-          d.scene_text      = scene_text;
-          d.trace_bytes  = std::filesystem::file_size(trace.path());
-          d.period_bytes = std::filesystem::file_size(period_writer.path());
-          extend_digest(trace.path(), trace_digest, d.trace_bytes);
-          extend_digest(period_writer.path(), period_digest, d.period_bytes);
-          d.trace_digest  = trace_digest.hash;
-          d.period_digest = period_digest.hash;
-          d.n_steps      = saved.n_steps + result.n_steps;
-          d.wall_seconds = saved.wall_seconds +
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          d.periods      = periods;
-          CheckpointWriter out;
-          save_description(out, d);
-          run.save(out);
-          write_file_atomically(dir + "/checkpoint.bin", checkpoint_file_bytes(out.bytes()));
-        };
-        const double eps = 1e-9 * setting.time_step;
-        double t_stop    = every > 0. ? (std::floor(run.state().t / every + 1e-9) + 1.) * every : end_time;
-        while (true)
-          {
-            t_stop                = std::min(t_stop, end_time);
-            const RunResult piece = run.run_until(t_stop);
-            result.status         = piece.status;
-            result.message        = piece.message;
-            result.n_steps += piece.n_steps;
-            result.t_end           = piece.t_end;
-            result.slider_x_over_L = piece.slider_x_over_L;
-            result.max_solver_iterations = std::max(result.max_solver_iterations, piece.max_solver_iterations);
-            if (piece.status != RunStatus::completed)
-              break;
-            if (every > 0.)
-              write_checkpoint();
-            if (t_stop >= end_time - eps)
-              break;
-            t_stop += every;
-          }
-        run.finish_trace();
-      }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    trace.close();
-    period_writer.close();
+    RunCsvFiles files(dir, r.resuming);
+    connect_outputs(run, files, r.outcome.periods, verbose);
+    r.start          = std::chrono::steady_clock::now();
+    RunResult &result = r.outcome.result;
+    result = r.options.animate ? run_with_animation(run, dir, end_time) : run_in_pieces(r, run, files);
+    r.outcome.wall_seconds = elapsed_seconds(r.start);
+    files.trace.close();
+    files.periods.close();
 
-    outcome.result       = result;
-    outcome.wall_seconds = wall;
-    outcome.verdict      = case_verdict(periods, result, trace_thresholds(scene));
-    const CaseVerdict &verdict = outcome.verdict;
-    std::ostringstream summary;
-    summary << "# simulate: scene `" << scene.name << "`" << (the_case ? ", case `" + the_case->name + "`" : "") << "\n\n";
-    if (the_case && !modified.empty())
-      {
-        summary << "- Case: " << the_case->name << ", modified: ";
-        for (std::size_t i = 0; i < modified.size(); ++i)
-          summary << (i ? "; " : "") << modified[i];
-        summary << ".\n- Not compared with the published behaviour (" << the_case->published
-                << "): the run changes parameters the case fixes.\n";
-      }
-    else if (the_case)
-      {
-        summary << "- Case: " << the_case->description << ".\n- Published: " << the_case->published << ".\n";
-        const std::string differs = disagreements(outcome.verdict, the_case->expected);
-        summary << "- Against the published behaviour: " << (differs.empty() ? "agrees on every stated feature" : "differs: " + differs) << ".\n";
-      }
-    summary << "- Model: " << setting.label() << ".\n"
-            << (why.empty() ? "" : "- Chosen by --model auto:\n\n```\n" + why + "\n```\n\n")
-            << (resuming ? "- Resumed from the checkpoint in this folder (" + std::to_string(saved.n_steps) +
-                             " steps done before).\n"
-                         : std::string())
-            << (options.checkpoint_every ? "- Checkpoint every " + std::to_string(*options.checkpoint_every) +
-                                             " s simulated: checkpoint.bin (resume with `beamslider simulate --resume " +
-                                             dir + "`).\n"
-                                         : std::string())
-            << "- Simulated " << result.t_end << " s of " << end_time << " s in " << wall << " s wall ("
-            << (wall > 0 ? result.n_steps / wall : 0.) << " steps/s).\n"
-            << "- Status: " << to_string(result.status) << (result.message.empty() ? "" : ": " + result.message) << ".\n"
-            << "- Verdict: " << verdict.line << ".\n"
-            << "\nFiles: trace.csv, periods.csv" << (animation ? ", animation.pvd" : "") << ", trace.png.\n";
-    write_text_file(dir + "/summary.md", summary.str());
+    r.outcome.verdict = case_verdict(r.outcome.periods, result, trace_thresholds(scene));
+    const std::string summary = summary_text(r);
+    write_text_file(dir + "/summary.md", summary);
     if (result.status != RunStatus::completed && result.status != RunStatus::slider_at_support)
       std::cerr << "simulate: " << to_string(result.status) << ": " << result.message << std::endl;
-
-    // No chart of an interrupted run: the user asked it to stop.
-    if (result.status != RunStatus::interrupted)
-      {
-        std::ostringstream title;
-        title << scene.name << (the_case ? " / " + the_case->name : std::string()) << " (" << setting.label() << ")";
-        chart.draw({dir, title.str(), std::to_string(scene.beam.thickness)});
-      }
-
+    draw_trace_chart(chart, r);
     if (verbose)
-      console() << summary.str();
-    outcome.periods = std::move(periods);
-    return outcome;
+      console() << summary;
+    return std::move(r.outcome);
   }
 
   int run_simulate(const CommonOptions &common, const SimulateOptions &options)

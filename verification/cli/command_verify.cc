@@ -16,6 +16,7 @@
 #include "meshes/scene.h"
 #include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/elapsed.h"
 #include "verification/studies/member_runs.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/mpi_cells.h"
@@ -112,6 +113,184 @@ namespace beamslider
       std::filesystem::remove(process.part_file);
       return text;
     }
+
+    // The report on rank 0, shared by its stages: the sections in order
+    // (each appends to report.text), the second process running one of them,
+    // and the wall time of each section run.
+    struct VerifyRun
+    {
+      explicit VerifyRun(const VerifyOptions &options)
+        : options(options)
+      {}
+      const VerifyOptions &options;
+      Report report;
+      CaseRunner run_case; // section 4's
+      std::vector<std::function<void()>> sections;
+      std::unique_ptr<SectionProcess> solid_process; // section 8 beside the others
+      std::vector<std::pair<std::size_t, double>> section_seconds; // section index, wall time [s]
+      bool beside = false; // a section ran in the second process
+    };
+
+    const std::vector<std::string> &section_titles()
+    {
+      static const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
+                                                      "Backbone curves",       "Slider contact dynamics",
+                                                      "FE against ROM",        "Operating range",
+                                                      "The seed's System 1 facts", "The beam against the continuum"};
+      return titles;
+    }
+
+    // The other ranks' share of the report: the ladder's members, in the
+    // order rank 0 runs them: the region (full report), the ladder.
+    void work_on_ladder_members(const Scene &scene, const VerifyOptions &options)
+    {
+      if (options.full)
+        work_on_region_members(scene, RegionRunSettings());
+      const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
+      work_on_ladder(scene, ladder.rungs, ladder.reference, ladder.settings);
+    }
+
+    // Section 4's cases, each as `simulate <scene> --case <name>` runs it.
+    CaseRunner simulate_case_runner(const Report &report, const Scene &scene)
+    {
+      return [&report, &scene](const CaseRun &c) {
+        CommonOptions case_common;
+        case_common.scene_file = report.scene_file.empty() ? scene.name : report.scene_file;
+        case_common.overrides  = report.overrides;
+        case_common.output_dir = c.output_dir;
+        SimulateOptions simulate;
+        simulate.model     = "rom";
+        simulate.case_name = c.case_name;
+        simulate.end_time  = c.end_time;
+        return run_simulation(case_common, simulate, false);
+      };
+    }
+
+    // The sections in order; --section picks some (a section alone takes
+    // what it needs from the scene, none reads another's results).
+    std::vector<std::function<void()>> report_sections(VerifyRun &v, const Scene &scene)
+    {
+      return {[&v, &scene] { add_frequency_section(v.report, scene); },
+              [&v, &scene] { add_coefficient_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_backbone_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_contact_section(v.report, scene, v.options.full, v.run_case); },
+              [&v, &scene] { add_fe_rom_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_map_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_system1_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_solid_section(v.report, scene, v.options.full); }};
+    }
+
+    // A part of another verify: only the sections' text, flushed after
+    // each; that verify writes the header, the run record and the rest.
+    int run_part_sections(VerifyRun &v)
+    {
+      if (v.options.sections.empty())
+        throw InputError("--part-file (internal: a part of another verify) needs the sections it runs (--section)");
+      for (const unsigned int k : v.options.sections)
+        {
+          v.sections[k - 1]();
+          write_text_file(v.options.part_file, v.report.text.str());
+        }
+      return 0;
+    }
+
+    void write_report_header(Report &report, const Scene &scene, const VerifyOptions &options)
+    {
+      report.text << "# beamslider verification report: scene `" << scene.name << "`\n\n"
+                  << "Written by `beamslider verify`. Every number below is computed by this run; CSV files with the same data "
+                     "sit beside this file.\n\n";
+      if (!options.sections.empty())
+        {
+          std::string list;
+          for (const unsigned int k : options.sections)
+            list += (list.empty() ? "" : ", ") + std::to_string(k);
+          report.text << "_Only section(s) " << list << " (`--section`); the others were not run._\n\n";
+        }
+    }
+
+    void flush_report(const Report &report) { write_text_file(report.dir + "/report.md", report.text.str()); }
+
+    // Between sections, an interruption (Ctrl-C) ends the report with what
+    // is complete; the studies inside a section stop at their next step.
+    bool end_if_interrupted(Report &report)
+    {
+      if (!interruption_requested())
+        return false;
+      report.text << "\n---\n**Interrupted** (signal " << interruption_signal()
+                  << "): the sections above are complete, the rest was not run.\n";
+      flush_report(report);
+      return true;
+    }
+
+    // The selected sections in order, section 8 from the second process if
+    // it runs there. Each appends to report.md and is flushed to disk before
+    // the next starts, so a failure late in the report keeps the earlier
+    // ones. False when interrupted: the report then says so and ends.
+    bool run_sections(VerifyRun &v)
+    {
+      Report &report = v.report;
+      for (std::size_t k = 0; k < v.sections.size(); ++k)
+        {
+          if (!selected(v.options, k + 1))
+            continue;
+          const auto section_start = std::chrono::steady_clock::now();
+          double seconds           = -1;
+          try
+            {
+              if (k + 1 == 8 && v.solid_process)
+                {
+                  report.text << finish_section_process(*v.solid_process, seconds);
+                  v.beside = true;
+                }
+              else
+                v.sections[k]();
+            }
+          catch (const MemberRunsStopped &e)
+            {
+              // The ladder stopped with a signal: its finished members are kept.
+              report.text << "\n_The error ladder " << e.what() << "._\n";
+            }
+          catch (const Interrupted &e)
+            {
+              // A solver inside the section stopped (a Newton iteration, the
+              // eigensolver, a continuation): what it wrote above is partial.
+              report.text << "\n---\n**Interrupted** (signal " << e.signal() << ") in section " << k + 1
+                          << ", which is incomplete above; the rest was not run.\n";
+              flush_report(report);
+              return false;
+            }
+          if (seconds < 0)
+            seconds = elapsed_seconds(section_start);
+          v.section_seconds.emplace_back(k, seconds);
+          flush_report(report);
+          if (end_if_interrupted(report))
+            return false;
+        }
+      return true;
+    }
+
+    // How this report was made: enough to reproduce it and to read its
+    // wall times (run.txt beside it has the exact command line).
+    void add_how_made(VerifyRun &v, const unsigned int n_ranks, const double seconds)
+    {
+      const VerifyOptions &options = v.options;
+      Report &report               = v.report;
+      report.text << "---\n## How this report was made\n\n"
+                  << "- build: " << build_revision() << " (run.txt: the exact command line; parameters.prm: the scene)\n"
+                  << "- machine: " << machine_description() << "; " << n_ranks << " MPI rank(s)"
+                  << (n_ranks > 1 ? "" : ", the ensembles' members over the cores") << "\n"
+                  << "- studies: "
+                  << (!options.full ? "quick" : options.diagnostics ? "full with the ladder's diagnostic rungs (`--full --diagnostics`)" : "full (`--full`)")
+                  << "\n\n"
+                  << "| section | wall time [s] |\n|---|---|\n";
+      for (const auto &[k, s] : v.section_seconds)
+        report.text << "| " << k + 1 << ". " << section_titles()[k] << " | " << fixed(s, 0)
+                    << (k + 1 == 8 && v.beside ? " (beside 1–7)" : "") << " |\n";
+      report.text << "| total | " << fixed(seconds, 0) << " |\n";
+      if (v.beside)
+        report.text << "\nSection 8 ran in a second process beside sections 1–7 (its wall time is its own, from the start "
+                       "of the report); the total is the report's.\n";
+    }
   } // namespace
 
   int run_verify(const CommonOptions &common, const VerifyOptions &options)
@@ -119,25 +298,18 @@ namespace beamslider
     MpiSession mpi(launched_by_mpi_launcher());
     const Scene scene = read_scene(resolve_scene_path(common.scene_file), common.overrides);
     const bool ladder_section = selected(options, 5);
-    const bool part           = !options.part_file.empty();
     if (mpi.rank() != 0)
       {
-        // The other ranks' share of the report: the ladder's members.
         if (ladder_section)
-          {
-            // In the order rank 0 runs them: the region (full report), the ladder.
-            if (options.full)
-              work_on_region_members(scene, RegionRunSettings());
-            const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
-            work_on_ladder(scene, ladder.rungs, ladder.reference, ladder.settings);
-          }
+          work_on_ladder_members(scene, options);
         return 0;
       }
     // If rank 0 ends before the ladder or its checks' rounds (an error, a
     // stop), the other ranks, waiting for its members, are told to stop.
     const WorkerRelease release(mpi, ladder_section ? (options.full ? 2 : 1) : 0);
-    Report report;
-    if (part)
+    VerifyRun v(options);
+    Report &report = v.report;
+    if (!options.part_file.empty())
       report.dir = common.output_dir; // the whole verify's folder, which holds its run record
     else
       report.dir = prepare_output_dir(common, scene, "");
@@ -145,137 +317,23 @@ namespace beamslider
     report.overrides  = common.overrides;
     report.ladder_diagnostics = options.diagnostics;
     const auto start = std::chrono::steady_clock::now();
-    // Section 4's cases, each as `simulate <scene> --case <name>` runs it.
-    const CaseRunner run_case = [&](const CaseRun &c) {
-      CommonOptions case_common;
-      case_common.scene_file = report.scene_file.empty() ? scene.name : report.scene_file;
-      case_common.overrides  = report.overrides;
-      case_common.output_dir = c.output_dir;
-      SimulateOptions simulate;
-      simulate.model     = "rom";
-      simulate.case_name = c.case_name;
-      simulate.end_time  = c.end_time;
-      return run_simulation(case_common, simulate, false);
-    };
-
-    // The sections in order; --section picks some (a section alone takes
-    // what it needs from the scene, none reads another's results).
-    const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
-                                             "Backbone curves",       "Slider contact dynamics",
-                                             "FE against ROM",        "Operating range",
-                                             "The seed's System 1 facts", "The beam against the continuum"};
-    const std::vector<std::function<void()>> sections = {
-      [&] { add_frequency_section(report, scene); },
-      [&] { add_coefficient_section(report, scene, options.full); },
-      [&] { add_backbone_section(report, scene, options.full); },
-      [&] { add_contact_section(report, scene, options.full, run_case); },
-      [&] { add_fe_rom_section(report, scene, options.full); },
-      [&] { add_map_section(report, scene, options.full); },
-      [&] { add_system1_section(report, scene, options.full); },
-      [&] { add_solid_section(report, scene, options.full); }};
-    if (part)
-      {
-        // A part of another verify: only the sections' text, flushed after
-        // each; that verify writes the header, the run record and the rest.
-        if (options.sections.empty())
-          throw InputError("--part-file (internal: a part of another verify) needs the sections it runs (--section)");
-        for (const unsigned int k : options.sections)
-          {
-            sections[k - 1]();
-            write_text_file(options.part_file, report.text.str());
-          }
-        return 0;
-      }
+    v.run_case = simulate_case_runner(report, scene);
+    v.sections = report_sections(v, scene);
+    if (!options.part_file.empty())
+      return run_part_sections(v);
     // Section 8 beside the others, in a second process (see the top).
-    std::unique_ptr<SectionProcess> solid_process;
     if (mpi.size() == 1 && selected(options, 8) && options.sections.size() != 1)
-      solid_process = start_section_process(8, report, options);
+      v.solid_process = start_section_process(8, report, options);
 
     console() << "beamslider verify: scene '" << scene.name << "', report in " << report.dir
               << (options.full ? " (full studies)" : " (quick studies; --full for the long ones)") << std::endl;
+    write_report_header(report, scene, options);
+    if (!run_sections(v))
+      return interruption_exit_code();
 
-    report.text << "# beamslider verification report: scene `" << scene.name << "`\n\n"
-                << "Written by `beamslider verify`. Every number below is computed by this run; CSV files with the same data "
-                   "sit beside this file.\n\n";
-    if (!options.sections.empty())
-      {
-        std::string list;
-        for (const unsigned int k : options.sections)
-          list += (list.empty() ? "" : ", ") + std::to_string(k);
-        report.text << "_Only section(s) " << list << " (`--section`); the others were not run._\n\n";
-      }
-    // Each section appends to report.md and is flushed to disk before the
-    // next starts, so a failure late in the report keeps the earlier ones.
-    auto flush = [&report] { write_text_file(report.dir + "/report.md", report.text.str()); };
-    // Between sections, an interruption (Ctrl-C) ends the report with what
-    // is complete; the studies inside a section stop at their next step.
-    auto interrupted = [&] {
-      if (!interruption_requested())
-        return false;
-      report.text << "\n---\n**Interrupted** (signal " << interruption_signal()
-                  << "): the sections above are complete, the rest was not run.\n";
-      flush();
-      return true;
-    };
-    std::vector<std::pair<std::size_t, double>> section_seconds; // section index, wall time [s]
-    bool beside = false; // a section ran in the second process
-    for (std::size_t k = 0; k < sections.size(); ++k)
-      {
-        if (!selected(options, k + 1))
-          continue;
-        const auto section_start = std::chrono::steady_clock::now();
-        double seconds           = -1;
-        try
-          {
-            if (k + 1 == 8 && solid_process)
-              {
-                report.text << finish_section_process(*solid_process, seconds);
-                beside = true;
-              }
-            else
-              sections[k]();
-          }
-        catch (const MemberRunsStopped &e)
-          {
-            // The ladder stopped with a signal: its finished members are kept.
-            report.text << "\n_The error ladder " << e.what() << "._\n";
-          }
-        catch (const Interrupted &e)
-          {
-            // A solver inside the section stopped (a Newton iteration, the
-            // eigensolver, a continuation): what it wrote above is partial.
-            report.text << "\n---\n**Interrupted** (signal " << e.signal() << ") in section " << k + 1
-                        << ", which is incomplete above; the rest was not run.\n";
-            flush();
-            return interruption_exit_code();
-          }
-        if (seconds < 0)
-          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - section_start).count();
-        section_seconds.emplace_back(k, seconds);
-        flush();
-        if (interrupted())
-          return interruption_exit_code();
-      }
-
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    // How this report was made: enough to reproduce it and to read its
-    // wall times (run.txt beside it has the exact command line).
-    report.text << "---\n## How this report was made\n\n"
-                << "- build: " << build_revision() << " (run.txt: the exact command line; parameters.prm: the scene)\n"
-                << "- machine: " << machine_description() << "; " << mpi.size() << " MPI rank(s)"
-                << (mpi.size() > 1 ? "" : ", the ensembles' members over the cores") << "\n"
-                << "- studies: "
-                << (!options.full ? "quick" : options.diagnostics ? "full with the ladder's diagnostic rungs (`--full --diagnostics`)" : "full (`--full`)")
-                << "\n\n"
-                << "| section | wall time [s] |\n|---|---|\n";
-    for (const auto &[k, s] : section_seconds)
-      report.text << "| " << k + 1 << ". " << titles[k] << " | " << fixed(s, 0) << (k + 1 == 8 && beside ? " (beside 1–7)" : "")
-                  << " |\n";
-    report.text << "| total | " << fixed(seconds, 0) << " |\n";
-    if (beside)
-      report.text << "\nSection 8 ran in a second process beside sections 1–7 (its wall time is its own, from the start "
-                     "of the report); the total is the report's.\n";
-    flush();
+    const double seconds = elapsed_seconds(start);
+    add_how_made(v, mpi.size(), seconds);
+    flush_report(report);
     // fixed(): a section may leave the console stream at a low precision.
     console() << "Wrote " << report.dir << "/report.md (" << fixed(seconds, 0) << " s)" << std::endl;
     return 0;
