@@ -70,12 +70,7 @@ namespace beamslider
 
     void begin_increment(const double target)
     {
-      // The load at this increment: F_start + target (F − F_start).
-      load = F;
-      if (F_start)
-        load.sadd(target, 1. - target, *F_start);
-      else
-        load *= target;
+      load_at_fraction(F, F_start, target, load);
       load_scale    = std::max(load.l2_norm(), 1e-300 * load_norm);
       u_start       = u;
       relative      = 0;

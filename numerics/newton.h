@@ -171,6 +171,18 @@ namespace beamslider
     double min     = 1e-4; // give up below this increment
   };
 
+  // The load of an increment: F_start + fraction (F − F_start), or fraction
+  // F from zero (F_start null). Vector: deal.II's or PETSc's.
+  template <class Vector>
+  void load_at_fraction(const Vector &F, const Vector *F_start, const double fraction, Vector &load)
+  {
+    load = F;
+    if (F_start)
+      load.sadd(fraction, 1. - fraction, *F_start);
+    else
+      load *= fraction;
+  }
+
   // A load-stepped problem has
   //   void begin_increment(double fraction);   // the load at this fraction; keep the start
   //   NewtonOutcome solve_increment();         // Newton from the kept start

@@ -73,6 +73,11 @@ namespace beamslider
                          slider_inertia * dphi_1_at_slider * dphi_1_at_slider);
   }
 
+  double single_mode_backbone_ratio(const double c, const double w_over_h)
+  {
+    return std::sqrt(1 + c * w_over_h * w_over_h);
+  }
+
   double single_mode_backbone_coefficient(const double omega_1, const double b_111, const double phi_1_at_output,
                                           const double thickness)
   {

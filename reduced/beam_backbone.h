@@ -48,4 +48,6 @@ namespace beamslider
   // The coefficient c of (ω/ω₁)² = 1 + c (ŵ/h)² with ŵ = φ₁(x_out) q̂ (Eq. 4
   // rewritten): c = ¾ b₁₁₁ h² / (φ₁(x_out)² ω₁²) [-].
   double single_mode_backbone_coefficient(double omega_1, double b_111, double phi_1_at_output, double thickness);
+  // Eq. 4 in that form: ω/ω₁ = sqrt(1 + c (ŵ/h)²) [-].
+  double single_mode_backbone_ratio(double c, double w_over_h);
 } // namespace beamslider

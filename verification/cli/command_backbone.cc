@@ -93,7 +93,7 @@ namespace beamslider
     for (unsigned int i = 0; i <= 200; ++i)
       {
         const double a = options.max_amplitude_over_h * i / 200.;
-        eq4.row({CsvWriter::cell(a), CsvWriter::cell(omega_1 * std::sqrt(1 + c * a * a) / (2 * pi))});
+        eq4.row({CsvWriter::cell(a), CsvWriter::cell(omega_1 * single_mode_backbone_ratio(c, a) / (2 * pi))});
       }
 
     std::ostringstream summary;

@@ -5,6 +5,7 @@
 #include "fem/fe_modes.h"
 #include "fem/vtk_beam_output.h"
 #include "meshes/scene.h"
+#include "reduced/beam_backbone.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
@@ -62,7 +63,8 @@ namespace beamslider
         // Seed Eq. 5 with the bare beam's first mode (a Rayleigh quotient):
         // ω̃₁² = ω₁² / (1 + m φ₁(x_C)² + J φ₁'(x_C)²).
         const double phi = beam.deflection(bare.shapes[0], x_C), dphi = beam.slope(bare.shapes[0], x_C);
-        const double eq5 = bare.omega[0] / std::sqrt(1 + scene.slider_mass() * phi * phi + scene.slider_inertia() * dphi * dphi);
+        const double eq5 = single_mode_backbone_frequency_with_slider(bare.omega[0], 0, 0, scene.slider_mass(),
+                                                                     scene.slider_inertia(), phi, dphi);
         CsvWriter csv(dir + "/modes.csv", {"mode", "frequency_hz", "bare_beam_frequency_hz", "eq5_frequency_hz",
                                            "eq5_relative_difference"});
         for (unsigned int k = 0; k < modes.omega.size(); ++k)

@@ -171,7 +171,7 @@ namespace beamslider
       const ReducedOrderModel rom1(make_modal_basis(beam, modes, 1), 0.);
       const double c = single_mode_backbone_coefficient(omega_1, rom1.analytic_cubic_terms()[0].value,
                                                         beam.deflection(modes.shapes[0], 0.5 * L), h);
-      auto eq4 = [&](const double r) { return omega_1 * std::sqrt(1 + c * r * r); };
+      auto eq4 = [&](const double r) { return omega_1 * single_mode_backbone_ratio(c, r); };
       for (unsigned int i = 0; i <= 200; ++i)
         curves.row({"eq4", CsvWriter::cell(0.02 * i), CsvWriter::cell(eq4(0.02 * i) / (2 * pi)), "0", "backbone"});
 
@@ -347,7 +347,7 @@ namespace beamslider
         write_curve(icurves, "fe", ib["FE"], h);
         for (unsigned int i = 0; i <= 200; ++i)
           icurves.row({"eq4", CsvWriter::cell(0.02 * i),
-                       CsvWriter::cell(iw1 * std::sqrt(1 + ic * 0.0004 * i * i) / (2 * pi)), "0", "backbone"});
+                       CsvWriter::cell(iw1 * single_mode_backbone_ratio(ic, 0.02 * i) / (2 * pi)), "0", "backbone"});
 
         md << "### 3.3 Ideal clamp: single-mode law and the 3:1 interaction\n\n"
            << "The same beam with ideal clamps (k_r, k_t → ∞; scene `mueller2023-ideal`), where doc/verification.md quotes "
@@ -367,7 +367,7 @@ namespace beamslider
                << " | " << sci(b.seconds, 2) << " |\n";
           }
         const auto w25 = omega_at(ib["FE"], 2.5, h);
-        md << "\nEq. 4 at ŵ/h = 2.5: ω/ω₁ = " << fixed(std::sqrt(1 + 6.25 * ic), 4) << " (doc/physics.md: ×2.09 on ω)"
+        md << "\nEq. 4 at ŵ/h = 2.5: ω/ω₁ = " << fixed(single_mode_backbone_ratio(ic, 2.5), 4) << " (doc/physics.md: ×2.09 on ω)"
            << (w25 ? ", FE " + fixed(*w25 / iw1, 4) : std::string("")) << ". ";
         if (!ib["FE"].gaps.empty())
           {
@@ -388,7 +388,7 @@ namespace beamslider
                   "bound of the interaction region: the continuation restarts at the first of ŵ/h × (1.02, 1.05, 1.1, …) "
                   "that converges to the backbone. The seed reports agreement of Eq. 4 and its NMA up to ŵ/h ≈ 2.6 and a "
                   "loop near 4 on its System 1; on this beam the single-mode law holds to within "
-               << (w25 ? sci(std::abs(std::sqrt(1 + 6.25 * ic) / (*w25 / iw1) - 1), 1) : std::string("?"))
+               << (w25 ? sci(std::abs(single_mode_backbone_ratio(ic, 2.5) / (*w25 / iw1) - 1), 1) : std::string("?"))
                << " at ŵ/h = 2.5, the 3:1 interaction at ŵ/h ≈ " << fixed(g.last_amplitude / h, 2)
                << " interrupts the backbone, and the FE backbone has "
                << (count_amplitude_folds(ib["FE"], false) == 0

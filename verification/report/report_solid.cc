@@ -21,8 +21,9 @@
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "numerics/newton.h"
 #include "fem/solid_statics.h"
+#include "numerics/newton.h"
+#include "reduced/beam_backbone.h"
 #include "reduced/cubic_fit.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
@@ -54,12 +55,11 @@ namespace beamslider
       unsigned int n_dofs = 0;
       double seconds      = 0;
 
-      // ω/ω₁ of the single-mode ICE model at mid-span amplitude ŵ:
-      // harmonic balance of q'' + ω₁² q + b q³ = 0, ω² = ω₁² + ¾ b A².
+      // ω/ω₁ of the single-mode ICE model at mid-span amplitude ŵ (seed
+      // Eq. 4 at the modal amplitude A = ŵ/|φ₁(L/2)|).
       double backbone(const double w_hat) const
       {
-        const double A = w_hat / std::abs(phi1_mid);
-        return std::sqrt(1 + 0.75 * b111 * A * A / (omega1 * omega1));
+        return single_mode_backbone_frequency(omega1, b111, w_hat / std::abs(phi1_mid)) / omega1;
       }
     };
 
