@@ -153,7 +153,7 @@ namespace beamslider
     // spectral radius of the amplification matrix of ẍ = −ω²x): it removes the undamped high bending modes that ring
     // after each impact and that the step does not resolve. Whether an end
     // state computed so agrees with the reference's is measured, not
-    // assumed: doc/verification.md §7. The stepper moves the slider with the
+    // assumed: doc/findings.md. The stepper moves the slider with the
     // same θ (BeamSystem::theta).
     double theta = 0.5;
     // Refactorise at least every this many steps (0: only when Newton needs it).

@@ -242,7 +242,7 @@ namespace beamslider
     // (θ − 0.5) ω Δt). The FE keeps the bending modes above the ROM's N
     // undamped, and they ring after every impact; with θ = 0.5 the end state
     // of an adaptation converges in Δt only at ≤ 1.25e-6 s, after a plateau
-    // at 5e-6 … 2.5e-6 s (doc/verification.md §7: on mueller2023's 32
+    // at 5e-6 … 2.5e-6 s (doc/findings.md: on mueller2023's 32
     // elements 0.493, 0.432, 0.371, 0.371, 0.409, 0.409 L at 2e-5 …
     // 6.25e-7 s). θ = 0.51 at 1e-5 s ends where the converged midpoint rule
     // ends (0.409 L) with an eighth of its steps: the defaults.

@@ -1,7 +1,7 @@
 // The FE beam's contact path on meshes other than the scene's 32 elements.
 //
-// Why: the FE reference's end state depends on the mesh (doc/verification.md
-// §7: 16 and 24 elements end at 0.41 L, 32 at 0.371 L, 48 and 64 do not
+// Why: the FE reference's end state depends on the mesh (doc/findings.md:
+// 16 and 24 elements end at 0.41 L, 32 at 0.371 L, 48 and 64 do not
 // adapt). Before that is read as physics of the discretised model, the FE's
 // contact code must be shown right on every mesh, not only on 32 elements.
 //
@@ -35,7 +35,7 @@
 //   32 el (64 modes):  5.8e-9, 2.5e-9 | 3.8e-2, 1.3e-2
 //   64 el (128 modes): 1.7e-8, 3.5e-8 | 4.4e-2, 8.8e-3
 // The meshes differ by a few per cent and not less on finer meshes: that is
-// the mesh dependence of doc/verification.md §7, and this test shows it is
+// the mesh dependence of doc/findings.md, and this test shows it is
 // the discretised model's, not a fault of the FE code. Wall time ~1 s.
 //
 // The second test measures why the mesh and the time step do not commute:

@@ -169,7 +169,7 @@ BENCHMARK(StartUp)->Unit(benchmark::kMillisecond)->Iterations(5);
 // low amplitude) or 12 (after the jump, on the high branch at ~1.8 h, where
 // a 60 s run spends most of its steps). FeContactMidpoint: the midpoint rule
 // (θ = ½) at half that step, the reference until 2026-11-27, which sits on
-// a plateau of its end state (doc/verification.md §7): the cost side of the
+// a plateau of its end state (doc/findings.md): the cost side of the
 // choice, per step and per simulated second.
 static void fe_contact(benchmark::State &state, const bool midpoint)
 {

@@ -71,7 +71,7 @@ namespace beamslider
     // 6.25e-7 s, 0.409 L after 40 s) with an eighth of its steps: the scheme
     // damps the bending modes the step cannot resolve (ωΔt ≳ 1), whose
     // wrong-frequency ringing after each impact holds the midpoint rule on a
-    // plateau at 0.371 L at 5e-6 and 2.5e-6 s (doc/verification.md §7).
+    // plateau at 0.371 L at 5e-6 and 2.5e-6 s (doc/findings.md).
     const ModelSetting fe_reference = scene_model(scene, "fe");
     const std::string reference_name =
       fe_step_name(dt, fe_reference.time_step, fe_reference.theta);

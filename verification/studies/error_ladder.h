@@ -104,7 +104,7 @@ namespace beamslider
   //                the reference: the scene's own FE model (its FE time step
   //                and θ; on mueller2023 θ = 0.51 at Δt/2, which ends where
   //                the midpoint-rule FE converged in Δt ends,
-  //                doc/verification.md §7);
+  //                doc/findings.md);
   //   full         adds the ROM N = 20 with the FE's implicit midpoint rule
   //                (the verdict of `verify --full`);
   //   diagnostics  adds, as diagnostic rungs, the implicit ROM with every

@@ -16,7 +16,7 @@ namespace beamslider
     // positions between the published ROM and the converged FE on the
     // default scene is ±0.04 L (README), so 0.03 is not loose. The seed
     // gives no number for "near the centre"; 0.6 is a tenth of L from it
-    // (from 0.55 no candidate we tried moved at all: doc/verification.md).
+    // (from 0.55 no candidate we tried moved at all: doc/findings.md).
     {"fig10", "Fig. 10: toward the clamp, jump, turn, stop near x_C/L = 0.57",
      "145 Hz, 20 m/s^2, slider initially near the centre (no number given; 0.6 here): first away "
      "from the centre on the low branch, jump, turn, stops at x_C^ss/L = 0.57 (seed 4.2-4.3)",
