@@ -644,6 +644,7 @@ namespace beamslider
     const unsigned int rank;
     const bool exact_in_one; // a linear beam without damping: S₀ is the exact Jacobian
     unsigned int iteration = 0;
+    double tolerance       = 0; // on the last correction (correct())
 
     NewtonState evaluate(bool)
     {
@@ -709,6 +710,8 @@ namespace beamslider
       beam.solve_factored(beam.res_, beam.du_);
       beam.u_ -= beam.du_;
       ++beam.stats_.newton_iterations;
+      const FETransientSettings &settings = beam.settings_;
+      tolerance = settings.relative_tolerance * (beam.u_.norm() + beam.q_bar_.norm() / dt) + settings.absolute_tolerance;
       return beam.du_.norm();
     }
 
@@ -718,13 +721,7 @@ namespace beamslider
     // driver also accepts on the contraction estimate of the remaining
     // error.) With damping the correction left out θΔt C, so only the
     // undamped linear beam is solved in one step.
-    bool small(const double correction) const
-    {
-      const FETransientSettings &settings = beam.settings_;
-      const double tolerance =
-        settings.relative_tolerance * (beam.u_.norm() + beam.q_bar_.norm() / dt) + settings.absolute_tolerance;
-      return correction <= tolerance || (exact_in_one && iteration == 1);
-    }
+    bool small(const double correction) const { return correction <= tolerance || (exact_in_one && iteration == 1); }
   };
 
   void FETransientBeam::compute_free_velocity(const double t_M, const Eigen::VectorXd &q_M, const Eigen::VectorXd &u_B,
