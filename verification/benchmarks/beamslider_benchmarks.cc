@@ -16,6 +16,7 @@
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
+#include "verification/studies/elapsed.h"
 #include "verification/benchmarks/heap_counter.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
@@ -59,7 +60,7 @@ namespace
         const double next = std::min(t + chunk, t_end);
         const auto start  = std::chrono::steady_clock::now();
         const RunResult r = run.run_until(next);
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double wall = elapsed_seconds(start);
         if (r.n_steps > 0)
           fastest = std::min(fastest, 1e6 * wall / r.n_steps);
         result.status = r.status;
@@ -96,7 +97,7 @@ namespace
         RunResult rest;
         fastest = run_in_chunks(run, seconds, 0.1, time_step, rest);
         allocations += heap_counter::stop();
-        wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        wall += elapsed_seconds(start);
         for (const RunResult *r : {&first, static_cast<const RunResult *>(&rest)})
           {
             if (r->status != RunStatus::completed)
@@ -156,7 +157,7 @@ static void StartUp(benchmark::State &state)
       int status = 0;
       if (pid < 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
         state.SkipWithError("beamslider --help did not run");
-      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      wall += elapsed_seconds(start);
     }
   state.counters["s/start"] = wall / state.iterations();
 }
@@ -206,7 +207,7 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
       allocations += heap_counter::stop();
       counted_steps += result.n_steps;
       result.n_steps += settle_steps;
-      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      wall += elapsed_seconds(start);
       after = fe.statistics();
       if (result.status != RunStatus::completed)
         state.SkipWithError(result.message.c_str());

@@ -20,6 +20,7 @@
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
@@ -89,7 +90,7 @@ namespace beamslider
     writer.finish();
     if (solid)
       solid->finish();
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wall = elapsed_seconds(start);
     if (last.status != RunStatus::completed)
       std::cerr << "animate: the run stopped early (" << to_string(last.status) << "): " << last.message << "\n";
     console() << "wrote " << writer.n_frames() << " frames to " << writer.pvd_file()

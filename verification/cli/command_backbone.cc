@@ -27,6 +27,7 @@
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/console.h"
 
@@ -73,7 +74,7 @@ namespace beamslider
                      " free DoFs (u, w, θ; axial inertia kept), harmonics 0…" + std::to_string(options.n_harmonics) +
                      " (w, θ odd, u even)";
       }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds = elapsed_seconds(t0);
 
     CsvWriter csv(dir + "/backbone.csv", {"amplitude_over_h", "frequency_hz", "segment", "branch", "peak_over_h", "relative_residual"});
     double a_max = 0;

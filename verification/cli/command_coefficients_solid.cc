@@ -19,6 +19,7 @@
 #include "fem/solid_modes.h"
 #include "meshes/scene.h"
 #include "reduced/cubic_fit.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
@@ -51,11 +52,11 @@ namespace beamslider
       if (kept.empty())
         kept.assign(modes.bending.begin(), modes.bending.end());
       const unsigned int N = kept.size();
-      const double modes_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double modes_seconds = elapsed_seconds(start);
       SolidModalCoefficients<dim> coefficients(model, modes, kept);
       const Eigen::VectorXd omega  = coefficients.omega();
       const CubicFit fit = solid_cubic_fit(coefficients, method, scene.beam.thickness);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds = elapsed_seconds(start);
 
       // Rank 0 writes and prints; a failure there is every rank's (exit 1 on all).
       fail_together(comm, [&] {

@@ -23,7 +23,7 @@
 #include "contact/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/elapsed.h"
+#include "verification/studies/elapsed.h"
 #include "verification/studies/console.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/system1_facts.h"

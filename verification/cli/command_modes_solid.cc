@@ -20,6 +20,7 @@
 #include "fem/solid_modes.h"
 #include "fem/solid_output.h"
 #include "meshes/scene.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
@@ -44,7 +45,7 @@ namespace beamslider
       const auto start = std::chrono::steady_clock::now();
       const SolidModel<dim> model(scene, comm);
       const SolidModes modes = compute_solid_modes(model, n_bending);
-      const double seconds   = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds   = elapsed_seconds(start);
 
       std::vector<SolidField> fields;
       std::vector<double> scales;

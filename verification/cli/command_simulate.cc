@@ -22,7 +22,7 @@
 #include "fem/vtk_animation.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/elapsed.h"
+#include "verification/studies/elapsed.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/model_choice.h"

@@ -25,6 +25,7 @@
 #include "fem/vtk_beam_output.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
@@ -104,7 +105,7 @@ namespace beamslider
         throw StaticSolveError(std::string(e.what()) + "; " + dir + "/statics.csv holds the " +
                                std::to_string(n_converged) + " converged steps before it; statics.vtu not written");
       }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = elapsed_seconds(start);
     for (unsigned int k = 0; k < path.size(); ++k)
       shapes.push_back({"step_" + std::to_string(k + 1), path[k].x, 1.});
     csv.close();

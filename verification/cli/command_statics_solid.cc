@@ -15,6 +15,7 @@
 #include "fem/solid_statics.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
+#include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"
@@ -128,7 +129,7 @@ namespace beamslider
       for (unsigned int k = 0; k < states.size(); ++k)
         fields.push_back({"step_" + std::to_string(k + 1), &states[k], 1.});
       const std::string record = write_solid_fields(model, fields, dir, "statics");
-      const double seconds     = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds     = elapsed_seconds(start);
       if (root)
         {
           console() << "Statics of the " << scene.solid.continuum << " solid of scene '" << scene.name << "' ("

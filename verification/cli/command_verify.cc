@@ -16,7 +16,7 @@
 #include "meshes/scene.h"
 #include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
-#include "verification/cli/elapsed.h"
+#include "verification/studies/elapsed.h"
 #include "verification/studies/member_runs.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/mpi_cells.h"
@@ -82,7 +82,7 @@ namespace beamslider
       process->outcome = std::async(std::launch::async, [argv = process->argv] {
         const auto start         = std::chrono::steady_clock::now();
         const ChildResult result = run_child(argv, ChildEnvironment::without_mpi_launch);
-        return std::make_pair(result, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        return std::make_pair(result, elapsed_seconds(start));
       });
       return process;
     }

@@ -8,6 +8,7 @@
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
 #include "contact/csv_writer.h"
 #include "contact/interruption.h"
+#include "verification/studies/elapsed.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/pcs_sweep.h"
@@ -128,7 +129,7 @@ namespace beamslider
             "input with μ = 0 and no damping (test_reduced_rom_contact_beam).\n\n";
 
     add_pcs_sweep_subsection(report, scene, full);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = elapsed_seconds(start);
     md << "Section 4 took " << fixed(seconds, 1) << " s.\n\n";
   }
 } // namespace beamslider

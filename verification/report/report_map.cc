@@ -14,6 +14,7 @@
 #include "contact/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
+#include "verification/studies/elapsed.h"
 #include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
@@ -84,7 +85,7 @@ namespace beamslider
           // Under `mpirun -n K beamslider verify` this process is an MPI launch's
           // rank: its children must not inherit that launch.
           const ChildResult result = run_child(argv, ChildEnvironment::without_mpi_launch);
-          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          const double wall = elapsed_seconds(start);
           if (!result.succeeded())
             {
               failures += " " + std::to_string(ranks) + " rank(s): " +
@@ -359,7 +360,7 @@ namespace beamslider
     const std::optional<std::vector<CaseResult>> cases = run_published_cases(report, scene, map.settings, dir);
     if (!cases)
       return; // interrupted
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wall = elapsed_seconds(start);
 
     describe_map_runs(md, scene, map, wall);
     describe_adaptation_band(md, map);

@@ -25,6 +25,7 @@
 #include "numerics/newton.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/cubic_fit.h"
+#include "verification/studies/elapsed.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
 #include "verification/studies/console.h"
@@ -127,7 +128,7 @@ namespace beamslider
       Eigen::VectorXd phi(1), dphi(1);
       basis.evaluate(0.5 * scene.beam.length, phi, dphi);
       r.phi1_mid = phi[0];
-      r.seconds  = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      r.seconds  = elapsed_seconds(start);
       return r;
     }
 
@@ -165,7 +166,7 @@ namespace beamslider
       Eigen::VectorXd phi(1), dphi(1);
       basis.evaluate(0.5 * scene.beam.length, phi, dphi);
       r.phi1_mid = phi[0];
-      r.seconds  = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      r.seconds  = elapsed_seconds(start);
       return r;
     }
 

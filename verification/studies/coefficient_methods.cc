@@ -1,3 +1,4 @@
+#include "verification/studies/elapsed.h"
 #include "verification/studies/coefficient_methods.h"
 
 #include "fem/fe_conservative_system.h"
@@ -52,7 +53,7 @@ namespace beamslider
 
     r.n_static_solves = statics.n_static_solves();
     r.n_linear_solves = statics.n_linear_solves();
-    r.seconds         = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.seconds         = elapsed_seconds(start);
     return r;
   }
 } // namespace beamslider
@@ -98,7 +99,7 @@ namespace beamslider
     r.d = cd[1];
     const double phi_centre = beam.deflection(modes.shapes[0], 0.5 * L);
     r.b_111   = 4. * r.c * phi_centre * phi_centre * r.omega_1 * r.omega_1 / (3. * h * h);
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    r.seconds = elapsed_seconds(start);
     return r;
   }
 } // namespace beamslider

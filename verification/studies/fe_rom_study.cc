@@ -1,3 +1,4 @@
+#include "verification/studies/elapsed.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include "contact/beam_system.h"
@@ -188,7 +189,7 @@ namespace beamslider
         run.ok      = false;
         run.message = e.what();
       }
-    run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    run.wall_seconds = elapsed_seconds(start);
     return run;
   }
 

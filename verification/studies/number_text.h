@@ -2,6 +2,8 @@
 // (1.23e-04) or fixed (0.123) notation, a signed difference, a wall time.
 #pragma once
 
+#include "verification/studies/elapsed.h"
+
 #include <chrono>
 #include <iomanip>
 #include <sstream>
@@ -24,7 +26,7 @@ namespace beamslider
   // Wall time since `start`, as "12 s", for timing lines.
   inline std::string seconds_since(const std::chrono::steady_clock::time_point &start)
   {
-    return fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0) + " s";
+    return fixed(elapsed_seconds(start), 0) + " s";
   }
   // With its sign always written: a shift or a difference.
   inline std::string signed_fixed(const double x, const int digits = 3)

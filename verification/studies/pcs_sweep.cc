@@ -1,4 +1,5 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
+#include "verification/studies/elapsed.h"
 #include "verification/studies/pcs_sweep.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
@@ -225,7 +226,7 @@ namespace beamslider
 
     write_run_rows(runs, study, n_positions, with_free_run);
     find_branch_features(study);
-    study.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    study.wall_seconds = elapsed_seconds(start);
     return study;
   }
 

@@ -1,5 +1,6 @@
 // The seed's System 1 facts and the identification by maps; see
 // system1_facts.h for what a fact, a criterion and a score are.
+#include "verification/studies/elapsed.h"
 #include "verification/studies/system1_facts.h"
 #include "verification/studies/system1_fact_table.h"
 
@@ -357,7 +358,7 @@ namespace beamslider
         const auto t0 = std::chrono::steady_clock::now();
         const std::vector<std::vector<MapMember>> cells =
           run_map_cells(scene_file, map.overrides, map.grid, fact_settings);
-        result.wall_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        result.wall_seconds.push_back(elapsed_seconds(t0));
         if (on_fact)
           on_fact(fact, map.grid, cells);
 

@@ -1,5 +1,6 @@
-// The wall time of a command's stages, as a number (summaries and
-// checkpoints record it; number_text.h's seconds_since writes it as text).
+// The wall time of a run or a stage, as a number (summaries, timing
+// columns and checkpoints record it; number_text.h's seconds_since writes
+// it as text).
 #pragma once
 
 #include <chrono>
