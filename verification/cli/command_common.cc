@@ -1,6 +1,7 @@
 #include "contact/output_file.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
+#include "meshes/source_directory.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/simulation_cases.h"
@@ -19,12 +20,12 @@ namespace beamslider
   {
     if (fs::exists(scene))
       return scene;
-    for (const std::string &candidate : {std::string(BEAMSLIDER_SOURCE_DIR) + "/meshes/" + scene,
-                                        std::string(BEAMSLIDER_SOURCE_DIR) + "/meshes/" + scene + ".prm"})
+    for (const std::string &candidate : {source_directory() + "/meshes/" + scene,
+                                        source_directory() + "/meshes/" + scene + ".prm"})
       if (fs::exists(candidate))
         return candidate;
     throw InputError("Scene '" + scene + "' not found (looked for the path as given and in " +
-                     std::string(BEAMSLIDER_SOURCE_DIR) + "/meshes/)");
+                     source_directory() + "/meshes/)");
   }
 
   namespace

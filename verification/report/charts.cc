@@ -1,6 +1,7 @@
 #include "verification/report/charts.h"
 
 #include "fem/petsc_session.h"
+#include "meshes/source_directory.h"
 #include "verification/studies/mpi_cells.h"
 
 #include <iostream>
@@ -43,14 +44,14 @@ namespace beamslider
   {
     // The interpreter was found once, at configure time (CMake); the script
     // and every argument go to it as separate strings, never through a shell.
-    std::vector<std::string> argv = {BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script};
+    std::vector<std::string> argv = {BEAMSLIDER_PYTHON, source_directory() + "/scripts/" + script};
     argv.insert(argv.end(), arguments.begin(), arguments.end());
     return drawn(run_child(argv, ChildEnvironment::inherited, ChildGroup::own), script);
   }
 
   EarlyPlot::EarlyPlot(const std::string &script)
     : script_(script)
-    , child_({BEAMSLIDER_PYTHON, std::string(BEAMSLIDER_SOURCE_DIR) + "/scripts/" + script, "--arguments-from-stdin"})
+    , child_({BEAMSLIDER_PYTHON, source_directory() + "/scripts/" + script, "--arguments-from-stdin"})
   {}
 
   bool EarlyPlot::draw(const std::vector<std::string> &arguments)
