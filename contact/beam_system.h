@@ -206,7 +206,7 @@ namespace beamslider
     // Whatever the model carries from one step to the next and that changes
     // a later step's result in any bit (a reused factorisation and the point
     // it was made at, a predictor's history), for checkpoints
-    // (contact/checkpoint.h): a model restored by load_state continues
+    // (io/checkpoint.h): a model restored by load_state continues
     // bit-identically. A model without such state keeps the defaults.
     virtual void save_state(CheckpointWriter & /*out*/) const {}
     virtual void load_state(CheckpointReader & /*in*/) {}

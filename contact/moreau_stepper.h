@@ -35,7 +35,7 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
-#include "contact/checkpoint.h"
+#include "numerics/state_bytes.h"
 #include "contact/explicit_modal_form.h"
 #include "contact/local_directions.h"
 #include "contact/prox_solver.h"

@@ -1,6 +1,6 @@
 #include "fem/fe_statics.h"
 
-#include "contact/interruption.h"
+#include "numerics/stop_request.h"
 #include "numerics/newton.h"
 
 #include <deal.II/lac/sparse_direct.h>

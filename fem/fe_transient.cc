@@ -1,7 +1,7 @@
 // The FE beam as a BeamSystem: implicit midpoint (Moreau–Jean θ = 1/2), see fe_transient.h.
 #include "fem/fe_transient.h"
 
-#include "contact/checkpoint.h"
+#include "numerics/state_bytes.h"
 #include "numerics/newton.h"
 
 #include <deal.II/base/quadrature_lib.h>

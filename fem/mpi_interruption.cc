@@ -1,6 +1,6 @@
 #include "fem/mpi_interruption.h"
 
-#include "contact/interruption.h"
+#include "numerics/stop_request.h"
 #include "fem/petsc_session.h"
 
 namespace beamslider

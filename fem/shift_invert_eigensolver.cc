@@ -1,6 +1,6 @@
 #include "fem/shift_invert_eigensolver.h"
 
-#include "contact/interruption.h"
+#include "numerics/stop_request.h"
 #include "fem/mpi_interruption.h"
 
 #include <deal.II/lac/slepc_solver.h>

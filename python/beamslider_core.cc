@@ -17,7 +17,7 @@
 //                        message).
 //   resolve_scene(name)  a scene name of meshes/ or a path, as the CLI
 //                        resolves it.
-#include "contact/interruption.h"
+#include "io/interruption.h"
 #include "meshes/scene.h"
 #include "verification/cli/command_line.h"
 #include "verification/cli/commands.h"

@@ -1,7 +1,6 @@
 // STEP and ICE identification of the modal cubic stiffness (see cubic_fit.h
 // for the model, units and references).
 #include "reduced/cubic_fit.h"
-#include "contact/csv_writer.h"
 
 #include <algorithm>
 #include <array>
@@ -354,22 +353,5 @@ namespace beamslider
       }
     table.export_to(fit);
     return fit;
-  }
-
-  void write_coefficients_csv(const std::string &filename, const std::vector<CubicTerm> &terms)
-  {
-    CsvWriter csv(filename, {"n", "j", "k", "l", "value"});
-    for (const auto &t : terms)
-      csv.row({CsvWriter::cell(t.n + 1), CsvWriter::cell(t.j + 1), CsvWriter::cell(t.k + 1), CsvWriter::cell(t.l + 1),
-               CsvWriter::cell(t.value, 17)});
-    csv.close();
-  }
-
-  void write_quadratic_coefficients_csv(const std::string &filename, const std::vector<QuadraticTerm> &terms)
-  {
-    CsvWriter csv(filename, {"n", "j", "k", "value"});
-    for (const auto &t : terms)
-      csv.row({CsvWriter::cell(t.n + 1), CsvWriter::cell(t.j + 1), CsvWriter::cell(t.k + 1), CsvWriter::cell(t.value, 17)});
-    csv.close();
   }
 } // namespace beamslider

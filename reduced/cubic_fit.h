@@ -116,11 +116,4 @@ namespace beamslider
   // least-squares fit per modal equation (columns scaled by a_j). The number of
   // static solves is 2N·L + 4·N(N−1)/2·L + 8·N(N−1)(N−2)/6·L for L levels.
   CubicFit identify_cubic_ice(const ModalStaticSolveFunction &static_solve, const IceSettings &settings);
-
-  // coefficients.csv: header "n,j,k,l,value", 1-based mode numbers, SI with
-  // mass-normalised modes [1/(s² m² kg)], 17 significant digits (the
-  // doubles exactly). A failed open or write throws OutputError.
-  void write_coefficients_csv(const std::string &filename, const std::vector<CubicTerm> &terms);
-  // The quadratic ones: header "n,j,k,value", 1-based.
-  void write_quadratic_coefficients_csv(const std::string &filename, const std::vector<QuadraticTerm> &terms);
 } // namespace beamslider

@@ -4,7 +4,7 @@
 
 #include "reduced/backbone_tongues.h"
 
-#include "contact/interruption.h"
+#include "numerics/stop_request.h"
 #include "numerics/newton.h"
 
 #include <Eigen/Eigenvalues>

@@ -179,7 +179,7 @@ namespace beamslider
     unsigned int n_time_samples = 0;
     std::vector<BackbonePoint> points;
     bool completed = false;  // end_amplitude reached
-    bool interrupted = false; // stopped by SIGINT/SIGTERM (contact/interruption.h)
+    bool interrupted = false; // stopped by SIGINT/SIGTERM (io/interruption.h)
     std::string message;     // why it stopped (always set)
     std::vector<BackboneGap> gaps; // ranges jumped over (restart_past_tongues)
     unsigned int n_newton_iterations = 0; // total, all points and retries

@@ -4,7 +4,7 @@
 // period's start time.
 #pragma once
 
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 
 #include <functional>
 #include <vector>

@@ -1,9 +1,13 @@
 // The layers look down only: every #include "folder/..." of the project's
 // sources names a layer at or below the including file's. The order is
 // doc/architecture.md's:
-//   numerics (the Newton driver), meshes (the Scene) ← contact (the contact step, runs, files) ← reduced
-//   ← fem ← verification/studies ← verification/report ← the front ends:
+//   numerics (Newton, a state's bytes, the stop request), io (files),
+//   meshes (the Scene) ← contact (the contact step) ← reduced ← fem
+//   ← fem/output (the FE model's files), runs (runs and traces)
+//   ← verification/studies ← verification/report ← the front ends:
 //   verification/cli, python and verification/benchmarks.
+// The models (contact/, reduced/, fem/) do not include io/: they write no
+// file; what they save for a checkpoint goes through numerics/state_bytes.h.
 // A study or a report section that needs something of the command line
 // (running a case as `simulate` does) takes it as a function argument
 // (simulation_cases.h: CaseRunner), never by including cli/.
@@ -20,10 +24,20 @@ namespace fs = std::filesystem;
 
 namespace
 {
-  // Layer folders and their rank, lowest first; a front end is rank 6.
+  // Layer folders and their rank, lowest first; a front end is rank 7.
+  const int studies_rank = 5;
   const std::vector<std::pair<std::string, int>> layers = {
-    {"numerics", 0}, {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"verification/studies", 4},
-    {"verification/report", 5}, {"verification/cli", 6}, {"python", 6}, {"verification/benchmarks", 6}};
+    {"numerics", 0}, {"io", 0}, {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"fem/output", 4},
+    {"runs", 4}, {"verification/studies", studies_rank}, {"verification/report", 6}, {"verification/cli", 7},
+    {"python", 7}, {"verification/benchmarks", 7}};
+
+  bool is_model(const std::string &path)
+  {
+    for (const std::string folder : {"contact/", "reduced/", "fem/"})
+      if (path.rfind(folder, 0) == 0 && path.rfind("fem/output/", 0) != 0)
+        return true;
+    return false;
+  }
 
   // The rank of a path relative to the source tree (-1: not a layer).
   int rank_of(const std::string &path)
@@ -78,16 +92,24 @@ TEST(Architecture, EveryIncludeLooksDown)
   // between its folders, and cli/ includes studies/.
   std::size_t between_layers = 0;
   bool cli_includes_studies  = false;
+  std::size_t model_includes = 0;
   for (const Include &i : includes)
     {
       const int from = rank_of(i.file), to = rank_of(i.target);
       if (to < 0)
         continue; // a header beside the file, or a system one
       between_layers += from != to;
-      cli_includes_studies = cli_includes_studies || (i.file.rfind("verification/cli/", 0) == 0 && to == 4);
+      cli_includes_studies = cli_includes_studies || (i.file.rfind("verification/cli/", 0) == 0 && to == studies_rank);
       EXPECT_LE(to, from) << i.file << ":" << i.line << " includes \"" << i.target
                           << "\", a layer above its own (doc/architecture.md)";
+      if (is_model(i.file))
+        {
+          ++model_includes;
+          EXPECT_NE(i.target.rfind("io/", 0), 0u)
+            << i.file << ":" << i.line << " includes \"" << i.target << "\": a model writes no file";
+        }
     }
+  EXPECT_GT(model_includes, 100u);
   EXPECT_GT(between_layers, 200u);
   EXPECT_TRUE(cli_includes_studies);
 }
@@ -102,7 +124,7 @@ TEST(Architecture, TheDocsNameOnlyPathsThatExist)
 {
   const fs::path root = BEAMSLIDER_SOURCE_DIR;
   const std::regex path_in_text(
-    R"re((^|[^A-Za-z0-9_/.-])((contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
+    R"re((^|[^A-Za-z0-9_/.-])((numerics|io|runs|contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
   std::vector<fs::path> docs = {root / "README.md"};
   for (const auto &entry : fs::directory_iterator(root / "doc"))
     if (entry.path().extension() == ".md")

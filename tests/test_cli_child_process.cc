@@ -4,7 +4,7 @@
 // arguments gets an empty input, and a child that died before its input is
 // written costs the parent neither a SIGPIPE nor a hang, only a reported
 // failure.
-#include "contact/interruption.h"
+#include "io/interruption.h"
 #include "verification/studies/child_process.h"
 #include "tests/read_text_file.h"
 

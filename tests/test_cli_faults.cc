@@ -8,8 +8,8 @@
 // before anything is sized by them; and a statics load step that cannot
 // converge leaves the converged rows and no statics.vtu / statics.pvtu, on
 // the beam and on the solid alike, and says so.
-#include "contact/checkpoint.h"
-#include "contact/output_file.h"
+#include "io/checkpoint.h"
+#include "io/output_file.h"
 #include "tests/cli_runner.h"
 
 #include <gtest/gtest.h>

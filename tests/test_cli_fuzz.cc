@@ -15,7 +15,7 @@
 // it, or its time step lies above the model's stability limit), else the
 // same short run through the library: 0 if it completes or the slider
 // reaches a support, 1 if it fails.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "tests/cli_runner.h"

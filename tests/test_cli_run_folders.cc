@@ -10,7 +10,7 @@
 //   ensemble or ladder leaves no summary of the run before it;
 // - results replace a symbolic link in the folder, never write through it;
 // - a map into the folder of another map is refused before it writes.
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "tests/cli_runner.h"
 
 #include <gtest/gtest.h>

@@ -5,7 +5,7 @@
 //
 // The rigid beam is a BeamSystem with no coordinates: w(x) = x tan α relative
 // to a base that does not move, so the Delassus matrix is the slider's alone.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "contact/contact_products.h"
 #include "contact/moreau_stepper.h"
 #include "contact/prox_solver.h"

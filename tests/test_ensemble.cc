@@ -1,7 +1,7 @@
 // Ensembles (verification/studies/ensemble.h): members are reproducible and really
 // differ; order statistics and two-sample distances against values worked
 // out by hand.
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
 

@@ -43,7 +43,7 @@
 // Delassus value) converges in the mesh at a fixed Δt, to the continuum's
 // value, and that value vanishes like √Δt. Measured (x = 0.3 L): 0.59 g at
 // Δt = 5e-6 s on 64–256 elements (0.63 g on 32), against the slider's 46 g.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "meshes/scene.h"
 #include "verification/studies/error_ladder.h"

@@ -40,7 +40,7 @@
 // 0.0774 h (0.8 %), ROM10−ROM7 6.2 %, FE Δt−Δt/2 8.1 %. The slider is at
 // x_C/L = 0.2985 (FE) and 0.2993 (ROM10) at 0.1 s. Wall time: FE 0.27 s, FE at
 // Δt/2 0.47 s, ROM10 with the ICE fit (2320 static solves) 1.6 s, ROM7 0.5 s.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_modal_basis.h"

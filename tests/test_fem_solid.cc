@@ -8,7 +8,7 @@
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "fem/solid_rom_animation.h"
+#include "fem/output/solid_rom_animation.h"
 #include "fem/solid_statics.h"
 #include "fem/fe_modal_basis.h"
 #include "meshes/scene.h"

@@ -12,11 +12,9 @@
 // - ICE with an exact static solve (Newton on ω²q + f(q) = f̂) recovers the
 //   same tensor by least squares; with a non-cubic (quintic) term the
 //   identified coefficient drifts with the load level as the theory says.
-#include "contact/output_file.h"
 #include "reduced/cubic_fit.h"
 #include "reduced/rom_operator.h"
 #include "tests/test_reduced_clamped_beam.h"
-#include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +24,6 @@
 using namespace beamslider;
 using beamslider_test::ClampedBeam;
 using beamslider_test::relative_error;
-using beamslider::testing::read_file;
 
 namespace
 {
@@ -253,17 +250,6 @@ TEST(ImplicitCondensation, CoefficientDriftsWithLoadLevelWhenTheModelIsNotCubic)
   EXPECT_LT(std::abs(drift.front()), 1e-3);
   for (std::size_t i = 1; i < drift.size(); ++i)
     EXPECT_GT(drift[i], drift[i - 1]);
-}
-
-TEST(CoefficientFiles, CsvHasOneBasedModeNumbersAndFullPrecision)
-{
-  const std::vector<CubicTerm> terms = {{0, 0, 0, 0, 1.2345678901234567e12}, {2, 0, 1, 2, -3.5}};
-  const std::string dir = ::testing::TempDir();
-  write_coefficients_csv(dir + "coefficients.csv", terms);
-  EXPECT_EQ(read_file(dir + "coefficients.csv"), "n,j,k,l,value\n1,1,1,1,1234567890123.4568\n3,1,2,3,-3.5\n");
-  write_quadratic_coefficients_csv(dir + "quadratic.csv", {{1, 0, 1, 0.25}});
-  EXPECT_EQ(read_file(dir + "quadratic.csv"), "n,j,k,value\n2,1,2,0.25\n");
-  EXPECT_THROW(write_coefficients_csv("/nonexistent-dir/coefficients.csv", terms), OutputError);
 }
 
 TEST(CoefficientIdentificationErrors, BadSettingsNameTheParameter)

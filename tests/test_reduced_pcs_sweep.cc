@@ -1,8 +1,8 @@
-// Tests of the prescribed-slider-position sweep (contact/prescribed_position_sweep)
+// Tests of the prescribed-slider-position sweep (runs/prescribed_position_sweep)
 // and of the Eq. 5 resonance curve (reduced/resonance_curve), on the reduced
 // model of the ideal-clamp mueller2023 beam with the analytic clamped–clamped
 // modes of test_reduced_clamped_beam.h (no FE code involved).
-#include "contact/prescribed_position_sweep.h"
+#include "runs/prescribed_position_sweep.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"

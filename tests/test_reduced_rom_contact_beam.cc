@@ -8,7 +8,7 @@
 // The modal basis is built here from the analytic clamped–clamped modes
 // (β_n L roots of cos βL cosh βL = 1, mass-normalised, K'_jk and γ_n by
 // Gauss quadrature), independent of the FE code.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "contact/moreau_stepper.h"
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"

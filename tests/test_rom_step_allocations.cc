@@ -4,7 +4,7 @@
 // the beam (contacts active in most steps); any allocation inside a step or
 // at a period's end — an Eigen temporary of dynamic size, a std::function, a
 // string — shows up here. The trace is not written (no output stream).
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "meshes/scene.h"
 #include "verification/benchmarks/heap_counter.h"
 #include "verification/studies/fe_rom_study.h"

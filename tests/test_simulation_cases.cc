@@ -3,7 +3,7 @@
 // lists the valid ones; the verdict finds a jump, a turn and recurrent jumps
 // in constructed period records where we put them; a beam model whose solver
 // fails stops the run cleanly with time and place.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"

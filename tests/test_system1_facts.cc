@@ -4,7 +4,7 @@
 // and the partial scores rank a near miss above a plain miss.
 #include "verification/studies/system1_facts.h"
 
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 #include "meshes/scene.h"
 
 #include "tests/synthetic_periods.h"

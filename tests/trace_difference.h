@@ -3,7 +3,7 @@
 // window, before the rattling amplifies any difference).
 #pragma once
 
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 // Each benchmark reports the rate that matters to a user next to the raw
 // time: time steps per second for the contact runs (and simulated seconds
 // per wall second), backbone points for harmonic balance.
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"

@@ -19,7 +19,7 @@
 // 1 a run or a solver failed, or results could not be written; 2 bad input
 // (options, scene, parameters; the message names the parameter, its value and
 // the allowed range); 128 + signal when interrupted (130 Ctrl-C, 143 SIGTERM).
-#include "contact/interruption.h"
+#include "io/interruption.h"
 #include "verification/cli/command_line.h"
 #include "verification/cli/commands.h"
 

@@ -18,8 +18,8 @@
 // scene's mesh; harmonics 0…H with w odd and u even (see
 // FEConservativeSystem::even_harmonic_dofs). A coarser FE mesh:
 // --set "Discretisation/Number of elements=16".
-#include "contact/csv_writer.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"

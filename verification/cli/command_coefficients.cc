@@ -2,11 +2,12 @@
 // by one method, written as coefficients.csv (n,j,k,l,value; 1-based; SI with
 // mass-normalised modes; each sorted j ≤ k ≤ l once, as the sum over the
 // permutations, so that f_n = Σ value q_j q_k q_l) and a summary.
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "meshes/scene.h"
+#include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/coefficient_methods.h"

@@ -13,13 +13,14 @@
 //   coefficients.csv            n,j,k,l,value (the beam's columns and units)
 //   quadratic_coefficients.csv  n,j,k,value
 //   summary.md                  mesh, modes, method, b_111, solves, wall time
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
 #include "meshes/scene.h"
 #include "reduced/cubic_fit.h"
 #include "verification/studies/elapsed.h"
+#include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "verification/studies/console.h"

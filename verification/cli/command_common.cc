@@ -1,4 +1,4 @@
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "meshes/source_directory.h"

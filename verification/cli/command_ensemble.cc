@@ -18,9 +18,9 @@
 //                      against DIR's members.csv (compare_samples)
 //   ensemble.png       fan chart: every member's x_C/L and amplitude envelope
 //   summary.md         settings, outcome definitions, statistics, classes
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
@@ -325,7 +325,7 @@ namespace beamslider
          << (n_ranks > 1 ? std::to_string(n_ranks) + " MPI ranks" : std::string("the cores of one process"))
          << "; " << e.n_kept << " of the members read back from member_runs.csv (an earlier, stopped run of this "
             "build and settings), the others computed now.\n"
-         << "- Outcomes by the one trace analysis (contact/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
+         << "- Outcomes by the one trace analysis (runs/trace_analysis.h): a jump is a rise of the 0.1 s amplitude "
             "envelope, after the 2 s build-up, to more than twice its lowest value over the second before, by a fifth of "
             "the run's largest envelope, lasting 1 s and reaching the scene's upper branch ("
          << fixed(trace_thresholds(scene).high_level_over_h, 2)

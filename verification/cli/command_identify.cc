@@ -18,9 +18,9 @@
 // and summary.md names the leading candidate so far.
 //
 // Not restartable (unlike `map`): a search of this size runs in minutes.
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/elapsed.h"

@@ -14,8 +14,8 @@
 #include "verification/studies/console.h"
 #include "verification/studies/error_ladder.h"
 
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 
 #include <iostream>
 

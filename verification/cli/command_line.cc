@@ -6,8 +6,8 @@
 // messages, as from the shell.
 #include "verification/cli/command_line.h"
 
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "fem/petsc_session.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
@@ -461,7 +461,7 @@ int run_beamslider(int argc, char **argv, std::ostream &errors)
   // once. Another rank keeps its message where rank 0 meets the same error:
   // bad input (every rank reads the same), an interruption (mpirun passes
   // the signal to all), or any error of a command that runs on MPI (an
-  // error that arises on some ranks only is shared, fem/collective_failure.h).
+  // error that arises on some ranks only is shared, fem/output/collective_failure.h).
   // A command without MPI runs on each rank alone, so that rank's own error
   // (its folder in use by the other rank) is said, with its rank.
   const unsigned int rank = launch_rank();

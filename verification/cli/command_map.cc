@@ -18,9 +18,9 @@
 // map.csv (a cell cut short by a kill is dropped and computed again) and
 // computes the others; the file then holds the same rows as an uninterrupted
 // run, in another order.
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/elapsed.h"
@@ -272,7 +272,7 @@ namespace beamslider
               << std::setprecision(1) << work_wall << " s (" << std::setprecision(3) << m.n_done / work_wall
               << " cells/s); whole command " << std::setprecision(1) << wall << " s.\n"
               << std::defaultfloat
-              << "- Classes by the one trace analysis (contact/trace_analysis.h) of each member; the adaptation "
+              << "- Classes by the one trace analysis (runs/trace_analysis.h) of each member; the adaptation "
                  "time is when the slider comes within 0.01 L of its end position for good.\n\n"
               << "| outcome | members (this run) |\n|---|---|\n";
       for (const auto &[name, count] : m.class_counts)

@@ -1,9 +1,9 @@
 // `beamslider modes`: the lowest bending modes of the bare beam, or of the
 // beam with the slider bonded at x_C (compared with seed Eq. 5).
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "fem/vtk_beam_output.h"
+#include "fem/output/vtk_beam_output.h"
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "verification/cli/commands.h"

@@ -14,11 +14,11 @@
 //                (not on an arch)
 //   modes.pvtu   every mode as a displacement field (scaled to a peak of 2 h,
 //                the factor in vtu_scale), one .vtu piece per rank
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "fem/solid_output.h"
+#include "fem/output/solid_output.h"
 #include "meshes/scene.h"
 #include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"

@@ -1,7 +1,7 @@
 // `beamslider simulate SCENE --model rom|fe|auto [--case NAME]`: the free
 // slider on the ROM (N modes of the FE basis, analytic coefficients; on a
 // scene with a Solid, N modes of the solid with its ICE coefficients) or on
-// the FE beam, through the shared contact code (contact/adaptation_run.h).
+// the FE beam, through the shared contact code (runs/adaptation_run.h).
 //
 // Writes into the output folder:
 //   trace.csv    t_s,slider_x_over_L,slider_z_m,slider_beta_rad,w_center_m,
@@ -14,12 +14,12 @@
 //   summary.md   settings, cost, status and a one-line verdict
 //   animation.pvd (+ files) with --animate: the last 0.1 s at 2000 frames/s
 // Both CSV files are flushed as the run goes: a stopped run keeps them.
-#include "contact/adaptation_run.h"
-#include "contact/checkpoint.h"
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
-#include "fem/vtk_animation.h"
+#include "runs/adaptation_run.h"
+#include "io/checkpoint.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
+#include "fem/output/vtk_animation.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/elapsed.h"

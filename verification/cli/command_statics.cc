@@ -16,13 +16,13 @@
 // Sign: --line-load Q is positive downward (against +w, the direction of
 // gravity in every scene); w_mid_m is the mid-span deflection in +w, so a
 // downward load gives w_mid_m < 0.
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
-#include "fem/vtk_beam_output.h"
+#include "fem/output/vtk_beam_output.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
 #include "verification/studies/elapsed.h"

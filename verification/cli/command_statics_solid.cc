@@ -5,13 +5,13 @@
 // beam's columns; w_mid_m is u_z averaged over the cross-section x = L/2,
 // q_m_sqrt_kg (modal load) the coordinate φ_nᵀ M u. statics.pvtu holds the
 // deformed strip at every step.
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "fem/solid_output.h"
+#include "fem/output/solid_output.h"
 #include "fem/solid_statics.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"

@@ -1,7 +1,7 @@
 // `beamslider sweep SCENE`: prescribed-slider-position sweeps (seed §4.2–4.3,
 // doc/physics.md §10), both directions, with the Eq. 5 resonance curve and the
 // free-slider run overlaid; files and columns in verification/studies/pcs_sweep.h.
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/report.h"

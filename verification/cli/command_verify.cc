@@ -11,8 +11,8 @@
 // the report reaches it: the two cores share the serial sections 1–4 and the
 // solid instead of taking them one after the other. A thread would not do:
 // Debian's PETSc is not thread-safe.
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"

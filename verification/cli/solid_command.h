@@ -3,7 +3,7 @@
 // output folder prepared by rank 0 and known to every rank.
 #pragma once
 
-#include "fem/collective_failure.h"
+#include "fem/output/collective_failure.h"
 #include "fem/petsc_session.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"

@@ -9,7 +9,7 @@
 // condensed axial inertia, the FE's membrane discretisation) and not a
 // difference of mode shapes. --full adds the FE backbone on 16 elements (the
 // mesh effect) and with the full harmonic set (the half-period symmetry).
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"

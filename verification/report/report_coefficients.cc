@@ -1,8 +1,8 @@
 // Verification section "Cubic coefficients": analytic (seed Eq. 3) against
 // STEP, condensed STEP and ICE on the FE model; the membrane over-prediction
 // of plain STEP explained by a number; cost; ICE against its load level.
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"

@@ -1,7 +1,7 @@
 // Convergence evidence as Markdown and CSV, see report_convergence.h.
 #include "verification/report/report_convergence.h"
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "verification/report/report.h"
 
 #include <cmath>

@@ -17,7 +17,7 @@
 //                       accuracy (cost against W₁ with its interval)
 //   slow_manifold_{fe,rom}/  the two sweeps, comparison.csv, pcs_compare.png
 //   explicit_time_step_limit.{csv,png}
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/report/charts.h"

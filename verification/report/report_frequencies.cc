@@ -1,5 +1,5 @@
 // Verification section "Linear frequencies": see report.h.
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "reduced/beam_backbone.h"

@@ -16,7 +16,7 @@
 // Columns are listed in doc/verification.md §6.
 #pragma once
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "verification/studies/error_ladder.h"
 
 #include <string>

@@ -2,7 +2,7 @@
 // report_region.h.
 #include "verification/report/report_region.h"
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"

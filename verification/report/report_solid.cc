@@ -11,7 +11,7 @@
 // and the single-mode backbone ω/ω₁ it gives at ŵ = h and 2 h; with --full
 // also the adaptation end state of the solid's ROM against the beam's (an
 // ensemble each on the signature move, W₁ with its interval).
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"

@@ -13,8 +13,8 @@
 //
 // Files in <report>/system1/: facts.csv (one row per fact: scenario,
 // verdict, score, reason), <fact>/map.csv (the run, in the map's format).
-#include "contact/csv_writer.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/output_file.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/operating_map.h"

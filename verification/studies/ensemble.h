@@ -8,11 +8,11 @@
 // two-sample comparison of those distributions (compare_samples).
 //
 // Outcomes per member come from the one trace analysis
-// (contact/trace_analysis.h) with the scene's thresholds.
+// (runs/trace_analysis.h) with the scene's thresholds.
 #pragma once
 
-#include "contact/adaptation_run.h"
-#include "contact/trace_analysis.h"
+#include "runs/adaptation_run.h"
+#include "runs/trace_analysis.h"
 #include "meshes/scene.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -17,8 +17,8 @@
 // (ensemble.h), not run against run.
 #pragma once
 
-#include "contact/adaptation_run.h"
-#include "contact/trace_analysis.h"
+#include "runs/adaptation_run.h"
+#include "runs/trace_analysis.h"
 #include "meshes/scene.h"
 
 #include <functional>

@@ -1,9 +1,9 @@
 // Persisted, distributed member runs, see member_runs.h.
 #include "verification/studies/member_runs.h"
 
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
-#include "contact/output_file.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
+#include "io/output_file.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/console.h"
 #include "verification/studies/model_choice.h"

@@ -1,7 +1,7 @@
 // The model choice of `simulate --model auto`, see model_choice.h.
 #include "verification/studies/model_choice.h"
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "verification/studies/console.h"
 #include "verification/studies/error_ladder.h"
 

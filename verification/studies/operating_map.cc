@@ -1,10 +1,10 @@
 // Operating-range maps, see operating_map.h.
 #include "verification/studies/operating_map.h"
 
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "contact/beam_system.h"
-#include "contact/csv_writer.h"
-#include "contact/interruption.h"
+#include "io/csv_writer.h"
+#include "io/interruption.h"
 #include "verification/studies/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 

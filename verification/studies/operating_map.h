@@ -1,7 +1,7 @@
 // Operating-range maps: the adaptation run (or a K-member ensemble) on every
 // cell of a grid over scene parameters — excitation frequency, acceleration
 // amplitude, start position, or any other parameter by its scene path — each
-// member classified by the one trace analysis (contact/trace_analysis.h).
+// member classified by the one trace analysis (runs/trace_analysis.h).
 //
 // A cell's result is its rows of map.csv, one per member, formatted here so
 // that the same cell always gives the same bytes (no wall time in them):
@@ -9,7 +9,7 @@
 // an uninterrupted one (verification/cli/command_map.cc).
 #pragma once
 
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 #include "meshes/scene.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -1,7 +1,7 @@
 // Two prescribed-position sweeps compared, see pcs_comparison.h.
 #include "verification/studies/pcs_comparison.h"
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "meshes/scene.h"
 
 #include <algorithm>

@@ -7,7 +7,7 @@
 // Per position and direction: the relative amplitude difference and whether
 // the two F̄_x intervals overlap (|F̄_a − F̄_b| ≤ ci_a + ci_b: the sweeps do
 // not tell the forces apart there). Per branch: each sweep's zero crossings
-// with their intervals (contact/prescribed_position_sweep.h), and for each
+// with their intervals (runs/prescribed_position_sweep.h), and for each
 // crossing of sweep A the nearest one of B of the same stability, with the
 // distance and whether the intervals overlap.
 //
@@ -20,7 +20,7 @@
 //   pcs_compare.png both sweeps' amplitudes and F̄_x with intervals
 #pragma once
 
-#include "contact/prescribed_position_sweep.h"
+#include "runs/prescribed_position_sweep.h"
 
 #include <string>
 #include <vector>

@@ -4,10 +4,10 @@
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
 
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 
-#include "contact/adaptation_run.h"
-#include "contact/csv_writer.h"
+#include "runs/adaptation_run.h"
+#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"

@@ -1,5 +1,5 @@
 // The prescribed-slider-position study of seed §4.2–4.3 on one scene: both
-// branches of the sweep (contact/prescribed_position_sweep.h), the free-slider
+// branches of the sweep (runs/prescribed_position_sweep.h), the free-slider
 // run of the same scene for comparison, the Eq. 5 resonance curve
 // (reduced/resonance_curve.h), and the features the seed reads off them: the
 // jump (turning point) of each branch and the zero crossings of F̄_x.
@@ -29,7 +29,7 @@
 // interleaved; runs.csv is written when all three are done.
 #pragma once
 
-#include "contact/prescribed_position_sweep.h"
+#include "runs/prescribed_position_sweep.h"
 #include "meshes/scene.h"
 
 #include <optional>

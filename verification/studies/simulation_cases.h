@@ -11,8 +11,8 @@
 // what our model does, never to tune it.
 #pragma once
 
-#include "contact/adaptation_run.h"
-#include "contact/trace_analysis.h"
+#include "runs/adaptation_run.h"
+#include "runs/trace_analysis.h"
 #include "meshes/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
@@ -58,7 +58,7 @@ namespace beamslider
   Scene read_case_scene(const std::string &scene_file, const SimulationCase &c,
                         const std::vector<std::string> &user_overrides, std::vector<std::string> *modified = nullptr);
 
-  // What a run did: the one trace analysis (contact/trace_analysis.h) with
+  // What a run did: the one trace analysis (runs/trace_analysis.h) with
   // the thresholds of the run's scene (trace_thresholds), or with the
   // defaults (no upper-branch level) for constructed traces.
   using CaseVerdict = TraceAnalysis;

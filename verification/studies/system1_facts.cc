@@ -4,7 +4,7 @@
 #include "verification/studies/system1_facts.h"
 #include "verification/studies/system1_fact_table.h"
 
-#include "contact/interruption.h"
+#include "io/interruption.h"
 #include "meshes/scene.h"
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 // behaves in a handful of scenarios (a frequency, a base acceleration, a
 // start position, sometimes a changed clearance or slider mass). A fact here
 // is one such scenario together with a criterion that reads the run's trace
-// analysis (contact/trace_analysis.h) and returns
+// analysis (runs/trace_analysis.h) and returns
 //   - pass/fail: every condition of the fact is met;
 //   - a score in [0, 1]: the mean of the conditions' partial scores (1 met,
 //     0 not; a position condition falls linearly from 1 at its tolerance to 0
@@ -24,7 +24,7 @@
 // the centre, so a fact holds in either half. The facts keep the seed's half.
 #pragma once
 
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 #include "verification/studies/operating_map.h"
 
 #include <functional>

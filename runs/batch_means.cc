@@ -1,5 +1,5 @@
 // Batch-means confidence interval, see batch_means.h.
-#include "contact/batch_means.h"
+#include "runs/batch_means.h"
 
 #include <cmath>
 #include <limits>

@@ -2,10 +2,10 @@
 // into memory, write_text_file puts it whole into the folder (a temporary
 // renamed into place: never through a link, never half a file), so that a
 // failure of VTK or of the disk is an OutputError naming the file and the
-// reason (contact/output_file.h).
+// reason (io/output_file.h).
 #pragma once
 
-#include "contact/output_file.h"
+#include "io/output_file.h"
 
 #include <vtkNew.h>
 

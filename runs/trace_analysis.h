@@ -45,7 +45,7 @@
 //                  else no adaptation.
 #pragma once
 
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 
 #include <string>
 #include <vector>

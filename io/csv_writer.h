@@ -14,7 +14,7 @@
 // A resumed run appends to the file it continues, without a second header.
 #pragma once
 
-#include "contact/output_file.h"
+#include "io/output_file.h"
 
 #include <string>
 #include <vector>

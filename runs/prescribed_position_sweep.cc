@@ -1,7 +1,7 @@
 // Prescribed-slider-position sweeps, see prescribed_position_sweep.h.
-#include "contact/prescribed_position_sweep.h"
+#include "runs/prescribed_position_sweep.h"
 
-#include "contact/batch_means.h"
+#include "runs/batch_means.h"
 
 #include <algorithm>
 #include <chrono>

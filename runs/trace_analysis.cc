@@ -1,5 +1,5 @@
 // The one reading of an adaptation run, see trace_analysis.h.
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
-// Batch-means confidence intervals (contact/batch_means.h) on constructed
+// Batch-means confidence intervals (runs/batch_means.h) on constructed
 // series: exact values for a short series by hand, and the coverage of the
 // 95 % interval for the mean of a strongly correlated AR(1) series (the
 // rattling force of a held slider is correlated from period to period),
 // where s/√n of the raw samples would cover far less often.
-#include "contact/batch_means.h"
+#include "runs/batch_means.h"
 
 #include <gtest/gtest.h>
 

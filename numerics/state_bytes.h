@@ -1,18 +1,13 @@
-// Checkpoints of a running simulation: the whole state, bit for bit.
+// The bytes of a model's state, bit for bit: what a checkpoint holds.
 //
-// A resumed run must be bit-identical to one that was never stopped, so a
-// checkpoint holds every number that influences a later step exactly as it
+// A resumed run must be bit-identical to one that was never stopped, so the
+// state of everything that influences a later step is written exactly as it
 // is in memory (raw IEEE doubles, not text): the beam's coordinates and
 // velocities, the slider's, the contact solver's warm starts, whatever the
 // beam model carries between steps (BeamSystem::save_state), the per-period
-// accumulators and the output cursors of AdaptationRun.
-//
-// File layout (checkpoint_file_bytes): a magic line, the format number, the
-// program's version, the payload's length, the payload, and an FNV-1a 64-bit
-// checksum of the payload. read_checkpoint_file refuses a file of another
-// format or version, a truncated file and a checksum that does not match;
-// the caller compares the scene's content hash stored in the payload, and
-// (simulate) the run's identity and the digests of the files it continues.
+// accumulators and the output cursors of runs/adaptation_run.h. The models
+// write and read their state here and know nothing of files; io/checkpoint.h
+// puts a payload into a checked file and reads it back.
 #pragma once
 
 #include <Eigen/Dense>
@@ -81,13 +76,4 @@ namespace beamslider
     std::string bytes_;
     std::size_t position_ = 0;
   };
-
-  // The format of the payload; raise it whenever what is saved changes.
-  // 2: simulate's run description carries the whole model setting (θ, integrator, damped set).
-  // 3: and the run's identity (command, model, scene) and digests of the files it continues.
-  constexpr std::uint64_t checkpoint_format = 3;
-
-  // The complete file around a payload, and back (throws CheckpointError).
-  std::string checkpoint_file_bytes(const std::string &payload);
-  std::string read_checkpoint_file(const std::string &path);
 } // namespace beamslider

@@ -1,23 +1,12 @@
-// Checkpoint encoding, see checkpoint.h.
-#include "contact/checkpoint.h"
-
-#include "contact/output_file.h"
+// The bytes of a state, see state_bytes.h.
+#include "numerics/state_bytes.h"
 
 #include <algorithm>
 #include <cstring>
 #include <sstream>
 
-#ifndef BEAMSLIDER_VERSION
-#  define BEAMSLIDER_VERSION "unknown"
-#endif
-
 namespace beamslider
 {
-  namespace
-  {
-    const std::string magic = "beamslider checkpoint\n";
-  }
-
   std::uint64_t fnv1a(const std::string &bytes, std::uint64_t hash)
   {
     for (const unsigned char c : bytes)
@@ -120,50 +109,5 @@ namespace beamslider
     for (Eigen::Index i = 0; i < size; ++i)
       x[i] = get_double();
     return x;
-  }
-
-  std::string checkpoint_file_bytes(const std::string &payload)
-  {
-    CheckpointWriter w;
-    w.put(checkpoint_format);
-    w.put(std::string(BEAMSLIDER_VERSION));
-    w.put(std::uint64_t(payload.size()));
-    CheckpointWriter tail;
-    tail.put(fnv1a(payload));
-    return magic + w.bytes() + payload + tail.bytes();
-  }
-
-  std::string read_checkpoint_file(const std::string &path)
-  {
-    std::string bytes;
-    try
-      {
-        bytes = read_text_file(path);
-      }
-    catch (const FileReadError &e)
-      {
-        throw CheckpointError(std::string("no readable checkpoint: ") + e.what());
-      }
-    if (bytes.compare(0, magic.size(), magic) != 0)
-      throw CheckpointError("'" + path + "' is not a beamslider checkpoint");
-    CheckpointReader header(bytes.substr(magic.size()));
-    const std::uint64_t format = header.get_uint();
-    if (format != checkpoint_format)
-      throw CheckpointError("checkpoint '" + path + "' has format " + std::to_string(format) +
-                            "; this program reads format " + std::to_string(checkpoint_format));
-    const std::string version = header.get_string();
-    if (version != BEAMSLIDER_VERSION)
-      throw CheckpointError("checkpoint '" + path + "' was written by beamslider " + version + ", this is " +
-                            BEAMSLIDER_VERSION + "; a resumed run would not be the same computation");
-    const std::uint64_t length = header.get_uint();
-    const std::size_t start    = magic.size() + 3 * sizeof(std::uint64_t) + version.size();
-    if (bytes.size() != start + length + sizeof(std::uint64_t))
-      throw CheckpointError("checkpoint '" + path + "' is truncated or has trailing bytes");
-    const std::string payload = bytes.substr(start, length);
-    std::uint64_t stored;
-    std::memcpy(&stored, bytes.data() + start + length, sizeof(stored));
-    if (stored != fnv1a(payload))
-      throw CheckpointError("checkpoint '" + path + "' is corrupt (checksum mismatch)");
-    return payload;
   }
 } // namespace beamslider

@@ -1,7 +1,7 @@
 // One failure for all ranks, see collective_failure.h.
-#include "fem/collective_failure.h"
+#include "fem/output/collective_failure.h"
 
-#include "contact/output_file.h"
+#include "io/output_file.h"
 #include "fem/petsc_session.h"
 #include "meshes/scene.h"
 

@@ -1,8 +1,8 @@
-// contact/csv_writer.h: rows read back as they were written, by the
+// io/csv_writer.h: rows read back as they were written, by the
 // writer's own cells() and by the RFC 4180 rules Python's csv module follows
 // (a cell with a comma, quote or line break in double quotes, quotes doubled);
 // append mode writes no second header; a row of the wrong width is refused.
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Checked result files, see output_file.h.
-#include "contact/output_file.h"
+#include "io/output_file.h"
 
 #include <atomic>
 #include <cerrno>

@@ -1,5 +1,5 @@
 // The CSV writer, see csv_writer.h.
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 
 #include <cerrno>
 #include <iomanip>

@@ -20,7 +20,7 @@
 // Written once for any BeamSystem (ROM or FE), like the rest of contact/.
 #pragma once
 
-#include "contact/adaptation_run.h"
+#include "runs/adaptation_run.h"
 #include "contact/beam_system.h"
 #include "meshes/scene.h"
 
@@ -64,7 +64,7 @@ namespace beamslider
     SweepDirection direction = SweepDirection::up;
     double amplitude_over_h = 0, amplitude_std_over_h = 0; // [-]
     double mean_fx = 0, mean_fx_std = 0;                   // F̄_x and its spread over periods [N]
-    double mean_fx_ci95 = 0; // half width of F̄_x's 95 % interval by batch means (contact/batch_means.h) [N]
+    double mean_fx_ci95 = 0; // half width of F̄_x's 95 % interval by batch means (runs/batch_means.h) [N]
     unsigned int n_periods = 0;                            // periods averaged
     double t_end = 0;                                      // simulated time at the end of this position [s]
   };
@@ -100,7 +100,7 @@ namespace beamslider
     double x_low_over_L = 0, x_high_over_L = 0;
     bool stable     = false; // ∂F̄_x/∂x < 0
     // Both neighbouring means lie outside zero by more than their 95 %
-    // batch-means interval (contact/batch_means.h): a crossing of the mean,
+    // batch-means interval (runs/batch_means.h): a crossing of the mean,
     // not of the rattling noise.
     bool resolved = true;
   };

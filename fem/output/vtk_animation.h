@@ -29,7 +29,7 @@
 // renders a strip of stills to PNG.
 #pragma once
 
-#include "contact/csv_writer.h"
+#include "io/csv_writer.h"
 #include "contact/moreau_stepper.h"
 
 #include <Eigen/Dense>

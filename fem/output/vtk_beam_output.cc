@@ -1,6 +1,6 @@
-#include "fem/vtk_beam_output.h"
+#include "fem/output/vtk_beam_output.h"
 
-#include "fem/vtk_xml_file.h"
+#include "fem/output/vtk_xml_file.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>

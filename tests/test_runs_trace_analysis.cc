@@ -1,7 +1,7 @@
-// The one trace analysis (contact/trace_analysis.h) on constructed period
+// The one trace analysis (runs/trace_analysis.h) on constructed period
 // records: each rule where it must fire and where it must not, and each
 // outcome class from a trace built to be of that class.
-#include "contact/trace_analysis.h"
+#include "runs/trace_analysis.h"
 
 #include "tests/synthetic_periods.h"
 

@@ -1,6 +1,6 @@
 // Free-slider and prescribed-position runs, see adaptation_run.h.
-#include "contact/adaptation_run.h"
-#include "contact/interruption.h"
+#include "runs/adaptation_run.h"
+#include "io/interruption.h"
 
 #include <algorithm>
 #include <chrono>

@@ -20,8 +20,8 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
-#include "contact/checkpoint.h"
-#include "contact/csv_writer.h"
+#include "io/checkpoint.h"
+#include "io/csv_writer.h"
 #include "contact/moreau_stepper.h"
 #include "meshes/scene.h"
 
