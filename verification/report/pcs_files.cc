@@ -74,7 +74,8 @@ namespace beamslider
       {
         CsvWriter csv(dir_ + "/resonance.csv", {"x_over_L", "amplitude_over_h"});
         for (const ResonancePoint &r : curve)
-          csv.row({CsvWriter::cell(r.x_over_L), std::isfinite(r.amplitude_over_h) ? CsvWriter::cell(r.amplitude_over_h) : ""});
+          csv.row({CsvWriter::cell(r.x_over_L),
+                   std::isfinite(r.amplitude_over_h) ? CsvWriter::cell(r.amplitude_over_h) : ""});
       }
 
       void write_point(const PcsPoint &p)
