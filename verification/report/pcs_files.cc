@@ -93,7 +93,7 @@ namespace beamslider
   PcsStudy run_pcs_sweep_into(const Scene &scene, const PcsStudySettings &settings, const std::string &dir)
   {
     PcsSweepFiles files(dir);
-    const PcsStudy study = run_pcs_sweep(scene, settings, files.observer());
+    PcsStudy study = run_pcs_sweep(scene, settings, files.observer());
     files.write_run_rows(study);
     return study;
   }
