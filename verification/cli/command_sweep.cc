@@ -1,9 +1,10 @@
 // `beamslider sweep SCENE`: prescribed-slider-position sweeps (seed §4.2–4.3,
 // doc/physics.md §10), both directions, with the Eq. 5 resonance curve and the
-// free-slider run overlaid; files and columns in verification/studies/pcs_sweep.h.
+// free-slider run overlaid; files and columns in verification/report/pcs_files.h.
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/pcs_comparison.h"
@@ -73,7 +74,7 @@ namespace beamslider
               << std::ceil(longest * 15e-6 / scene.time_stepping.fe_time_step) // ~15 µs per FE step
               << " s wall), into " << dir << std::endl;
 
-    const PcsStudy study = run_pcs_sweep(scene, settings, dir);
+    const PcsStudy study = run_pcs_sweep_into(scene, settings, dir);
     const bool plotted   = run_plot_script("plot_pcs.py", {dir, scene.name});
     std::string text     = describe(study, scene);
     if (!options.against.empty())

@@ -21,6 +21,7 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/report/charts.h"
+#include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
 #include "verification/report/report_ladder.h"
 #include "verification/report/report_region.h"
@@ -74,9 +75,9 @@ namespace beamslider
       // contacts once the amplitude is high (measured: its up branch wedges
       // the window, both sides through the beam, right after 0.35 L).
       settings.model        = "fe";
-      const PcsStudy fe     = run_pcs_sweep(scene, settings, fe_dir);
+      const PcsStudy fe     = run_pcs_sweep_into(scene, settings, fe_dir);
       settings.model        = "rom";
-      const PcsStudy rom    = run_pcs_sweep(scene, settings, rom_dir);
+      const PcsStudy rom    = run_pcs_sweep_into(scene, settings, rom_dir);
       for (const std::string &dir : {fe_dir, rom_dir})
         run_plot_script("plot_pcs.py", {dir, scene.name});
       // A branch that stopped early (its run left the physically possible

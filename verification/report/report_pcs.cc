@@ -1,6 +1,7 @@
 // The prescribed-position sweep in words (verification/studies/pcs_sweep.h
 // computes it): its description and the report's subsection of section 4.
 #include "verification/report/charts.h"
+#include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/pcs_sweep.h"
@@ -102,7 +103,7 @@ namespace beamslider
     console() << "Prescribed slider position sweeps (ROM, N = " << scene.discretisation.n_modes << ", x_C/L "
               << settings.sweep.low_over_L << " … " << settings.sweep.high_over_L << " in steps of "
               << settings.sweep.step_over_L << ")" << std::endl;
-    const PcsStudy study = run_pcs_sweep(scene, settings, report.dir);
+    const PcsStudy study = run_pcs_sweep_into(scene, settings, report.dir);
     const bool plotted   = run_plot_script("plot_pcs.py", {report.dir, scene.name});
 
     report.text << "### Prescribed slider position (seed §4.2–4.3)\n\n"

@@ -1,14 +1,11 @@
 // Two prescribed-position sweeps compared, see pcs_comparison.h.
 #include "verification/studies/pcs_comparison.h"
 
-#include "io/csv_writer.h"
 #include "meshes/scene.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
-#include <map>
 #include <sstream>
 
 namespace beamslider
@@ -99,79 +96,6 @@ namespace beamslider
         branch.other_crossings = force_zero_crossings(b);
       }
     return result;
-  }
-
-  std::vector<PcsPoint> read_pcs_csv(const std::string &path)
-  {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError("--against: no pcs.csv at '" + path + "'");
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::string> header;
-    {
-      std::stringstream row(line);
-      for (std::string cell; std::getline(row, cell, ',');)
-        header.push_back(cell);
-    }
-    std::map<std::string, std::size_t> column;
-    for (const char *name : {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "mean_fx_ci95_N"})
-      {
-        const auto it = std::find(header.begin(), header.end(), name);
-        if (it == header.end())
-          throw InputError("--against: '" + path + "' is not a sweep's pcs.csv (no column " + name + ")");
-        column[name] = it - header.begin();
-      }
-    std::vector<PcsPoint> points;
-    for (unsigned int row_number = 2; std::getline(in, line); ++row_number)
-      {
-        std::vector<std::string> cells;
-        std::stringstream row(line);
-        for (std::string cell; std::getline(row, cell, ',');)
-          cells.push_back(cell);
-        try
-          {
-            if (cells.size() != header.size())
-              throw std::invalid_argument("wrong number of cells");
-            PcsPoint p;
-            p.x_over_L         = std::stod(cells[column["x_over_L"]]);
-            const std::string d = cells[column["direction"]];
-            if (d != "up" && d != "down")
-              throw std::invalid_argument("direction '" + d + "'");
-            p.direction        = d == "up" ? SweepDirection::up : SweepDirection::down;
-            p.amplitude_over_h = std::stod(cells[column["amplitude_over_h"]]);
-            p.mean_fx          = std::stod(cells[column["mean_fx_N"]]);
-            p.mean_fx_ci95     = std::stod(cells[column["mean_fx_ci95_N"]]);
-            points.push_back(p);
-          }
-        catch (const std::exception &e)
-          {
-            throw InputError("--against: row " + std::to_string(row_number) + " of '" + path +
-                             "' cannot be read (" + e.what() + ")");
-          }
-      }
-    return points;
-  }
-
-  void write_pcs_comparison(const PcsComparison &comparison, const std::string &dir)
-  {
-    CsvWriter positions(dir + "/comparison.csv",
-                        {"direction", "x_over_L", "amplitude_over_h", "other_amplitude_over_h",
-                         "amplitude_relative_difference", "mean_fx_N", "mean_fx_ci95_N", "other_mean_fx_N",
-                         "other_mean_fx_ci95_N", "fx_intervals_overlap"});
-    for (const auto &p : comparison.positions)
-      positions.row({to_string(p.direction), CsvWriter::cell(p.x_over_L), CsvWriter::cell(p.amplitude),
-                     CsvWriter::cell(p.other_amplitude), CsvWriter::cell(p.amplitude_relative_difference),
-                     CsvWriter::cell(p.fx), CsvWriter::cell(p.fx_ci95), CsvWriter::cell(p.other_fx),
-                     CsvWriter::cell(p.other_fx_ci95), p.fx_intervals_overlap ? "1" : "0"});
-    CsvWriter crossings(dir + "/crossings.csv",
-                        {"sweep", "direction", "x_over_L", "x_low_over_L", "x_high_over_L", "stable", "resolved"});
-    for (const auto *branch : {&comparison.up, &comparison.down})
-      for (const auto &[name, list] : {std::pair("this", &branch->crossings), std::pair("other", &branch->other_crossings)})
-        for (const auto &c : *list)
-          crossings.row({name, to_string(branch->direction), CsvWriter::cell(c.x_over_L),
-                         CsvWriter::cell(c.x_low_over_L), CsvWriter::cell(c.x_high_over_L), c.stable ? "1" : "0",
-                         c.resolved ? "1" : "0"});
   }
 
   std::string describe(const PcsComparison &comparison, const std::string &label, const std::string &other_label)

@@ -11,13 +11,8 @@
 // crossing of sweep A the nearest one of B of the same stability, with the
 // distance and whether the intervals overlap.
 //
-// Files (beamslider sweep --against DIR):
-//   comparison.csv  direction,x_over_L,amplitude_over_h,other_amplitude_over_h,
-//                   amplitude_relative_difference,mean_fx_N,mean_fx_ci95_N,
-//                   other_mean_fx_N,other_mean_fx_ci95_N,fx_intervals_overlap
-//   crossings.csv   sweep,direction,x_over_L,x_low_over_L,x_high_over_L,
-//                   stable,resolved   (sweep: this | other)
-//   pcs_compare.png both sweeps' amplitudes and F̄_x with intervals
+// The comparison writes nothing: its files (comparison.csv, crossings.csv)
+// and the reading of a sweep's pcs.csv are verification/report/pcs_files.h's.
 #pragma once
 
 #include "runs/prescribed_position_sweep.h"
@@ -58,13 +53,6 @@ namespace beamslider
 
   // The comparison; require_same_positions first.
   PcsComparison compare_sweeps(const std::vector<PcsPoint> &points, const std::vector<PcsPoint> &other_points);
-
-  // Reads a sweep's pcs.csv (the columns verification/studies/pcs_sweep.h writes);
-  // throws InputError for a missing or foreign file.
-  std::vector<PcsPoint> read_pcs_csv(const std::string &path);
-
-  // comparison.csv and crossings.csv into dir.
-  void write_pcs_comparison(const PcsComparison &comparison, const std::string &dir);
 
   // Markdown lines: amplitude agreement, F̄_x overlap, crossings side by side.
   std::string describe(const PcsComparison &comparison, const std::string &label, const std::string &other_label);

@@ -7,21 +7,17 @@
 #include "runs/trace_analysis.h"
 
 #include "runs/adaptation_run.h"
-#include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/studies/console.h"
 #include "verification/studies/number_text.h"
 #include "verification/studies/parallel_for.h"
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <iostream>
 #include <memory>
 #include <mutex>
 
@@ -38,21 +34,21 @@ namespace beamslider
 
     // The Eq. 5 resonance curve on a fine grid over the swept range (needs
     // the geometric nonlinearity: without it the curve is a vertical line).
-    void write_resonance_curve(const Scene &scene, const ModalBasis &basis, const PcsSweepSettings &sweep,
-                               const std::string &dir)
+    std::vector<ResonancePoint> resonance_curve(const Scene &scene, const ModalBasis &basis,
+                                                const PcsSweepSettings &sweep)
     {
       const double L = scene.beam.length;
       const ReducedOrderModel rom(basis, scene.damping_ratio, true);
       const ResonanceCurveData data =
         ResonanceCurveData::from_model(rom, scene.slider_mass(), scene.slider_inertia(), scene.beam.thickness);
-      CsvWriter csv(dir + "/resonance.csv", {"x_over_L", "amplitude_over_h"});
+      std::vector<ResonancePoint> curve;
       const unsigned int n = 200;
       for (unsigned int i = 0; i <= n; ++i)
         {
           const double x = sweep.low_over_L + (sweep.high_over_L - sweep.low_over_L) * i / n;
-          const double a = resonance_amplitude_over_h(rom, data, x * L, scene.excitation.frequency_hz);
-          csv.row({CsvWriter::cell(x), std::isfinite(a) ? CsvWriter::cell(a) : ""});
+          curve.push_back({x, resonance_amplitude_over_h(rom, data, x * L, scene.excitation.frequency_hz)});
         }
+      return curve;
     }
 
     // The free slider's jump by the one trace analysis; the amplitude
@@ -73,39 +69,45 @@ namespace beamslider
     }
 
     // The two branches and the free slider are independent runs: each on its
-    // own core. Rows of pcs.csv are written as positions finish (a branch's
-    // rows stay in its order; the readers select by direction), and console
-    // lines whole, under one lock.
+    // own core. The observer hears of each position as it finishes (a
+    // branch's points in its order) and of each progress line whole, one
+    // call at a time under one lock.
     struct PcsRuns
     {
       const Scene &scene;
       const ModelSetting &model;
       const PcsStudySettings &settings;
-      const std::string &dir;
-      CsvWriter &pcs;
+      const PcsSweepObserver &observer;
       const long n_positions; // the grid's own count, per branch
       PcsStudy &study;
-      std::mutex output_mutex{};
+      std::mutex observer_mutex{};
 
       void say(const std::string &line)
       {
-        const std::lock_guard<std::mutex> lock(output_mutex);
-        console() << line << std::endl;
+        const std::lock_guard<std::mutex> lock(observer_mutex);
+        if (observer.on_progress)
+          observer.on_progress(line);
       }
 
-      // One finished position of a branch: its row, and every tenth a
-      // progress line.
-      void write_point(const SweepDirection direction, const PcsPoint &p, long &done)
+      // One finished position of a branch: the observer's, and every tenth
+      // a progress line.
+      void report_point(const SweepDirection direction, const PcsPoint &p, long &done)
       {
-        const std::lock_guard<std::mutex> lock(output_mutex);
-        pcs.row({CsvWriter::cell(p.x_over_L), to_string(p.direction), CsvWriter::cell(p.amplitude_over_h),
-                 CsvWriter::cell(p.mean_fx), CsvWriter::cell(p.amplitude_std_over_h), CsvWriter::cell(p.mean_fx_std),
-                 std::to_string(p.n_periods), CsvWriter::cell(p.t_end), CsvWriter::cell(p.mean_fx_ci95)});
+        const std::lock_guard<std::mutex> lock(observer_mutex);
+        if (observer.on_point)
+          observer.on_point(p);
         ++done;
-        if (settings.verbose && (done % 10 == 0 || done == n_positions))
-          console() << "  sweep " << to_string(direction) << ": " << done << "/" << n_positions
-                    << " positions, x_C/L = " << fixed(p.x_over_L, 3) << ", amplitude " << fixed(p.amplitude_over_h, 3)
-                    << " h, F_x = " << sci(p.mean_fx, 2) << " N" << std::endl;
+        if (settings.verbose && (done % 10 == 0 || done == n_positions) && observer.on_progress)
+          observer.on_progress("  sweep " + to_string(direction) + ": " + std::to_string(done) + "/" +
+                               std::to_string(n_positions) + " positions, x_C/L = " + fixed(p.x_over_L, 3) +
+                               ", amplitude " + fixed(p.amplitude_over_h, 3) + " h, F_x = " + sci(p.mean_fx, 2) + " N");
+      }
+
+      void report_free_period(const PeriodRecord &record)
+      {
+        const std::lock_guard<std::mutex> lock(observer_mutex);
+        if (observer.on_free_period)
+          observer.on_free_period(record);
       }
 
       void sweep_branch(const SweepDirection direction)
@@ -113,7 +115,7 @@ namespace beamslider
         std::unique_ptr<BeamSystem> beam = make_beam_model(scene, model);
         long done                        = 0;
         PcsBranch branch                 = run_pcs_branch(scene, *beam, settings.sweep, model.time_step, direction,
-                                                          [&](const PcsPoint &p) { write_point(direction, p, done); });
+                                                          [&](const PcsPoint &p) { report_point(direction, p, done); });
         if (branch.last_run.status != RunStatus::completed)
           say("  sweep " + to_string(direction) + " stopped early (" + to_string(branch.last_run.status) +
               "): " + branch.last_run.message);
@@ -129,10 +131,9 @@ namespace beamslider
         options.output_rate              = 1.;
         options.progress_interval        = settings.verbose ? std::max(1., settings.free_time / 5.) : 1e300;
         AdaptationRun run(scene, *beam, options);
-        CsvWriter periods(dir + "/free_periods.csv", period_csv_columns());
-        std::vector<PeriodRecord> records;
-        run.on_period = [&periods, &records](const PeriodRecord &r) {
-          write_period_row(periods, r);
+        std::vector<PeriodRecord> &records = study.free_periods;
+        run.on_period = [this, &records](const PeriodRecord &r) {
+          report_free_period(r);
           records.push_back(r);
         };
         if (settings.verbose)
@@ -145,6 +146,9 @@ namespace beamslider
         study.free_jump = free_jump_of(records, analyse_trace(records, study.free_run.status, trace_thresholds(scene)));
         if (study.free_run.status != RunStatus::completed)
           say("  free slider stopped early (" + to_string(study.free_run.status) + "): " + study.free_run.message);
+        const std::lock_guard<std::mutex> lock(observer_mutex);
+        if (observer.on_free_run_end)
+          observer.on_free_run_end(study.free_run);
       }
 
       // The free run first: with two cores the second branch then goes to
@@ -161,17 +165,6 @@ namespace beamslider
         });
       }
     };
-
-    // Whether each run reached its end: pcs.csv holds the positions a branch
-    // reached, which its rows alone cannot tell from a complete branch.
-    void write_run_rows(CsvWriter &runs, const PcsStudy &study, const long n_positions, const bool with_free_run)
-    {
-      for (const PcsBranch *branch : {&study.up, &study.down})
-        runs.row({to_string(branch->direction), to_string(branch->last_run.status), CsvWriter::cell(branch->points.size()),
-                  std::to_string(n_positions), CsvWriter::cell(branch->last_run.t_end)});
-      if (with_free_run)
-        runs.row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
-    }
 
     // The features the seed reads off the branches: the zero crossings of
     // F̄_x and the jump of each branch.
@@ -196,7 +189,7 @@ namespace beamslider
                         : 2 * branch + free_run;
   }
 
-  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir)
+  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const PcsSweepObserver &observer)
   {
     // The model runs at its own step (the FE at the scene's FE time step).
     const ModelSetting model = scene_model(scene, settings.model);
@@ -208,23 +201,17 @@ namespace beamslider
     PcsStudy study;
 
     if (scene.discretisation.geometric_nonlinearity)
-      write_resonance_curve(scene, basis, settings.sweep, dir);
-
-    CsvOptions in_place; // rows as positions finish: kept by a stopped sweep
-    in_place.in_place = true;
-    CsvWriter pcs(dir + "/pcs.csv", {"x_over_L", "direction", "amplitude_over_h", "mean_fx_N", "amplitude_std_over_h",
-                                     "mean_fx_std_N", "n_periods", "t_end_s", "mean_fx_ci95_N"},
-                  in_place);
+      study.resonance = resonance_curve(scene, basis, settings.sweep);
     // The grid's own count (the far end is a position of its own when the
     // range is not a whole number of steps).
-    const long n_positions = static_cast<long>(settings.sweep.positions(SweepDirection::up).size());
-    CsvWriter runs(dir + "/runs.csv", {"run", "status", "positions", "positions_planned", "t_end_s"}, in_place);
+    study.positions_planned = settings.sweep.positions(SweepDirection::up).size();
+    study.with_free_run     = settings.free_time > 0.;
+    if (observer.on_start)
+      observer.on_start(study);
 
-    const bool with_free_run = settings.free_time > 0.;
-    PcsRuns branches_and_free_run{scene, model, settings, dir, pcs, n_positions, study};
-    branches_and_free_run.run_all(with_free_run);
+    PcsRuns branches_and_free_run{scene, model, settings, observer, static_cast<long>(study.positions_planned), study};
+    branches_and_free_run.run_all(study.with_free_run);
 
-    write_run_rows(runs, study, n_positions, with_free_run);
     find_branch_features(study);
     study.wall_seconds = elapsed_seconds(start);
     return study;

@@ -4,34 +4,21 @@
 // (reduced/resonance_curve.h), and the features the seed reads off them: the
 // jump (turning point) of each branch and the zero crossings of F̄_x.
 //
-// Files written into the output folder (SI units, named columns):
-//   pcs.csv        x_over_L,direction,amplitude_over_h,mean_fx_N,
-//                  amplitude_std_over_h,mean_fx_std_N,n_periods,t_end_s
-//                  (direction: up = x_C increasing, down = decreasing;
-//                  amplitude = mean over the averaged periods of
-//                  (max − min)/2 of w(L/2) per period, over h; mean_fx_N =
-//                  period-averaged horizontal contact force on the slider,
-//                  + toward x = L; *_std = spread over those periods)
-//   resonance.csv  x_over_L,amplitude_over_h (Eq. 5; empty cell = no resonance)
-//   free_periods.csv  the free-slider run, one row per excitation period
-//                  (periods.csv columns)
-//   runs.csv       run,status,positions,positions_planned,t_end_s: whether
-//                  each branch (and the free run) reached its end; status
-//                  other than "completed" = stopped early, its pcs.csv rows
-//                  are the positions it reached (also in PcsStudy and
-//                  report.h's describe())
-// The chart pcs.png (amplitude and F̄_x against x_C/L, seed Figs. 10b and 14)
-// is the caller's: scripts/plot_pcs.py on the folder.
-// Rows are flushed as they are computed: a stopped sweep keeps its points.
-// The two branches and the free run are independent runs and go on the
-// machine's cores at once (verification/studies/parallel_for.h): each
-// branch's rows of pcs.csv are in its own order, the two branches' rows
-// interleaved; runs.csv is written when all three are done.
+// The study writes and prints nothing: it returns a PcsStudy, and an
+// observer (PcsSweepObserver) sees each result as it comes, so that the
+// caller can keep its rows on disk while the runs go (a stopped sweep keeps
+// its points) and show progress. The files of a sweep and their columns are
+// verification/report/pcs_files.h's. The two branches and the free run are
+// independent runs and go on the machine's cores at once
+// (verification/studies/parallel_for.h): each branch's points reach the
+// observer in its own order, the two branches' points interleaved.
 #pragma once
 
 #include "runs/prescribed_position_sweep.h"
 #include "meshes/scene.h"
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,15 +30,28 @@ namespace beamslider
     std::string model = "rom";  // rom | fe
     PcsSweepSettings sweep;     // range, step, settle and averaging times
     double free_time = 0;       // [s] of the free-slider run (0: none)
-    bool verbose = true;        // progress on stdout
+    bool verbose = true;        // progress lines to the observer (a stop is reported regardless)
+  };
+
+  // The Eq. 5 resonance curve at one position: amplitude not finite = no
+  // resonance there.
+  struct ResonancePoint
+  {
+    double x_over_L = 0, amplitude_over_h = 0;
   };
 
   struct PcsStudy
   {
+    // The Eq. 5 resonance curve on a fine grid over the swept range; empty
+    // without the geometric nonlinearity (the curve is then a vertical line).
+    std::vector<ResonancePoint> resonance;
+    std::size_t positions_planned = 0; // per branch: the grid's own count, far end included
     PcsBranch up, down;
     std::vector<ForceZeroCrossing> crossings_up, crossings_down;
     std::optional<AmplitudeJump> jump_up, jump_down;
+    bool with_free_run = false;   // settings.free_time > 0
     RunResult free_run;           // status of the free-slider run
+    std::vector<PeriodRecord> free_periods; // the free-slider run, one per excitation period
     double free_final_x_over_L = 0; // where the free slider ended [-]
     // The free slider's jump by the one trace analysis (contact/
     // trace_analysis.h): time [s], x_C/L, the envelope before it and one
@@ -64,7 +64,24 @@ namespace beamslider
     double wall_seconds = 0;
   };
 
-  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const std::string &dir);
+  // What run_pcs_sweep reports while it runs; every function may be empty.
+  // They are called one at a time (under one lock) from the threads of the
+  // runs, so they need no lock of their own.
+  struct PcsSweepObserver
+  {
+    // Once the settings are checked, before any run starts: the study so
+    // far (resonance, positions_planned, with_free_run).
+    std::function<void(const PcsStudy &)> on_start;
+    // A branch's finished position (its direction in the point).
+    std::function<void(const PcsPoint &)> on_point;
+    // One excitation period of the free-slider run, and that run's end.
+    std::function<void(const PeriodRecord &)> on_free_period;
+    std::function<void(const RunResult &)> on_free_run_end;
+    // A progress line, without its '\n'.
+    std::function<void(const std::string &)> on_progress;
+  };
+
+  PcsStudy run_pcs_sweep(const Scene &scene, const PcsStudySettings &settings, const PcsSweepObserver &observer = {});
 
   // The simulated time [s] of run_pcs_sweep's longest chain of runs on `cores`
   // cores (the free run and the two branches go at once, in that order): what
