@@ -2,6 +2,7 @@
 // same rows as an uninterrupted run), and a 2-rank run under mpirun giving
 // the same rows as one process.
 #include "meshes/scene.h"
+#include "verification/report/map_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/operating_map.h"
 

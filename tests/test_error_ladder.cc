@@ -5,6 +5,7 @@
 // model's; the choice takes the cheapest rung within the tolerance, from a
 // cache keyed by the scene's physical content.
 #include "verification/studies/error_ladder.h"
+#include "verification/cli/ladder_cache.h"
 #include "verification/studies/model_choice.h"
 
 #include <gtest/gtest.h>

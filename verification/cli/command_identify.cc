@@ -23,6 +23,7 @@
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/report/map_files.h"
 #include "verification/studies/elapsed.h"
 #include "verification/studies/console.h"
 #include "verification/studies/operating_map.h"

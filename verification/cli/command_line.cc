@@ -15,6 +15,7 @@
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
+#include "verification/studies/fe_rom_study.h"
 
 #include <deal.II/base/exceptions.h>
 
@@ -466,6 +467,8 @@ int run_beamslider(int argc, char **argv, std::ostream &errors)
   // (its folder in use by the other rank) is said, with its rank.
   const unsigned int rank = launch_rank();
   clear_output_failures();
+  // A solid's reduced model (built on first use by any command) says what it builds.
+  set_model_build_progress([](const std::string &line) { console() << line << std::endl; });
   std::ostringstream messages; // also the first line of run.txt's `ended:` record
   int status = parse_and_run(argc, argv, messages);
   if (status == 0 && !output_failures().empty())

@@ -2,7 +2,8 @@
 // A:B:STEP [--start A:B:STEP] [--axis "Section/Name=A:B:STEP"]... [--members K]
 // [--model rom|fe] [--end-time S]`: the adaptation on every cell of a grid
 // (verification/studies/operating_map.h), spread over MPI ranks
-// (verification/studies/mpi_cells.h).
+// (verification/studies/mpi_cells.h); map.csv is written and read back by
+// verification/report/map_files.h.
 //
 // Writes into the output folder:
 //   map.csv               one row per cell and member, the grid values first;
@@ -23,6 +24,7 @@
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/report/map_files.h"
 #include "verification/studies/elapsed.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/console.h"
@@ -221,12 +223,15 @@ namespace beamslider
       console() << "; into " << m.dir << std::endl;
     }
 
-    // A cell's rows, and its wall time on a last line for rank 0's timing.csv.
+    // A cell's rows of map.csv ("" when interrupted), and its wall time on a
+    // last line for rank 0's timing.csv.
     std::string compute_map_cell(const MapRun &m, const std::size_t cell)
     {
-      const auto t0        = clock::now();
-      std::string rows     = run_map_cell(m.scene_file, m.common.overrides, m.grid, cell, m.settings);
+      const auto t0 = clock::now();
+      const std::vector<MapMember> members =
+        run_map_cell_members(m.scene_file, m.common.overrides, m.grid, cell, m.settings);
       const double seconds = elapsed_seconds(t0);
+      std::string rows     = members.empty() ? std::string() : format_map_rows(m.grid, cell, members);
       if (!rows.empty())
         rows += "#wall " + std::to_string(seconds) + "\n"; // carried to rank 0 for timing.csv, not written to map.csv
       return rows;

@@ -22,10 +22,10 @@
 #include "fem/output/vtk_animation.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/ladder_cache.h"
 #include "verification/studies/elapsed.h"
 #include "verification/studies/console.h"
 #include "verification/studies/fe_rom_study.h"
-#include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <cerrno>

@@ -16,6 +16,7 @@
 #include "fem/fe_modes.h"
 #include "verification/studies/elapsed.h"
 #include "verification/report/charts.h"
+#include "verification/report/map_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/map_fe_check.h"

@@ -15,6 +15,7 @@
 // verdict, score, reason), <fact>/map.csv (the run, in the map's format).
 #include "io/csv_writer.h"
 #include "io/output_file.h"
+#include "verification/report/map_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/console.h"
 #include "verification/studies/operating_map.h"

@@ -11,7 +11,6 @@
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"
 #include "verification/studies/coefficient_methods.h"
-#include "verification/studies/console.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +20,7 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 namespace beamslider
 {
@@ -43,6 +43,13 @@ namespace beamslider
 
   namespace
   {
+    // Where the solid's model build reports (set_model_build_progress).
+    std::function<void(const std::string &)> &model_build_progress()
+    {
+      static std::function<void(const std::string &)> progress;
+      return progress;
+    }
+
     // Everything a solid's modes and coefficients depend on, in full
     // precision; not the slider, excitation or start position, where an
     // ensemble's members differ and still share the model.
@@ -73,16 +80,27 @@ namespace beamslider
       const std::string key = solid_key(scene, N, method);
       if (const auto found = built.find(key); found != built.end())
         return found->second;
-      auto rom = std::make_shared<const SolidReducedModel>(build_solid_reduced_model(
-        scene, N, method, [](const std::string &line) { console() << "Building the " << line << std::endl; }));
-      // Formatted apart: console()'s own precision stays as it was.
-      std::ostringstream seconds;
-      seconds << std::fixed << std::setprecision(1) << rom->build_seconds;
-      console() << "Built the solid's reduced model in " << seconds.str() << " s" << std::endl;
+      const auto &progress = model_build_progress();
+      auto rom = std::make_shared<const SolidReducedModel>(
+        build_solid_reduced_model(scene, N, method, [&progress](const std::string &line) {
+          if (progress)
+            progress("Building the " + line);
+        }));
+      if (progress)
+        {
+          std::ostringstream seconds;
+          seconds << std::fixed << std::setprecision(1) << rom->build_seconds;
+          progress("Built the solid's reduced model in " + seconds.str() + " s");
+        }
       built.emplace(key, rom);
       return rom;
     }
   } // namespace
+
+  void set_model_build_progress(std::function<void(const std::string &)> progress)
+  {
+    model_build_progress() = std::move(progress);
+  }
 
   ModelSetting scene_model(const Scene &scene, const std::string &family)
   {

@@ -68,7 +68,16 @@ namespace beamslider
 
   // The beam model of a setting for `scene` (the scene's mesh, damping and
   // excitation; the setting's own parameters). Throws if it cannot be built.
+  // On a solid scene the solid's reduced model is built once per process
+  // (minutes), and its progress reported to set_model_build_progress's
+  // callback.
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting);
+
+  // Where the build of a solid's reduced model reports its progress, a line
+  // each (without '\n'): the command line sends it to the console
+  // (verification/cli/command_line.cc); unset, nothing is reported. Set it
+  // before any model is built (the builds of several threads read it).
+  void set_model_build_progress(std::function<void(const std::string &)> progress);
 
   struct ModelRun
   {

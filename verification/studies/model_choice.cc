@@ -2,64 +2,14 @@
 #include "verification/studies/model_choice.h"
 
 #include "io/csv_writer.h"
-#include "verification/studies/console.h"
-#include "verification/studies/error_ladder.h"
 
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
-#include <iostream>
 #include <sstream>
 
 namespace beamslider
 {
-  namespace
-  {
-    constexpr unsigned int ladder_members = 4;
-    constexpr double ladder_end_time      = 25.; // [s]: the end state of the published cases is reached by ~25 s
-
-    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "n_elements",
-                                                    "integrator",  "time_step_s",  "damped_modes", "theta", "reference",
-                                                    "cost_units",  "final_x_median", "w1",         "w1_high"};
-
-    // The cache, or an empty vector if there is none or it is not ours.
-    std::vector<LadderChoiceRow> read_cache(const std::string &path)
-    {
-      std::vector<LadderChoiceRow> rows;
-      std::ifstream in(path);
-      std::string line;
-      if (!in || !std::getline(in, line) || line != CsvWriter::line(cache_columns))
-        return rows;
-      while (std::getline(in, line))
-        {
-          const auto c = CsvWriter::cells(line);
-          if (c.size() != cache_columns.size())
-            return {};
-          LadderChoiceRow r;
-          r.rung                = c[0];
-          r.model.family        = c[1];
-          r.model.n_modes       = std::stoul(c[2]);
-          r.model.n_elements    = std::stoul(c[3]);
-          r.model.integrator    = c[4];
-          r.model.time_step     = std::stod(c[5]);
-          r.model.damped_modes  = std::stoul(c[6]);
-          r.model.theta         = std::stod(c[7]);
-          r.reference           = c[8] == "1";
-          r.cost_units          = std::stod(c[9]);
-          r.final_x_median      = std::stod(c[10]);
-          r.w1                  = std::stod(c[11]);
-          r.w1_high             = std::stod(c[12]);
-          rows.push_back(r);
-        }
-      return rows;
-    }
-
-    // 17 significant digits: a double read back from the cache is the one written.
-    std::string number(const double x) { return CsvWriter::cell(x, 17); }
-  } // namespace
-
   std::string scene_content_key(const Scene &s)
   {
     // Every field the ladder's outcome depends on, in full precision.
@@ -75,7 +25,7 @@ namespace beamslider
       << ' ' << s.discretisation.n_modes << ' ' << s.discretisation.geometric_nonlinearity << ' '
       << s.time_stepping.time_step << ' ' << s.solvers.contact_tolerance << ' ' << s.solvers.contact_sweeps << ' '
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
-      << s.solvers.newton_iterations << ' ' << ladder_members << ' ' << ladder_end_time
+      << s.solvers.newton_iterations << ' ' << choice_ladder_members << ' ' << choice_ladder_end_time
       << ' ' << s.time_stepping.fe_time_step << ' ' << s.time_stepping.fe_theta
       << " ladder-4"; // the ladder's rungs: version 4's reference is the FE step its convergence check accepted
     // A mesh beam by its elements and sections (not its file name alone:
@@ -112,67 +62,50 @@ namespace beamslider
     return *best;
   }
 
-  ModelSetting choose_model(const Scene &scene, const double tolerance, const std::string &cache_dir, std::string &why)
+  ChoiceLadder run_choice_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
+                                 const std::function<void(const LadderRung &, std::size_t)> &before_rung)
   {
-    const std::string path = cache_dir + "/ladder-" + scene_content_key(scene) + ".csv";
-    std::vector<LadderChoiceRow> rows = read_cache(path);
-    std::ostringstream log;
-    if (!rows.empty())
-      log << "model choice from the cached error ladder " << path << ":\n";
-    else
+    const LadderStudy study =
+      run_ladder(scene, rungs, reference, choice_ladder_end_time, choice_ladder_members, before_rung);
+    ChoiceLadder ladder;
+    for (std::size_t i = 0; i < study.rungs.size(); ++i)
       {
-        std::size_t reference = 0;
-        const auto rungs      = default_ladder(scene, LadderScope::quick, reference);
-        console() << "simulate --model auto: no cached error ladder for this scene; running it (" << rungs.size()
-                  << " models × " << ladder_members << " members over " << ladder_end_time
-                  << " s, a few minutes, the FE most of it) ..." << std::endl;
-        const LadderStudy study = run_ladder(scene, rungs, reference, ladder_end_time, ladder_members,
-                                             [](const LadderRung &rung, std::size_t) {
-                                               console() << "  " << rung.name << " (" << rung.model.label() << ")"
-                                                         << std::endl;
-                                             });
-        for (std::size_t i = 0; i < study.rungs.size(); ++i)
-          {
-            const LadderRungResult &r = study.rungs[i];
-            LadderChoiceRow row;
-            row.rung            = r.rung.name;
-            row.model           = r.rung.model;
-            row.reference       = i == reference;
-            row.cost_units      = r.cost_units;
-            row.final_x_median  = r.final_position.median;
-            row.w1              = row.reference ? 0. : r.position_to_reference.wasserstein;
-            row.w1_high         = row.reference ? 0. : r.position_to_reference.interval_high;
-            rows.push_back(row);
-          }
-        std::filesystem::create_directories(cache_dir);
-        CsvWriter cache(path, cache_columns);
-        for (const auto &r : rows)
-          cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes), CsvWriter::cell(r.model.n_elements),
-                     r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
-                     number(r.model.theta), r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
-                     number(r.w1_high)});
-        cache.close();
-        log << "model choice from the error ladder just computed (cached in " << path << "):\n";
-        for (const ConvergenceCheck &c : study.checks)
-          log << "  " << c.verdict() << "\n";
+        const LadderRungResult &r = study.rungs[i];
+        LadderChoiceRow row;
+        row.rung            = r.rung.name;
+        row.model           = r.rung.model;
+        row.reference       = i == reference;
+        row.cost_units      = r.cost_units;
+        row.final_x_median  = r.final_position.median;
+        row.w1              = row.reference ? 0. : r.position_to_reference.wasserstein;
+        row.w1_high         = row.reference ? 0. : r.position_to_reference.interval_high;
+        ladder.rows.push_back(row);
       }
+    for (const ConvergenceCheck &c : study.checks)
+      ladder.check_verdicts.push_back(c.verdict());
+    return ladder;
+  }
 
+  ModelChoice choose_from_ladder(const Scene &scene, const std::vector<LadderChoiceRow> &rows, const double tolerance)
+  {
+    // W₁ in full precision, as the cache holds it.
+    const auto exact = [](const double x) { return CsvWriter::cell(x, 17); };
     const LadderChoiceRow &chosen = cheapest_within(rows, tolerance);
+    std::ostringstream log;
     log << "  tolerance " << tolerance << " on the end position: the upper end of the 90 % interval of W₁ (final x_C/L, "
-        << ladder_members << " members over " << ladder_end_time
+        << choice_ladder_members << " members over " << choice_ladder_end_time
         << " s) to the FE reference; cost by a stated model (units: steps of the published ROM), not by wall time\n";
     for (const auto &r : rows)
       log << "  " << r.rung << " (" << r.model.label() << "): final x_C/L median " << r.final_x_median
-          << (r.reference ? ", the reference" : ", W₁ " + number(r.w1) + " ≤ " + number(r.w1_high)) << ", cost "
+          << (r.reference ? ", the reference" : ", W₁ " + exact(r.w1) + " ≤ " + exact(r.w1_high)) << ", cost "
           << r.cost_units << (&r == &chosen ? "  <- picked" : "") << "\n";
     log << "picked " << chosen.rung << ": "
         << (chosen.reference ? "no cheaper model met the tolerance, so the FE reference"
                              : "the cheapest model within the tolerance")
         << "\n";
-    why = log.str();
-    ModelSetting setting = chosen.model;
-    if (setting.family == "fe" && setting.n_elements == 0)
-      setting.n_elements = scene.discretisation.n_elements;
-    return setting;
+    ModelChoice choice{chosen.model, log.str()};
+    if (choice.model.family == "fe" && choice.model.n_elements == 0)
+      choice.model.n_elements = scene.discretisation.n_elements;
+    return choice;
   }
 } // namespace beamslider

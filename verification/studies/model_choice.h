@@ -3,26 +3,31 @@
 // the scene (error_ladder.h, the quick ladder: 4 members over 25 s), never
 // on a wall-clock time.
 //
-// The ladder is computed on demand and cached in
-//   <cache_dir>/ladder-<key>.csv
-// where <key> is a hash of everything in the scene that the ladder's
-// outcome depends on (beam, supports, slider, contact, damping, excitation,
-// start position, mesh, N, Δt, the FE's Δt and θ; not the name, end time or
-// output rate). A
-// changed scene gets a new key, so a stale cache is never read.
-// Columns: rung,family,n_modes,n_elements,integrator,time_step_s,
-//          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high
+// The ladder is run here and its rows returned; the command line keeps them
+// in a cache keyed by scene_content_key (verification/cli/ladder_cache.h),
+// so that the choice on a known scene runs nothing.
 #pragma once
 
 #include "meshes/scene.h"
+#include "verification/studies/error_ladder.h"
 #include "verification/studies/fe_rom_study.h"
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace beamslider
 {
-  // A hexadecimal 64-bit FNV-1a hash of the scene's physical content.
+  // The quick ladder the choice is decided on: members per rung, and the
+  // window [s] (the end state of the published cases is reached by ~25 s).
+  constexpr unsigned int choice_ladder_members = 4;
+  constexpr double choice_ladder_end_time      = 25.;
+
+  // A hexadecimal 64-bit FNV-1a hash of the scene's physical content: what
+  // the ladder's outcome depends on (beam, supports, slider, contact,
+  // damping, excitation, start position, mesh, N, Δt, the FE's Δt and θ; not
+  // the name, end time or output rate), so a changed scene gets a new key.
   std::string scene_content_key(const Scene &scene);
 
   struct LadderChoiceRow
@@ -39,8 +44,23 @@ namespace beamslider
   // at or below `tolerance` (in x_C/L); the reference always qualifies.
   const LadderChoiceRow &cheapest_within(const std::vector<LadderChoiceRow> &rows, double tolerance);
 
-  // Reads the cached ladder for `scene` from `cache_dir`, or runs the quick
-  // ladder and writes the cache; then picks by cheapest_within. The
-  // numbers it decided on go to `why`.
-  ModelSetting choose_model(const Scene &scene, double tolerance, const std::string &cache_dir, std::string &why);
+  // The quick ladder of `scene` run: a row per rung, and the verdicts of
+  // its convergence checks. `before_rung` (optional) as run_ladder's.
+  struct ChoiceLadder
+  {
+    std::vector<LadderChoiceRow> rows;
+    std::vector<std::string> check_verdicts;
+  };
+  ChoiceLadder run_choice_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
+                                 const std::function<void(const LadderRung &, std::size_t)> &before_rung = {});
+
+  // The pick among the ladder's rows by cheapest_within, the model set for
+  // `scene` (the FE reference on the scene's mesh), and the numbers it was
+  // decided on, a line each.
+  struct ModelChoice
+  {
+    ModelSetting model;
+    std::string why;
+  };
+  ModelChoice choose_from_ladder(const Scene &scene, const std::vector<LadderChoiceRow> &rows, double tolerance);
 } // namespace beamslider

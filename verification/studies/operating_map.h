@@ -3,10 +3,9 @@
 // amplitude, start position, or any other parameter by its scene path — each
 // member classified by the one trace analysis (runs/trace_analysis.h).
 //
-// A cell's result is its rows of map.csv, one per member, formatted here so
-// that the same cell always gives the same bytes (no wall time in them):
-// that is what lets an interrupted map be resumed and end with the content of
-// an uninterrupted one (verification/cli/command_map.cc).
+// A cell's result is its members (MapMember); the files of a map, map.csv
+// and the reading back of its finished cells for a restart, are the
+// caller's (verification/report/map_files.h).
 #pragma once
 
 #include "runs/trace_analysis.h"
@@ -15,8 +14,6 @@
 
 #include <cstddef>
 #include <functional>
-#include <map>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +26,10 @@ namespace beamslider
     std::string column;         // map.csv column, "frequency_hz"
     std::vector<double> values; // ascending
   };
+
+  // A grid value as text (12 significant digits): as a cell's scene sets it
+  // and as map.csv writes it, the same on every rank and every run.
+  std::string grid_value_text(double x);
 
   // "A:B:STEP" (A, A + STEP, … up to B within 1e-9 STEP) or one value "A".
   // InputError naming `option` for anything else, STEP ≤ 0, B < A, non-finite
@@ -62,8 +63,6 @@ namespace beamslider
   Scene map_cell_scene(const std::string &scene_file, const std::vector<std::string> &overrides,
                        const MapGrid &grid, std::size_t cell, double end_time);
 
-  // map.csv: the axis columns, then these.
-  std::vector<std::string> map_csv_columns(const MapGrid &grid);
   // One member of a cell: how its run ended and the trace analysis.
   struct MapMember
   {
@@ -86,17 +85,6 @@ namespace beamslider
                                                     const std::vector<std::string> &overrides, const MapGrid &grid,
                                                     const MapSettings &settings,
                                                     const std::function<void(std::size_t, std::size_t)> &on_cell = {});
-  // The cell's rows of map.csv, each ending in '\n'.
-  std::string format_map_rows(const MapGrid &grid, std::size_t cell, const std::vector<MapMember> &members);
-  // A whole map.csv of computed cells (run_map_cells' result; empty cells,
-  // not run, are left out). Throws OutputError if it cannot be written.
-  void write_map_csv(const std::string &path, const MapGrid &grid, const std::vector<std::vector<MapMember>> &cells);
-  // Both: what a map worker returns ("" when interrupted).
-  std::string run_map_cell(const std::string &scene_file, const std::vector<std::string> &overrides,
-                           const MapGrid &grid, std::size_t cell, const MapSettings &settings);
-  // The key of a row: its axis fields as written (the first n_axes fields).
-  std::string map_row_cell_key(const std::string &row, std::size_t n_axes);
-  std::string map_cell_key(const MapGrid &grid, std::size_t cell);
 
   // The published cases (simulation_cases.h) that differ from the scene
   // file only in frequency, acceleration and start position — those a map
@@ -107,12 +95,4 @@ namespace beamslider
     double frequency_hz = 0, acceleration = 0, start_over_L = 0, end_time = 0;
   };
   std::vector<PublishedMapCase> published_map_cases();
-
-  // The rows of an existing map.csv grouped by cell key, keeping only the
-  // cells with all K members (a map killed mid-write may have left a cell
-  // incomplete or a last line cut short). Throws InputError if the header
-  // differs from `columns`.
-  std::map<std::string, std::string> read_finished_cells(const std::string &path,
-                                                         const std::vector<std::string> &columns,
-                                                         unsigned int n_members);
 } // namespace beamslider

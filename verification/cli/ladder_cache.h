@@ -1,0 +1,21 @@
+// The error ladder that `simulate --model auto` decides on
+// (verification/studies/model_choice.h), computed on demand and cached in
+//   <cache_dir>/ladder-<key>.csv
+// where <key> is scene_content_key(scene): a changed scene gets a new key,
+// so a stale cache is never read.
+// Columns: rung,family,n_modes,n_elements,integrator,time_step_s,
+//          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high
+#pragma once
+
+#include "meshes/scene.h"
+#include "verification/studies/fe_rom_study.h"
+
+#include <string>
+
+namespace beamslider
+{
+  // Reads the cached ladder for `scene` from `cache_dir`, or runs the quick
+  // ladder (its progress on the console) and writes the cache; then picks
+  // by cheapest_within. The numbers it decided on go to `why`.
+  ModelSetting choose_model(const Scene &scene, double tolerance, const std::string &cache_dir, std::string &why);
+} // namespace beamslider
