@@ -21,7 +21,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/command_line.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <deal.II/base/multithread_info.h>
 

@@ -22,7 +22,7 @@
 #include "reduced/rom_beam_system.h"
 #include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <chrono>

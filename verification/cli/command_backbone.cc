@@ -29,7 +29,7 @@
 #include "reduced/rom_operator.h"
 #include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <chrono>
 #include <cmath>

@@ -11,7 +11,7 @@
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/coefficient_methods.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <fstream>
 #include <iostream>

@@ -23,7 +23,7 @@
 #include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <deal.II/base/mpi.h>
 

@@ -27,7 +27,7 @@
 #include "verification/studies/elapsed.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_convergence.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
 

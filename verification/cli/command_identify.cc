@@ -25,7 +25,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/map_files.h"
 #include "verification/studies/elapsed.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/system1_facts.h"
 

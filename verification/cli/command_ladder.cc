@@ -11,7 +11,7 @@
 #include "verification/cli/commands.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_ladder.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/error_ladder.h"
 
 #include "io/interruption.h"

@@ -27,7 +27,7 @@
 #include "verification/report/map_files.h"
 #include "verification/studies/elapsed.h"
 #include "verification/studies/mpi_cells.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"

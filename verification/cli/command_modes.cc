@@ -8,7 +8,7 @@
 #include "reduced/beam_backbone.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <chrono>
 #include <cmath>

@@ -24,7 +24,7 @@
 #include "verification/cli/commands.h"
 #include "verification/cli/ladder_cache.h"
 #include "verification/studies/elapsed.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"
 

@@ -28,7 +28,7 @@
 #include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <chrono>
 #include <cmath>

@@ -18,7 +18,7 @@
 #include "verification/studies/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <deal.II/base/mpi.h>
 

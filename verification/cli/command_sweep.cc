@@ -6,7 +6,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
 

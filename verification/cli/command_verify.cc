@@ -23,7 +23,7 @@
 #include "verification/report/report_ladder.h"
 #include "verification/report/report_region.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <algorithm>
 #include <chrono>

@@ -2,7 +2,7 @@
 #include "verification/cli/ladder_cache.h"
 
 #include "io/csv_writer.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/model_choice.h"
 
 #include <filesystem>

@@ -3,7 +3,7 @@
 
 #include "runs/adaptation_run.h"
 #include "io/csv_writer.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <algorithm>
 #include <cmath>

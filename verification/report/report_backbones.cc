@@ -18,7 +18,7 @@
 #include "reduced/rom_operator.h"
 #include "verification/report/charts.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <cmath>
 #include <iomanip>

@@ -10,7 +10,7 @@
 #include "io/interruption.h"
 #include "verification/studies/elapsed.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/pcs_sweep.h"
 #include "verification/studies/simulation_cases.h"
 

@@ -25,7 +25,7 @@
 #include "verification/report/report.h"
 #include "verification/report/report_ladder.h"
 #include "verification/report/report_region.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"

@@ -6,7 +6,7 @@
 #include "verification/report/charts.h"
 #include "verification/report/report.h"
 #include "verification/studies/analytic_beam.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <chrono>
 #include <cmath>

@@ -18,7 +18,7 @@
 #include "verification/report/charts.h"
 #include "verification/report/map_files.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/map_fe_check.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/simulation_cases.h"

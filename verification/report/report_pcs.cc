@@ -3,7 +3,7 @@
 #include "verification/report/charts.h"
 #include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/pcs_sweep.h"
 
 #include <algorithm>

@@ -6,7 +6,7 @@
 #include "verification/studies/member_runs.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <algorithm>
 #include <chrono>

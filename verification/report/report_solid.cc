@@ -28,7 +28,7 @@
 #include "verification/studies/elapsed.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/simulation_cases.h"
 

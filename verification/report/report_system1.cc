@@ -17,7 +17,7 @@
 #include "io/output_file.h"
 #include "verification/report/map_files.h"
 #include "verification/report/report.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/system1_facts.h"
 

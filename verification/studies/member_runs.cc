@@ -5,7 +5,7 @@
 #include "io/interruption.h"
 #include "io/output_file.h"
 #include "verification/studies/build_info.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 

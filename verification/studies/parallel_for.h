@@ -10,6 +10,17 @@
 // caller (an exception may not leave a thread, and a thread may not be
 // destroyed unjoined: either would end the program with std::terminate and
 // no message).
+//
+// Why plain threads and not TBB (deal.II's own task layer): TBB's threads
+// can only be had with deal.II's thread limit above one, and deal.II 9.4
+// then changes its arithmetic, not just its speed: FEValues stops reusing a
+// translated cell's Jacobian when more than one thread is allowed, which
+// moves the beam's stiffness matrix in the last bit (325 entries on
+// mueller2023) and with it the modes, the coefficients and every trace.
+// Keeping deal.II at one thread (main() and the Python module set the limit)
+// while TBB had two would take writing deal.II's private thread count. A run
+// is one thread's work from start to end, so these threads share nothing
+// with deal.II's.
 #pragma once
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // The switchable console stream, see console.h.
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <iostream>
 #include <streambuf>
