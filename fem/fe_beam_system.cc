@@ -11,16 +11,16 @@ namespace beamslider
                   SolverData{}.newton_iterations == FETransientSettings{}.max_iterations,
                 "the default scene's Newton settings differ from FETransientSettings' defaults");
 
-  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, const unsigned int n_elements,
-                                                  const bool axial_inertia)
+  std::unique_ptr<BeamSystem> make_fe_beam_system(const Scene &scene, const FEBeamOptions &options)
   {
     FETransientSettings settings;
-    settings.axial_inertia      = axial_inertia;
-    settings.theta              = scene.time_stepping.fe_theta;
+    settings.axial_inertia      = options.axial_inertia;
+    settings.damped_modes       = options.damped_modes;
+    settings.theta              = options.theta.value_or(scene.time_stepping.fe_theta);
     settings.relative_tolerance = scene.solvers.newton_relative_tolerance;
     settings.absolute_tolerance = scene.solvers.newton_absolute_tolerance;
     settings.max_iterations     = scene.solvers.newton_iterations;
-    return std::make_unique<FETransientBeam>(scene, BaseExcitation::from_scene(scene.excitation), n_elements,
+    return std::make_unique<FETransientBeam>(scene, BaseExcitation::from_scene(scene.excitation), options.n_elements,
                                              settings);
   }
 } // namespace beamslider

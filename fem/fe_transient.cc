@@ -48,7 +48,7 @@ namespace beamslider
                                   "midpoint rule, no numerical damping; above: the unresolved modes are damped)");
     find_support_constraints();
     assemble_mass_and_base_load();
-    set_up_modal_damping(scene.discretisation.n_modes);
+    set_up_modal_damping(settings.damped_modes ? settings.damped_modes : scene.discretisation.n_modes);
     set_up_iteration_matrix_pattern();
     collect_cells();
     cache_cell_quadrature();

@@ -171,6 +171,9 @@ namespace beamslider
     // m/s and Newton failed after 15 s. The massless DoFs' velocity is the
     // step's mean (finish_step), so nothing flips from step to step.
     bool axial_inertia = true;
+    // The lowest bending modes that carry the damping ratio D (0: the
+    // scene's N, `Discretisation/Number of modes`).
+    unsigned int damped_modes = 0;
   };
 
   // Counters for the benchmark note.

@@ -182,7 +182,7 @@ static void fe_contact(benchmark::State &state, const bool midpoint)
     }
   state.counters["dt [us]"]           = 1e6 * scene.time_stepping.fe_time_step;
   state.counters["theta"]             = scene.time_stepping.fe_theta;
-  std::unique_ptr<BeamSystem> system  = make_fe_beam_system(scene, state.range(0));
+  std::unique_ptr<BeamSystem> system  = make_fe_beam_system(scene, {static_cast<unsigned int>(state.range(0))});
   const auto &fe                      = dynamic_cast<const FETransientBeam &>(*system);
   const double from                   = state.range(1);
   RunOptions options                  = RunOptions::from_scene(scene, scene.time_stepping.fe_time_step);

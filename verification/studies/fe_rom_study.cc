@@ -122,17 +122,16 @@ namespace beamslider
     return s;
   }
 
-  std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene_in, const ModelSetting &setting)
+  std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting)
   {
-    Scene scene = scene_in;
     if (setting.family == "fe")
       {
-        if (setting.n_elements)
-          scene.discretisation.n_elements = setting.n_elements;
-        if (setting.damped_modes) // the FE damps the scene's N modes
-          scene.discretisation.n_modes = setting.damped_modes;
-        scene.time_stepping.fe_theta = setting.theta;
-        return make_fe_beam_system(scene, 0, setting.axial_inertia);
+        FEBeamOptions options;
+        options.n_elements    = setting.n_elements;
+        options.damped_modes  = setting.damped_modes;
+        options.theta         = setting.theta;
+        options.axial_inertia = setting.axial_inertia;
+        return make_fe_beam_system(scene, options);
       }
     if (setting.family != "rom")
       throw InputError("model family '" + setting.family + "' is not one of fe, rom");
@@ -181,9 +180,7 @@ namespace beamslider
     try
       {
         Scene scene = scene_in;
-        scene.initial.slider_position_over_L += setting.slider_offset_over_L;
-        if (setting.family == "fe" && setting.n_elements)
-          scene.discretisation.n_elements = setting.n_elements;
+        scene.initial.slider_position_over_L += setting.slider_offset_over_L; // the member's start
         auto beam          = make_beam_model(scene, setting);
         RunOptions options = RunOptions::from_scene(scene, setting.time_step);
         options.end_time   = window;
