@@ -365,6 +365,10 @@ namespace beamslider
   // the same scene, bit for bit.
   std::string scene_file_text(const Scene &scene);
 
+  // Every parameter of `scene` as {"Section/Name": text}, the text exactly as
+  // scene_file_text writes it (the Python module's Scene.get/parameters).
+  std::map<std::string, std::string> scene_parameter_values(const Scene &scene);
+
   // One setting of a command (an option of the command line with its
   // effective value, given or default).
   struct CommandSetting

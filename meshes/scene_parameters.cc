@@ -144,8 +144,10 @@ namespace beamslider
     class SceneBinder
     {
     public:
-      explicit SceneBinder(ParameterHandler &prm)
+      // `values`, if given, receives every entry's path and text.
+      explicit SceneBinder(ParameterHandler &prm, std::map<std::string, std::string> *values = nullptr)
         : prm_(prm)
+        , values_(values)
       {}
 
       void enter(const std::string &section)
@@ -184,10 +186,13 @@ namespace beamslider
       {
         prm_.declare_entry(name, default_text, pattern, doc);
         prm_.add_action(name, on_value); // runs once now, with the default
+        if (values_)
+          (*values_)[section_ + "/" + name] = default_text;
       }
 
     private:
       ParameterHandler &prm_;
+      std::map<std::string, std::string> *values_;
       std::string section_;
     };
 
@@ -397,9 +402,10 @@ namespace beamslider
     // tables, which build_beam() assembles into the beam afterwards): Scene{}
     // (the default scene, mueller2023) for reading and the template, a run's
     // own scene for the effective parameters it writes (scene_file_text).
-    void bind_scene(ParameterHandler &prm, Scene &s, SceneTables &tables)
+    void bind_scene(ParameterHandler &prm, Scene &s, SceneTables &tables,
+                    std::map<std::string, std::string> *values = nullptr)
     {
-      SceneBinder e(prm);
+      SceneBinder e(prm, values);
       bind_beam(e, s);
       bind_section_tables(e, s, tables);
       bind_point_masses(e, s, tables);
@@ -1286,6 +1292,16 @@ namespace beamslider
     std::ostringstream out;
     prm.print_parameters(out, ParameterHandler::PRM);
     return out.str();
+  }
+
+  std::map<std::string, std::string> scene_parameter_values(const Scene &scene)
+  {
+    ParameterHandler prm;
+    Scene bound = scene; // bind_scene needs variables; this copy is only written
+    SceneTables tables;
+    std::map<std::string, std::string> values;
+    bind_scene(prm, bound, tables, &values);
+    return values;
   }
 
   std::string command_settings_text(const std::string &command, const std::vector<CommandSetting> &settings)

@@ -15,6 +15,9 @@
 //                        the scene after the overrides, in the scene-file
 //                        format (bad values raise ValueError with the CLI's
 //                        message).
+//   scene_parameters(path, overrides)
+//                        the same scene as {"Section/Name": text}, read by
+//                        the one scene reader (meshes/scene_parameters.cc).
 //   resolve_scene(name)  a scene name of meshes/ or a path, as the CLI
 //                        resolves it.
 #include "io/interruption.h"
@@ -31,6 +34,7 @@
 
 #include <array>
 #include <csignal>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -166,6 +170,12 @@ namespace
     return as_value_error([&] { return beamslider::scene_file_text(beamslider::read_scene(path, overrides)); });
   }
 
+  std::map<std::string, std::string> scene_parameters(const std::string &path, const std::vector<std::string> &overrides)
+  {
+    return as_value_error(
+      [&] { return beamslider::scene_parameter_values(beamslider::read_scene(path, overrides)); });
+  }
+
   std::string resolve_scene(const std::string &scene)
   {
     return as_value_error([&] { return beamslider::resolve_scene_path(scene); });
@@ -184,6 +194,8 @@ PYBIND11_MODULE(_core, m)
         "Stops the running command at its next step, as Ctrl-C does.");
   m.def("scene_text", &scene_text, py::arg("path"), py::arg("overrides"),
         "The scene file's text after the overrides (\"Section/Name=value\").");
+  m.def("scene_parameters", &scene_parameters, py::arg("path"), py::arg("overrides"),
+        "Every parameter of the scene after the overrides, as {\"Section/Name\": text}.");
   m.def("resolve_scene", &resolve_scene, py::arg("scene"),
         "The path of a scene given by name (meshes/NAME.prm) or path.");
 }

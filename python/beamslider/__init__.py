@@ -64,6 +64,7 @@ class Scene:
         self.path = _core.resolve_scene(str(scene))
         self._overrides = []
         self._text = _core.scene_text(self.path, self._overrides)
+        self._values = _core.scene_parameters(self.path, self._overrides)
 
     def set(self, parameter, value):
         """Sets "Section/Name" (e.g. "Excitation/Frequency") to value; raises
@@ -75,13 +76,14 @@ class Scene:
         kept = [o for o in self._overrides if o.split("=", 1)[0] != parameter]
         overrides = kept + [f"{parameter}={value}"]
         self._text = _core.scene_text(self.path, overrides)
+        self._values = _core.scene_parameters(self.path, overrides)
         self._overrides = overrides
         return self
 
     def get(self, parameter):
         """The value of "Section/Name" after the overrides: a float where it is
         a number, else the text."""
-        text = _parameter_values(self._text).get(parameter)
+        text = self._values.get(parameter)
         if text is None:
             raise ValueError(f"error: no parameter '{parameter}' in scene '{self.path}'")
         try:
@@ -91,7 +93,7 @@ class Scene:
 
     def parameters(self):
         """Every parameter of the scene as {"Section/Name": text}."""
-        return dict(_parameter_values(self._text))
+        return dict(self._values)
 
     def write(self, path):
         """Writes the scene with its overrides as a scene file (.prm) that the
@@ -114,23 +116,6 @@ class Scene:
 
     def __repr__(self):
         return f"Scene({self.path!r}, overrides={self._overrides!r})"
-
-
-def _parameter_values(text):
-    """{"Section/Sub/Name": value} of a ParameterHandler file."""
-    values, path = {}, []
-    for raw in text.splitlines():
-        line = raw.split("#", 1)[0].strip()
-        if not line:
-            continue
-        if line.startswith("subsection "):
-            path.append(line[len("subsection "):].strip())
-        elif line == "end":
-            path.pop()
-        elif line.startswith("set ") and "=" in line:
-            name, value = line[4:].split("=", 1)
-            values["/".join(path + [name.strip()])] = value.strip()
-    return values
 
 
 def read_table(path):
