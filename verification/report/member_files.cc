@@ -47,10 +47,10 @@ namespace beamslider
       {}
 
       // The rows of an earlier start with this key, each offered to `take`
-      // (a file of another key moved aside), the file anew with the rows
-      // taken only, then open for appending.
+      // as its cells (a file of another key moved aside), the file anew with
+      // the rows taken only, then open for appending.
       void open(const std::string &key, const std::vector<std::string> &columns,
-                const std::function<bool(const std::string &row)> &take)
+                const std::function<bool(const std::vector<std::string> &record)> &take)
       {
         std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
         const std::vector<std::string> previous = records(read_text_file_if_present(path));
@@ -63,7 +63,7 @@ namespace beamslider
           }
         else
           for (std::size_t k = 2; k < previous.size(); ++k)
-            if (take(previous[k]))
+            if (take(CsvWriter::cells(previous[k])))
               kept += previous[k] + "\n";
         // The file anew with the complete rows only (atomically: a kill now
         // leaves the old file or the new one); new rows are appended.
@@ -85,8 +85,10 @@ namespace beamslider
       MemberRecordStore store;
       store.name = file->path;
       store.open = [file](const std::string &key, const std::vector<std::string> &columns,
-                          const std::function<bool(const std::string &row)> &take) { file->open(key, columns, take); };
-      store.append = [file](const std::string &row) { file->rows->row(CsvWriter::cells(row)); };
+                          const std::function<bool(const std::vector<std::string> &record)> &take) {
+        file->open(key, columns, take);
+      };
+      store.append = [file](const std::vector<std::string> &record) { file->rows->row(record); };
       store.close  = [file] { file->rows->close(); };
       return store;
     }

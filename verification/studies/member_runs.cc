@@ -1,7 +1,6 @@
 // Persisted, distributed member runs, see member_runs.h.
 #include "verification/studies/member_runs.h"
 
-#include "io/csv_writer.h" // CsvWriter::line and cells: a member's record as one line of text
 #include "io/interruption.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/model_choice.h"
@@ -17,8 +16,31 @@ namespace beamslider
 {
   namespace
   {
-    // One member run, its record as a line of text (what travels between ranks).
+    // One member run, its record packed into one text (what travels
+    // between ranks); "" for a run that was interrupted.
     using CellWork = std::function<std::string(std::size_t)>;
+
+    // A record as one text: each cell as its length, ':' and its bytes.
+    std::string packed(const std::vector<std::string> &cells)
+    {
+      std::string text;
+      for (const std::string &cell : cells)
+        text += std::to_string(cell.size()) + ':' + cell;
+      return text;
+    }
+
+    std::vector<std::string> unpacked(const std::string &text)
+    {
+      std::vector<std::string> cells;
+      for (std::size_t at = 0; at < text.size();)
+        {
+          const std::size_t colon = text.find(':', at);
+          const std::size_t size  = std::stoul(text.substr(at, colon - at));
+          cells.push_back(text.substr(colon + 1, size));
+          at = colon + 1 + size;
+        }
+      return cells;
+    }
 
     std::string exact(const double x)
     {
@@ -60,13 +82,12 @@ namespace beamslider
           thresholds.push_back(trace_thresholds(g.scene));
       }
 
-      // A row kept earlier under the same key: taken (true) if it is a
+      // A record kept earlier under the same key: taken (true) if it is a
       // whole record of a member of these groups not yet there.
-      bool take_previous_row(const std::string &row)
+      bool take_previous_record(const std::vector<std::string> &cells)
       {
         try
           {
-            const std::vector<std::string> cells = CsvWriter::cells(row);
             unsigned long g0 = 0;
             const auto [end, error] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), g0);
             if (error != std::errc() || g0 >= groups.size())
@@ -155,14 +176,14 @@ namespace beamslider
       const std::chrono::steady_clock::time_point start_time = std::chrono::steady_clock::now();
     };
 
-    // The store's rows of an earlier start with this key into `table`; the
+    // The store's records of an earlier start with this key into `table`; the
     // number taken.
     std::size_t resume(MemberRecordStore &store, const std::string &key, MemberTable &table)
     {
       std::size_t n_kept = 0;
       if (store.open)
-        store.open(key, member_record_columns(), [&](const std::string &row) {
-          const bool taken = table.take_previous_row(row);
+        store.open(key, member_record_columns(), [&](const std::vector<std::string> &record) {
+          const bool taken = table.take_previous_record(record);
           n_kept += taken;
           return taken;
         });
@@ -193,12 +214,12 @@ namespace beamslider
         mpi, todo, work,
         [&](const std::size_t run, const std::string &text, const unsigned int rank) {
           const auto [g, m]                    = group_and_member(groups, run);
-          const std::vector<std::string> cells = CsvWriter::cells(text);
+          const std::vector<std::string> cells = unpacked(text);
           std::size_t group                    = 0;
           std::string name;
           EnsembleMember member = member_from_record(cells, table.thresholds[g], group, name);
           if (store.append)
-            store.append(text);
+            store.append(cells);
           table.members[g][m] = std::move(member);
           table.have[g][m]    = true;
           ++n_done;
@@ -225,7 +246,7 @@ namespace beamslider
         const EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
         if (member.result.status == RunStatus::interrupted)
           return std::string(); // not a result: run again on the next start
-        return CsvWriter::line(member_record(g, groups[g].name, member));
+        return packed(member_record(g, groups[g].name, member));
       };
       if (mpi.rank() == 0)
         return run_on_manager(groups, settings, mpi, work, round);

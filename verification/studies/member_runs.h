@@ -8,12 +8,12 @@
 // results are those of an uninterrupted run, bit for bit (every member, new
 // or read back, goes through the same record, ensemble.h's member_record).
 //
-// A record is one CSV line (the cells of member_record, as they travel
-// between ranks too) under a key: what was asked, and by which build
-// (member_runs_key). The store hands back the rows kept under that key;
-// a row that is not a whole record of a member of these groups (one cut
-// short by a kill) is dropped and its member run again. Nothing here writes
-// or prints: progress lines go to the settings' on_progress.
+// A record is the cells of member_record, kept under a key: what was asked,
+// and by which build (member_runs_key). The store hands back the records
+// kept under that key; one that is not a whole record of a member of these
+// groups (a row cut short by a kill) is dropped and its member run again.
+// Nothing here writes or prints: progress lines go to the settings'
+// on_progress.
 #pragma once
 
 #include "verification/studies/mpi_cells.h"
@@ -32,14 +32,15 @@ namespace beamslider
   {
     // Where the records are, for the progress and stop messages.
     std::string name;
-    // Opens the record of `key` (rows of `columns`): hands each row kept
-    // earlier under that key to `take`, keeps those it accepts and drops the
-    // others (a record of another key is set aside), then takes appends.
+    // Opens the records of `key` (cells of `columns`): hands each record
+    // kept earlier under that key to `take`, keeps those it accepts and
+    // drops the others (records of another key are set aside), then takes
+    // appends.
     std::function<void(const std::string &key, const std::vector<std::string> &columns,
-                       const std::function<bool(const std::string &row)> &take)>
+                       const std::function<bool(const std::vector<std::string> &record)> &take)>
       open;
-    // Persists one finished member's row at once (throws if it cannot).
-    std::function<void(const std::string &row)> append;
+    // Persists one finished member's record at once (throws if it cannot).
+    std::function<void(const std::vector<std::string> &record)> append;
     // No more rows (throws if the last ones could not be written).
     std::function<void()> close;
   };
