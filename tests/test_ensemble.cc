@@ -55,8 +55,8 @@ TEST(Ensemble, MembersAreReproducibleAndActuallyDiffer)
   EXPECT_GT(largest, 1e-3) << "members 0 and 1 did not part";
 }
 
-// A member through its record (one CSV line, as member_runs.csv holds it and
-// MPI carries it) comes back bit for bit: the run's figures, the periods'
+// A member through its record (its cells, which member_runs.csv holds as one
+// CSV line and MPI carries length-prefixed) comes back bit for bit: the run's figures, the periods'
 // start, end, x_C/L and amplitude, and so the trace analysis recomputed from
 // them. A line cut short (a kill during the write) is refused.
 TEST(Ensemble, MemberRecordReadsBackBitForBit)

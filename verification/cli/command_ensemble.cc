@@ -25,6 +25,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/elapsed.h"
+#include "verification/report/member_files.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_convergence.h"
 #include "io/console.h"
@@ -386,22 +387,19 @@ namespace beamslider
     const bool checked = options.model == "fe" && !options.unchecked;
     const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", e.settings.model,
                                                                 checked ? reference_max_halvings : 0)};
-    MemberRunsSettings runs;
-    runs.study           = "ensemble";
-    runs.mpi             = &mpi;
-    runs.progress_prefix = "  ";
     if (mpi.rank() != 0)
       {
         // Computes what rank 0 hands out: the ensemble and the check's rounds.
-        work_on_check_rounds(e.scene, plans, {0}, e.settings.n_members, e.settings.perturbation, runs);
+        work_on_check_rounds(e.scene, plans, {0}, e.settings.n_members, e.settings.perturbation,
+                             member_files_settings("", "ensemble", &mpi, ""));
         return 0;
       }
     const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
 
     e.dir =
       prepare_output_dir(common, e.scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
-    runs.dir    = e.dir;
-    runs.n_kept = &e.n_kept;
+    MemberRunsSettings runs = member_files_settings(e.dir, "ensemble", &mpi, "  ");
+    runs.n_kept             = &e.n_kept;
     announce_ensemble(e, options, checked);
     if (!run_members(e, plans.front(), runs, checked))
       return interruption_exit_code();

@@ -2,7 +2,7 @@
 // STEP, condensed STEP and ICE on the FE model; the membrane over-prediction
 // of plain STEP explained by a number; cost; ICE against its load level.
 #include "io/csv_writer.h"
-#include "io/interruption.h"
+#include "numerics/stop_request.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"

@@ -7,7 +7,7 @@
 // Quick mode: the signature move to its end time (60 s, ~7 s wall) and every
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
 #include "io/csv_writer.h"
-#include "io/interruption.h"
+#include "numerics/stop_request.h"
 #include "verification/studies/elapsed.h"
 #include "verification/report/report.h"
 #include "io/console.h"

@@ -2,7 +2,7 @@
 #include "verification/report/report_ladder.h"
 
 #include "verification/report/charts.h"
-#include "verification/studies/member_runs.h"
+#include "verification/report/member_files.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"
 #include "io/console.h"
@@ -142,12 +142,8 @@ namespace beamslider
                                    const std::size_t reference, const LadderRunSettings &settings,
                                    std::size_t &n_kept)
     {
-      MemberRunsSettings runs;
-      runs.dir             = dir;
-      runs.study           = "ladder";
-      runs.mpi             = MpiSession::active();
-      runs.progress_prefix = settings.progress_prefix;
-      runs.n_kept          = &n_kept;
+      MemberRunsSettings runs = member_files_settings(dir, "ladder", MpiSession::active(), settings.progress_prefix);
+      runs.n_kept             = &n_kept;
       announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
       const LadderStudy study = run_ladder(
         scene, rungs, reference, settings.end_time, settings.members,
@@ -439,10 +435,8 @@ namespace beamslider
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
                       const LadderRunSettings &settings)
   {
-    MemberRunsSettings runs;
-    runs.study = "ladder";
-    runs.mpi   = MpiSession::active();
-    const LadderChecks checks   = ladder_checks(scene, rungs, reference);
+    const MemberRunsSettings runs = member_files_settings("", "ladder", MpiSession::active(), "");
+    const LadderChecks checks     = ladder_checks(scene, rungs, reference);
     run_member_groups(ladder_groups_with_checks(scene, rungs, checks, settings.end_time, settings.members), runs);
     Scene s                  = scene;
     s.time_stepping.end_time = settings.end_time;

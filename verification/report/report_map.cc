@@ -11,7 +11,7 @@
 // Files in <report>/map/: map.csv (as `beamslider map` writes it),
 // published_cases.csv, map_*.png (scripts/plot_map.py).
 #include "io/csv_writer.h"
-#include "io/interruption.h"
+#include "numerics/stop_request.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "verification/studies/elapsed.h"

@@ -3,7 +3,7 @@
 #include "verification/report/report_region.h"
 
 #include "io/csv_writer.h"
-#include "verification/studies/member_runs.h"
+#include "verification/report/member_files.h"
 #include "verification/report/report.h"
 #include "verification/report/report_convergence.h"
 #include "io/console.h"
@@ -184,12 +184,8 @@ namespace beamslider
     console() << settings.progress_prefix << "the verdict across the signature-move region: " << points.size()
               << " operating points × (4 models + their checks) × " << settings.members << " members over "
               << settings.end_time << " s" << std::endl;
-    MemberRunsSettings runs;
-    runs.dir             = dir;
-    runs.file            = "member_runs.region.csv";
-    runs.study           = "region";
-    runs.mpi             = MpiSession::active();
-    runs.progress_prefix = settings.progress_prefix;
+    const MemberRunsSettings runs =
+      member_files_settings(dir, "region", MpiSession::active(), settings.progress_prefix, "member_runs.region.csv");
     const RegionStudy study = run_region(scene, points, settings.end_time, settings.members, member_runs_runner(runs),
                                          check_rounds_runner(runs), round_sharer(runs.mpi));
     write_region_csv(dir, study);
@@ -246,9 +242,7 @@ namespace beamslider
 
   void work_on_region_members(const Scene &scene, const RegionRunSettings &settings)
   {
-    MemberRunsSettings runs;
-    runs.study = "region";
-    runs.mpi   = MpiSession::active();
+    const MemberRunsSettings runs = member_files_settings("", "region", MpiSession::active(), "");
     work_on_region(
       scene, signature_move_region(scene), settings.end_time, settings.members,
       [&runs](const std::vector<MemberGroup> &groups) { run_member_groups(groups, runs); }, round_sharer(runs.mpi));

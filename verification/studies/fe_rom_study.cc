@@ -2,7 +2,7 @@
 #include "verification/studies/fe_rom_study.h"
 
 #include "contact/beam_system.h"
-#include "io/interruption.h"
+#include "numerics/stop_request.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"

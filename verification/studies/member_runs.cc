@@ -1,56 +1,52 @@
 // Persisted, distributed member runs, see member_runs.h.
 #include "verification/studies/member_runs.h"
 
-#include "io/csv_writer.h"
-#include "io/interruption.h"
-#include "io/output_file.h"
+#include "numerics/stop_request.h"
 #include "verification/studies/build_info.h"
-#include "io/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <charconv>
 #include <chrono>
-#include <filesystem>
 #include <iomanip>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 namespace beamslider
 {
   namespace
   {
+    // One member run, its record packed into one text (what travels
+    // between ranks); "" for a run that was interrupted.
+    using CellWork = std::function<std::string(std::size_t)>;
+
+    // A record as one text: each cell as its length, ':' and its bytes.
+    std::string packed(const std::vector<std::string> &cells)
+    {
+      std::string text;
+      for (const std::string &cell : cells)
+        text += std::to_string(cell.size()) + ':' + cell;
+      return text;
+    }
+
+    std::vector<std::string> unpacked(const std::string &text)
+    {
+      std::vector<std::string> cells;
+      for (std::size_t at = 0; at < text.size();)
+        {
+          const std::size_t colon = text.find(':', at);
+          const std::size_t size  = std::stoul(text.substr(at, colon - at));
+          cells.push_back(text.substr(colon + 1, size));
+          at = colon + 1 + size;
+        }
+      return cells;
+    }
+
     std::string exact(const double x)
     {
       char buffer[32];
       const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, x);
       return error == std::errc() ? std::string(buffer, end) : std::string("?");
-    }
-
-    // The records of a CSV text: lines, except that a line break inside a
-    // quoted cell belongs to the cell. A last record without its '\n' (a
-    // write cut short) is returned too; its checks reject it.
-    std::vector<std::string> records(const std::string &text)
-    {
-      std::vector<std::string> out;
-      std::string current;
-      bool in_quotes = false;
-      for (const char c : text)
-        {
-          if (c == '"')
-            in_quotes = !in_quotes; // "" inside quotes toggles twice
-          if (c == '\n' && !in_quotes)
-            {
-              out.push_back(std::move(current));
-              current.clear();
-            }
-          else
-            current += c;
-        }
-      if (!current.empty())
-        out.push_back(std::move(current));
-      return out;
     }
 
     // Each member's scene checked on every rank before any work: a member
@@ -86,13 +82,12 @@ namespace beamslider
           thresholds.push_back(trace_thresholds(g.scene));
       }
 
-      // A row of an earlier member_runs.csv of the same key: taken (true)
-      // if it is a whole record of a member of these groups not yet there.
-      bool take_previous_row(const std::string &row)
+      // A record kept earlier under the same key: taken (true) if it is a
+      // whole record of a member of these groups not yet there.
+      bool take_previous_record(const std::vector<std::string> &cells)
       {
         try
           {
-            const std::vector<std::string> cells = CsvWriter::cells(row);
             unsigned long g0 = 0;
             const auto [end, error] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), g0);
             if (error != std::errc() || g0 >= groups.size())
@@ -131,56 +126,134 @@ namespace beamslider
       std::vector<TraceThresholds> thresholds;
     };
 
-    // member_runs.csv (or the settings' file) in the output folder, which
-    // rank 0 appends each finished member to; no path: nothing persisted.
-    struct MemberFile
-    {
-      explicit MemberFile(const MemberRunsSettings &settings)
-        : stem(settings.dir + "/" + settings.file.substr(0, settings.file.rfind(".csv")))
-        , path(settings.dir.empty() ? std::string() : stem + ".csv")
-      {}
-
-      // The rows of an earlier start with this key into `table` (a file of
-      // another key moved aside), the file anew with those rows only, then
-      // open for appending.
-      void resume(const std::string &key, const std::vector<std::string> &columns, MemberTable &table,
-                  const std::string &progress_prefix)
-      {
-        std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
-        const std::vector<std::string> previous = records(read_text_file_if_present(path));
-        if (!previous.empty() && previous.front() != "# " + key)
-          {
-            std::filesystem::rename(path, stem + ".other.csv");
-            console() << progress_prefix << path << " holds the members of other settings: not reused, moved to "
-                      << stem << ".other.csv; every member is run afresh" << std::endl;
-          }
-        else
-          for (std::size_t k = 2; k < previous.size(); ++k)
-            if (table.take_previous_row(previous[k]))
-              {
-                kept += previous[k] + "\n";
-                ++n_kept;
-              }
-        // The file anew with the complete rows only (atomically: a kill now
-        // leaves the old file or the new one); new rows are appended.
-        write_file_atomically(path, kept);
-        CsvOptions append;
-        append.append = true;
-        rows.emplace(path, columns, append);
-      }
-
-      const std::string stem, path;
-      std::optional<CsvWriter> rows;
-      std::size_t n_kept = 0;
-    };
-
-    std::string stopped_message(const std::size_t n_finished, const std::size_t n_total, const std::string &path)
+    std::string stopped_message(const std::size_t n_finished, const std::size_t n_total, const std::string &store)
     {
       return "stopped after " + std::to_string(n_finished) + " of " + std::to_string(n_total) + " member runs" +
-             (path.empty() ? std::string()
-                           : "; " + path +
-                               " holds every finished one: run the same command again into the same folder to "
-                               "continue");
+             (store.empty() ? std::string()
+                            : "; " + store +
+                                " holds every finished one: run the same command again into the same folder to "
+                                "continue");
+    }
+
+    // Rank 0's progress lines, to the settings' on_progress.
+    struct MemberProgress
+    {
+      void line(const std::string &text) const
+      {
+        if (settings.on_progress)
+          settings.on_progress(settings.progress_prefix + text);
+      }
+
+      // "N member runs, K of them kept from …; T to run, longest first, on …"
+      void start(const std::size_t n_total, const std::size_t n_kept, const std::string &store,
+                 const std::size_t n_todo) const
+      {
+        std::ostringstream text;
+        text << n_total << " member runs";
+        if (n_kept)
+          text << ", " << n_kept << " of them kept from " << store;
+        text << "; " << n_todo << " to run, longest first, on "
+             << (n_ranks > 1 ? std::to_string(n_ranks) + " MPI ranks" : std::string("the cores of this process"));
+        line(text.str());
+      }
+
+      // One finished member: its place in the count, its wall time and the
+      // time since the start, and its trace analysis.
+      void finished(const std::size_t m, const std::string &name, const std::size_t n_finished,
+                    const std::size_t n_total, const unsigned int rank, const EnsembleMember &member) const
+      {
+        std::ostringstream text;
+        text << "member " << m << (name.empty() ? "" : " of " + name) << " (" << n_finished << "/" << n_total
+             << (n_ranks > 1 ? ", rank " + std::to_string(rank) : "") << ", " << std::fixed << std::setprecision(1)
+             << member.wall_seconds << " s, "
+             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count() << " s in all)"
+             << std::defaultfloat << ": " << member.analysis.line;
+        line(text.str());
+      }
+
+      const MemberRunsSettings &settings;
+      const unsigned int n_ranks;
+      const std::chrono::steady_clock::time_point start_time = std::chrono::steady_clock::now();
+    };
+
+    // The store's records of an earlier start with this key into `table`; the
+    // number taken.
+    std::size_t resume(MemberRecordStore &store, const std::string &key, MemberTable &table)
+    {
+      std::size_t n_kept = 0;
+      if (store.open)
+        store.open(key, member_record_columns(), [&](const std::vector<std::string> &record) {
+          const bool taken = table.take_previous_record(record);
+          n_kept += taken;
+          return taken;
+        });
+      return n_kept;
+    }
+
+    // Rank 0's part: what is done already, then the rest, over the ranks
+    // or threads; round r's members kept in the settings' records(r).
+    std::vector<std::vector<EnsembleMember>> run_on_manager(const std::vector<MemberGroup> &groups,
+                                                            const MemberRunsSettings &settings,
+                                                            const MpiSession &mpi, const CellWork &work,
+                                                            const unsigned int round)
+    {
+      const std::size_t n_total = n_runs(groups);
+      MemberTable table(groups);
+      MemberRecordStore store = settings.records ? settings.records(round) : MemberRecordStore();
+      if (settings.n_kept)
+        *settings.n_kept = 0;
+      const std::size_t n_kept = resume(store, member_runs_key(groups, settings.study), table);
+      if (settings.n_kept)
+        *settings.n_kept = n_kept;
+
+      const std::vector<std::size_t> todo = table.todo();
+      const MemberProgress progress{settings, mpi.size()};
+      progress.start(n_total, n_kept, store.name, todo.size());
+      std::size_t n_done = 0;
+      distribute_cells(
+        mpi, todo, work,
+        [&](const std::size_t run, const std::string &text, const unsigned int rank) {
+          const auto [g, m]                    = group_and_member(groups, run);
+          const std::vector<std::string> cells = unpacked(text);
+          std::size_t group                    = 0;
+          std::string name;
+          EnsembleMember member = member_from_record(cells, table.thresholds[g], group, name);
+          if (store.append)
+            store.append(cells);
+          table.members[g][m] = std::move(member);
+          table.have[g][m]    = true;
+          ++n_done;
+          progress.finished(m, name, n_done + n_kept, n_total, rank, table.members[g][m]);
+        },
+        [] { return interruption_requested(); }, settings.n_threads);
+      if (store.close)
+        store.close();
+      if (n_done < todo.size())
+        throw MemberRunsStopped(stopped_message(n_done + n_kept, n_total, store.name));
+      return std::move(table.members);
+    }
+
+    // run_member_groups with round `round`'s store (0: the members, r > 0
+    // a convergence check's later round r).
+    std::vector<std::vector<EnsembleMember>> run_round(const std::vector<MemberGroup> &groups,
+                                                       const MemberRunsSettings &settings, const unsigned int round)
+    {
+      check_groups(groups);
+      const MpiSession single(false);
+      const MpiSession &mpi = settings.mpi ? *settings.mpi : single;
+      const CellWork work   = [&groups](const std::size_t run) {
+        const auto [g, m]           = group_and_member(groups, run);
+        const EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
+        if (member.result.status == RunStatus::interrupted)
+          return std::string(); // not a result: run again on the next start
+        return packed(member_record(g, groups[g].name, member));
+      };
+      if (mpi.rank() == 0)
+        return run_on_manager(groups, settings, mpi, work, round);
+      distribute_cells(
+        mpi, {}, work, [](std::size_t, const std::string &, unsigned int) {},
+        [] { return interruption_requested(); });
+      return {};
     }
   } // namespace
 
@@ -206,74 +279,7 @@ namespace beamslider
   std::vector<std::vector<EnsembleMember>> run_member_groups(const std::vector<MemberGroup> &groups,
                                                              const MemberRunsSettings &settings)
   {
-    using clock = std::chrono::steady_clock;
-    check_groups(groups);
-    const MpiSession single(false);
-    const MpiSession &mpi = settings.mpi ? *settings.mpi : single;
-    const auto work       = [&groups](const std::size_t run) {
-      const auto [g, m]           = group_and_member(groups, run);
-      const EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
-      if (member.result.status == RunStatus::interrupted)
-        return std::string(); // not a result: run again on the next start
-      return CsvWriter::line(member_record(g, groups[g].name, member));
-    };
-    const auto stop = [] { return interruption_requested(); };
-    if (mpi.rank() != 0)
-      {
-        distribute_cells(
-          mpi, {}, work, [](std::size_t, const std::string &, unsigned int) {}, stop);
-        return {};
-      }
-
-    // Rank 0: what is done already, then the rest.
-    const std::size_t n_total = n_runs(groups);
-    MemberTable table(groups);
-    const std::vector<std::string> columns = member_record_columns();
-    const std::string key                  = member_runs_key(groups, settings.study);
-    MemberFile file(settings);
-    if (settings.n_kept)
-      *settings.n_kept = 0;
-    if (!file.path.empty())
-      file.resume(key, columns, table, settings.progress_prefix);
-    const std::size_t n_kept = file.n_kept;
-    if (settings.n_kept)
-      *settings.n_kept = n_kept;
-
-    const std::vector<std::size_t> todo = table.todo();
-    console() << settings.progress_prefix << n_total << " member runs";
-    if (n_kept)
-      console() << ", " << n_kept << " of them kept from " << file.path;
-    console() << "; " << todo.size() << " to run, longest first, on "
-              << (mpi.size() > 1 ? std::to_string(mpi.size()) + " MPI ranks" : std::string("the cores of this process"))
-              << std::endl;
-
-    std::size_t n_done = 0;
-    const auto start   = clock::now();
-    distribute_cells(
-      mpi, todo, work,
-      [&](const std::size_t run, const std::string &text, const unsigned int rank) {
-        const auto [g, m]                    = group_and_member(groups, run);
-        const std::vector<std::string> cells = CsvWriter::cells(text);
-        std::size_t group                    = 0;
-        std::string name;
-        EnsembleMember member = member_from_record(cells, table.thresholds[g], group, name);
-        if (file.rows)
-          file.rows->row(cells);
-        table.members[g][m] = std::move(member);
-        table.have[g][m]    = true;
-        ++n_done;
-        console() << settings.progress_prefix << "member " << m << (name.empty() ? "" : " of " + name) << " ("
-                  << n_done + n_kept << "/" << n_total << (mpi.size() > 1 ? ", rank " + std::to_string(rank) : "")
-                  << ", " << std::fixed << std::setprecision(1) << table.members[g][m].wall_seconds << " s, "
-                  << std::chrono::duration<double>(clock::now() - start).count() << " s in all)"
-                  << std::defaultfloat << ": " << table.members[g][m].analysis.line << std::endl;
-      },
-      stop, settings.n_threads);
-    if (file.rows)
-      file.rows->close();
-    if (n_done < todo.size())
-      throw MemberRunsStopped(stopped_message(n_done + n_kept, n_total, file.path));
-    return std::move(table.members);
+    return run_round(groups, settings, 0);
   }
 
   MemberGroupRunner member_runs_runner(const MemberRunsSettings &settings)
@@ -285,10 +291,7 @@ namespace beamslider
   {
     auto round = std::make_shared<unsigned int>(0);
     return [settings, round](const std::vector<MemberGroup> &groups) {
-      MemberRunsSettings s = settings;
-      // member_runs.csv → member_runs.check-1.csv, …
-      s.file = settings.file.substr(0, settings.file.rfind(".csv")) + ".check-" + std::to_string(++*round) + ".csv";
-      return run_member_groups(groups, s);
+      return run_round(groups, settings, ++*round);
     };
   }
 

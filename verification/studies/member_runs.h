@@ -1,50 +1,68 @@
 // The member runs of ensembles and ladders (verification/studies/ensemble.h,
 // error_ladder.h) handed out by the manager–worker scheme of mpi_cells.h:
 // longest first, over the MPI ranks under mpirun, else over threads of the
-// one process. Each finished member is appended at once (a checked, flushed
-// row) to `member_runs.csv` in the output folder, so that a command that is
-// stopped (Ctrl-C, kill -9) and started again the same way into the same
-// folder runs only the members not yet there; its results are those of an
-// uninterrupted run, bit for bit (every member, new or read back, goes
-// through the same record, ensemble.h's member_record).
+// one process. Each finished member is handed at once to the caller's store
+// (MemberRecordStore: verification/report/member_files.h keeps it as a row of
+// member_runs.csv), so that a command that is stopped (Ctrl-C, kill -9) and
+// started again the same way runs only the members not yet there; its
+// results are those of an uninterrupted run, bit for bit (every member, new
+// or read back, goes through the same record, ensemble.h's member_record).
 //
-// member_runs.csv:
-//   # <key>   what was asked, and by which build: the study, beamslider's
-//             version and source revision, the scene's content key
-//             (model_choice.h), end time, ε, members, and every group's
-//             name, model and exact time step
-//   group,rung,member,…,n_periods,periods   one row per finished member
-// A file with another key is not reused: it is moved aside to
-// member_runs.other.csv and the members are run afresh (and the console
-// says so). A row cut short by a kill is dropped and its member run again.
+// A record is the cells of member_record, kept under a key: what was asked,
+// and by which build (member_runs_key). The store hands back the records
+// kept under that key; one that is not a whole record of a member of these
+// groups (a row cut short by a kill) is dropped and its member run again.
+// Nothing here writes or prints: progress lines go to the settings'
+// on_progress.
 #pragma once
 
 #include "verification/studies/mpi_cells.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace beamslider
 {
+  // Where the finished members of one run_member_groups are kept.
+  struct MemberRecordStore
+  {
+    // Where the records are, for the progress and stop messages.
+    std::string name;
+    // Opens the records of `key` (cells of `columns`): hands each record
+    // kept earlier under that key to `take`, keeps those it accepts and
+    // drops the others (records of another key are set aside), then takes
+    // appends.
+    std::function<void(const std::string &key, const std::vector<std::string> &columns,
+                       const std::function<bool(const std::vector<std::string> &record)> &take)>
+      open;
+    // Persists one finished member's record at once (throws if it cannot).
+    std::function<void(const std::vector<std::string> &record)> append;
+    // No more rows (throws if the last ones could not be written).
+    std::function<void()> close;
+  };
+
   struct MemberRunsSettings
   {
-    std::string dir;                 // folder of member_runs.csv ("": nothing persisted)
-    // The record's name in `dir`: a convergence check's later rounds keep
-    // their members apart (member_runs.check-1.csv, …), so that each round
-    // resumes on its own.
-    std::string file = "member_runs.csv";
+    // The store of the members (round 0) and of a convergence check's
+    // later rounds r = 1, 2, … (check_rounds_runner), which keep their
+    // members apart so that each round resumes on its own. Empty: nothing
+    // persisted.
+    std::function<MemberRecordStore(unsigned int round)> records;
     std::string study;               // "ladder", "ensemble": part of the key
     const MpiSession *mpi = nullptr; // nullptr: this process alone
     unsigned int n_threads = 0;      // without MPI: threads (0: one per core)
     std::string progress_prefix;     // before each progress line
+    // Each progress line (prefix included, without '\n'); empty: none.
+    std::function<void(const std::string &line)> on_progress;
     std::size_t *n_kept = nullptr;   // if given: set to the members read back
   };
 
   // A stop (Ctrl-C, SIGTERM) before every member was done; the finished ones
-  // are in member_runs.csv. what() says how many and how to continue.
+  // are in the store. what() says how many and how to continue.
   class MemberRunsStopped : public std::runtime_error
   {
   public:
@@ -62,8 +80,8 @@ namespace beamslider
   MemberGroupRunner member_runs_runner(const MemberRunsSettings &settings);
 
   // The later rounds of convergence checks (convergence_check.h) as a
-  // runner on rank 0: round r (1, 2, …) persists its members into
-  // member_runs.check-r.csv, so that a stopped check resumes round by round.
+  // runner on rank 0: round r (1, 2, …) persists its members into the
+  // settings' records(r), so that a stopped check resumes round by round.
   MemberGroupRunner check_rounds_runner(const MemberRunsSettings &settings);
   // The broadcast of the rounds' mask from rank 0 (share_round), for
   // run_convergence_checks; without MPI the mask itself.
@@ -74,6 +92,9 @@ namespace beamslider
                             std::vector<std::size_t> n_done, unsigned int n_members, double perturbation,
                             const MemberRunsSettings &settings);
 
-  // The key line of member_runs.csv for these groups (without the "# ").
+  // The key of the members' record for these groups: the study,
+  // beamslider's version and source revision, and every group's name,
+  // scene (with its content key, model_choice.h), model and exact time
+  // step, end time, members and perturbation; one line.
   std::string member_runs_key(const std::vector<MemberGroup> &groups, const std::string &study);
 } // namespace beamslider

@@ -4,7 +4,7 @@
 #include "verification/studies/system1_facts.h"
 #include "verification/studies/system1_fact_table.h"
 
-#include "io/interruption.h"
+#include "numerics/stop_request.h"
 #include "meshes/scene.h"
 
 #include <algorithm>

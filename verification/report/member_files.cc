@@ -1,0 +1,122 @@
+// The files of member runs, see member_files.h.
+#include "verification/report/member_files.h"
+
+#include "io/csv_writer.h"
+#include "io/output_file.h"
+#include "verification/studies/console.h"
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+namespace beamslider
+{
+  namespace
+  {
+    // The records of a CSV text: lines, except that a line break inside a
+    // quoted cell belongs to the cell. A last record without its '\n' (a
+    // write cut short) is returned too; its checks reject it.
+    std::vector<std::string> records(const std::string &text)
+    {
+      std::vector<std::string> out;
+      std::string current;
+      bool in_quotes = false;
+      for (const char c : text)
+        {
+          if (c == '"')
+            in_quotes = !in_quotes; // "" inside quotes toggles twice
+          if (c == '\n' && !in_quotes)
+            {
+              out.push_back(std::move(current));
+              current.clear();
+            }
+          else
+            current += c;
+        }
+      if (!current.empty())
+        out.push_back(std::move(current));
+      return out;
+    }
+
+    // One member_runs.csv, which rank 0 appends each finished member to.
+    struct MemberFile
+    {
+      MemberFile(const std::string &file_stem, const std::string &prefix,
+                 const std::function<void(const std::string &)> &progress)
+        : stem(file_stem), path(file_stem + ".csv"), progress_prefix(prefix), on_progress(progress)
+      {}
+
+      // The rows of an earlier start with this key, each offered to `take`
+      // as its cells (a file of another key moved aside), the file anew with
+      // the rows taken only, then open for appending.
+      void open(const std::string &key, const std::vector<std::string> &columns,
+                const std::function<bool(const std::vector<std::string> &record)> &take)
+      {
+        std::string kept = "# " + key + "\n" + CsvWriter::line(columns) + "\n";
+        const std::vector<std::string> previous = records(read_text_file_if_present(path));
+        if (!previous.empty() && previous.front() != "# " + key)
+          {
+            std::filesystem::rename(path, stem + ".other.csv");
+            if (on_progress)
+              on_progress(progress_prefix + path + " holds the members of other settings: not reused, moved to " +
+                          stem + ".other.csv; every member is run afresh");
+          }
+        else
+          for (std::size_t k = 2; k < previous.size(); ++k)
+            if (take(CsvWriter::cells(previous[k])))
+              kept += previous[k] + "\n";
+        // The file anew with the complete rows only (atomically: a kill now
+        // leaves the old file or the new one); new rows are appended.
+        write_file_atomically(path, kept);
+        CsvOptions append;
+        append.append = true;
+        rows.emplace(path, columns, append);
+      }
+
+      const std::string stem, path, progress_prefix;
+      const std::function<void(const std::string &)> on_progress;
+      std::optional<CsvWriter> rows;
+    };
+
+    MemberRecordStore member_file_store(const std::string &stem, const std::string &progress_prefix,
+                                        const std::function<void(const std::string &line)> &on_progress)
+    {
+      const auto file = std::make_shared<MemberFile>(stem, progress_prefix, on_progress);
+      MemberRecordStore store;
+      store.name = file->path;
+      store.open = [file](const std::string &key, const std::vector<std::string> &columns,
+                          const std::function<bool(const std::vector<std::string> &record)> &take) {
+        file->open(key, columns, take);
+      };
+      store.append = [file](const std::vector<std::string> &record) { file->rows->row(record); };
+      store.close  = [file] { file->rows->close(); };
+      return store;
+    }
+  } // namespace
+
+  std::function<MemberRecordStore(unsigned int round)>
+  member_files(const std::string &dir, const std::string &file, const std::string &progress_prefix,
+               const std::function<void(const std::string &line)> &on_progress)
+  {
+    if (dir.empty())
+      return {};
+    const std::string stem = dir + "/" + file.substr(0, file.rfind(".csv"));
+    return [stem, progress_prefix, on_progress](const unsigned int round) {
+      // member_runs.csv → member_runs.check-1.csv, …
+      return member_file_store(round == 0 ? stem : stem + ".check-" + std::to_string(round), progress_prefix,
+                               on_progress);
+    };
+  }
+
+  MemberRunsSettings member_files_settings(const std::string &dir, const std::string &study, const MpiSession *mpi,
+                                           const std::string &progress_prefix, const std::string &file)
+  {
+    MemberRunsSettings settings;
+    settings.study           = study;
+    settings.mpi             = mpi;
+    settings.progress_prefix = progress_prefix;
+    settings.on_progress     = [](const std::string &line) { console() << line << std::endl; };
+    settings.records         = member_files(dir, file, progress_prefix, settings.on_progress);
+    return settings;
+  }
+} // namespace beamslider
