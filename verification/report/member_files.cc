@@ -3,7 +3,7 @@
 
 #include "io/csv_writer.h"
 #include "io/output_file.h"
-#include "verification/studies/console.h"
+#include "io/console.h"
 
 #include <filesystem>
 #include <memory>
