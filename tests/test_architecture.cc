@@ -8,6 +8,9 @@
 //   verification/cli, python and verification/benchmarks.
 // The models (contact/, reduced/, fem/) do not include io/: they write no
 // file; what they save for a checkpoint goes through numerics/state_bytes.h.
+// Nor do the studies (verification/studies/): a study returns its results
+// and hands rows and progress to its caller's callbacks; report/ and cli/
+// write the files and the console.
 // A study or a report section that needs something of the command line
 // (running a case as `simulate` does) takes it as a function argument
 // (simulation_cases.h: CaseRunner), never by including cli/.
@@ -102,6 +105,9 @@ TEST(Architecture, EveryIncludeLooksDown)
       cli_includes_studies = cli_includes_studies || (i.file.rfind("verification/cli/", 0) == 0 && to == studies_rank);
       EXPECT_LE(to, from) << i.file << ":" << i.line << " includes \"" << i.target
                           << "\", a layer above its own (doc/architecture.md)";
+      if (i.file.rfind("verification/studies/", 0) == 0)
+        EXPECT_NE(i.target.rfind("io/", 0), 0u)
+          << i.file << ":" << i.line << " includes \"" << i.target << "\": a study writes and prints nothing";
       if (is_model(i.file))
         {
           ++model_includes;

@@ -1,7 +1,6 @@
 // The model choice of `simulate --model auto`, see model_choice.h.
 #include "verification/studies/model_choice.h"
 
-#include "io/csv_writer.h"
 
 #include <cmath>
 #include <cstdint>
@@ -89,7 +88,11 @@ namespace beamslider
   ModelChoice choose_from_ladder(const Scene &scene, const std::vector<LadderChoiceRow> &rows, const double tolerance)
   {
     // W₁ in full precision, as the cache holds it.
-    const auto exact = [](const double x) { return CsvWriter::cell(x, 17); };
+    const auto exact = [](const double x) {
+      std::ostringstream text;
+      text << std::setprecision(17) << x;
+      return text.str();
+    };
     const LadderChoiceRow &chosen = cheapest_within(rows, tolerance);
     std::ostringstream log;
     log << "  tolerance " << tolerance << " on the end position: the upper end of the 90 % interval of W₁ (final x_C/L, "
