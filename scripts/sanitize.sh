@@ -11,9 +11,11 @@
 # checking off (Open MPI's unloaded components), exit code 86 on a report.
 #
 # The tests: the programs below are built and every test in them runs.
-#   test_contact_slider, test_reduced_*  the Eigen-only numerics (contact
+#   test_contact_*, test_reduced_*  the Eigen-only numerics (contact
 #       solver, Moreau stepper, ROM, harmonic balance): most of our own
 #       arithmetic and indexing, cheap to build
+#   test_io_*, test_runs_*  checked files and CSV, run statistics and trace
+#       analysis
 #   test_scene, test_simulation_cases    the scene reader and the cases
 #   test_rom_explicit_modal_step         the ROM's own Moreau step against
 #       the general one
@@ -38,7 +40,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 targets=(beamslider test_scene test_simulation_cases test_parallel_for test_rom_explicit_modal_step)
-for source in tests/test_contact_*.cc tests/test_reduced_*.cc tests/test_cli_*.cc; do
+for source in tests/test_contact_*.cc tests/test_io_*.cc tests/test_runs_*.cc tests/test_reduced_*.cc tests/test_cli_*.cc; do
   name=$(basename "$source" .cc)
   [ "$name" = test_reduced_backbone_timing ] || targets+=("$name")
 done
