@@ -3,6 +3,7 @@
 
 #include "numerics/stop_request.h"
 #include "verification/studies/build_info.h"
+#include "verification/studies/elapsed.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 
@@ -166,7 +167,7 @@ namespace beamslider
         text << "member " << m << (name.empty() ? "" : " of " + name) << " (" << n_finished << "/" << n_total
              << (n_ranks > 1 ? ", rank " + std::to_string(rank) : "") << ", " << std::fixed << std::setprecision(1)
              << member.wall_seconds << " s, "
-             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count() << " s in all)"
+             << elapsed_seconds(start_time) << " s in all)"
              << std::defaultfloat << ": " << member.analysis.line;
         line(text.str());
       }
