@@ -1,4 +1,5 @@
 #include "fem/solid_reduced_model.h"
+#include "numerics/elapsed.h"
 
 #include "fem/petsc_session.h"
 #include "fem/solid_coefficients.h"
@@ -37,7 +38,7 @@ namespace beamslider
           // none beyond round-off.
           rom.cubic = solid_cubic_fit(coefficients, method, scene.beam.thickness).cubic;
         }
-      rom.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      rom.build_seconds = elapsed_seconds(start);
       return rom;
     }
 

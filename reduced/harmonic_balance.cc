@@ -1,6 +1,7 @@
 // Harmonic balance backbones with AFT and pseudo-arclength continuation; see
 // harmonic_balance.h for the equations, the choice of harmonics and samples.
 #include "reduced/harmonic_balance.h"
+#include "numerics/elapsed.h"
 
 #include "reduced/backbone_tongues.h"
 
@@ -688,7 +689,7 @@ namespace beamslider
           << result.points.back().amplitude << " m, ω " << result.points.back().omega << " rad/s)";
         result.message = s.str();
       }
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.seconds = elapsed_seconds(t0);
     return result;
   }
 

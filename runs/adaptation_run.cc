@@ -1,5 +1,6 @@
 // Free-slider and prescribed-position runs, see adaptation_run.h.
 #include "runs/adaptation_run.h"
+#include "numerics/elapsed.h"
 #include "io/interruption.h"
 
 #include <algorithm>
@@ -362,7 +363,7 @@ namespace beamslider
 
         if (on_progress && s.t + eps >= next_progress_)
           {
-            const double wall = std::chrono::duration<double>(clock::now() - start).count();
+            const double wall = elapsed_seconds(start);
             RunProgress pr;
             pr.t                = s.t;
             pr.end_time         = t_end;
@@ -381,7 +382,7 @@ namespace beamslider
 
     result.t_end            = stepper_.state().t;
     result.slider_x_over_L  = stepper_.state().s[0] / L;
-    result.wall_seconds     = std::chrono::duration<double>(clock::now() - start).count();
+    result.wall_seconds     = elapsed_seconds(start);
     result.steps_per_second = result.wall_seconds > 0 ? result.n_steps / result.wall_seconds : 0.;
     return result;
   }

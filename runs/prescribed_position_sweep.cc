@@ -1,5 +1,6 @@
 // Prescribed-slider-position sweeps, see prescribed_position_sweep.h.
 #include "runs/prescribed_position_sweep.h"
+#include "numerics/elapsed.h"
 
 #include "runs/batch_means.h"
 
@@ -154,7 +155,7 @@ namespace beamslider
         if (on_point)
           on_point(p);
       }
-    branch.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    branch.wall_seconds = elapsed_seconds(start);
     return branch;
   }
 

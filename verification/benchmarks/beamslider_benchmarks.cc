@@ -16,7 +16,7 @@
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/benchmarks/heap_counter.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"

@@ -20,7 +20,7 @@
 #include "fem/output/vtk_animation.h"
 #include "meshes/scene.h"
 #include "reduced/rom_beam_system.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
 #include "io/console.h"
 #include "verification/studies/fe_rom_study.h"

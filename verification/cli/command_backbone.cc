@@ -27,7 +27,7 @@
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
 #include "io/console.h"
 

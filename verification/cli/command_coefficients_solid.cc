@@ -19,7 +19,7 @@
 #include "fem/solid_modes.h"
 #include "meshes/scene.h"
 #include "reduced/cubic_fit.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"

@@ -24,7 +24,7 @@
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/report/member_files.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_convergence.h"

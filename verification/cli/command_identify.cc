@@ -24,7 +24,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/map_files.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "io/console.h"
 #include "verification/studies/operating_map.h"
 #include "verification/studies/system1_facts.h"

@@ -25,7 +25,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/map_files.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/mpi_cells.h"
 #include "io/console.h"
 #include "verification/studies/model_choice.h"

@@ -1,5 +1,6 @@
 // `beamslider modes`: the lowest bending modes of the bare beam, or of the
 // beam with the slider bonded at x_C (compared with seed Eq. 5).
+#include "numerics/elapsed.h"
 #include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
@@ -49,7 +50,7 @@ namespace beamslider
         x_C    = *options.slider_at * scene.beam.length;
         bonded = compute_bending_modes(beam, options.n_modes, BondedBody{x_C, scene.slider_mass(), scene.slider_inertia()});
       }
-    const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed_ms = 1e3 * elapsed_seconds(start);
     const FEModes &modes = bonded ? *bonded : bare;
 
     if (!bonded)

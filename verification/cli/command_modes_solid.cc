@@ -20,7 +20,7 @@
 #include "fem/solid_modes.h"
 #include "fem/output/solid_output.h"
 #include "meshes/scene.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "io/console.h"

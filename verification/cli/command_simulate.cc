@@ -23,7 +23,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/ladder_cache.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"

@@ -25,7 +25,7 @@
 #include "fem/output/vtk_beam_output.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/mpi_cells.h"
 #include "io/console.h"

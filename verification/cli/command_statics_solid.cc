@@ -15,7 +15,7 @@
 #include "fem/solid_statics.h"
 #include "meshes/printable.h"
 #include "meshes/scene.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/solid_command.h"
 #include "io/console.h"

@@ -16,7 +16,7 @@
 #include "meshes/scene.h"
 #include "verification/studies/child_process.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/member_runs.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/mpi_cells.h"
@@ -25,12 +25,16 @@
 #include "verification/report/report.h"
 #include "io/console.h"
 
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
 #include <future>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -45,13 +49,33 @@ namespace beamslider
     }
 
     // A section run by a second process: its argument vector, the file its
-    // text goes to, and the process's outcome with its wall time.
+    // text goes to, and the process's outcome with its wall time. That time
+    // is measured by the thread that waits for the process, not by the
+    // TimerOutput of the others: a deal.II Timer reduces its lap over MPI
+    // when it stops, and MPI (started by sections 1–7's eigensolvers, with
+    // MPI_THREAD_SERIALIZED) must not be called from a second thread.
     struct SectionProcess
     {
       std::vector<std::string> argv;
       std::string part_file;
       std::future<std::pair<ChildResult, double>> outcome; // the result, wall time [s]
     };
+
+    const std::vector<std::string> &section_titles()
+    {
+      static const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
+                                                      "Backbone curves",       "Slider contact dynamics",
+                                                      "FE against ROM",        "Operating range",
+                                                      "The seed's System 1 facts", "The beam against the continuum"};
+      return titles;
+    }
+
+    // Section k's (from 0) name in the report's table of wall times, and
+    // its key in the TimerOutput that measures them.
+    std::string section_name(const std::size_t k)
+    {
+      return std::to_string(k + 1) + ". " + section_titles()[k];
+    }
 
     // Starts `beamslider verify --section <section>` into `dir` with the
     // scene and options of this run; nullptr when this executable's path is
@@ -116,7 +140,8 @@ namespace beamslider
 
     // The report on rank 0, shared by its stages: the sections in order
     // (each appends to report.text), the second process running one of them,
-    // and the wall time of each section run.
+    // and the wall time of each section run here (deal.II's TimerOutput, one
+    // subsection per section).
     struct VerifyRun
     {
       explicit VerifyRun(const VerifyOptions &options)
@@ -126,19 +151,13 @@ namespace beamslider
       Report report;
       CaseRunner run_case; // section 4's
       std::vector<std::function<void()>> sections;
+      dealii::ConditionalOStream no_summary{std::cout, false}; // the report prints the times
+      dealii::TimerOutput timer{no_summary, dealii::TimerOutput::never, dealii::TimerOutput::wall_times};
+      std::vector<std::size_t> sections_run; // indices, in order
       std::unique_ptr<SectionProcess> solid_process; // section 8 beside the others
-      std::vector<std::pair<std::size_t, double>> section_seconds; // section index, wall time [s]
+      double beside_seconds = 0;                     // its wall time
       bool beside = false; // a section ran in the second process
     };
-
-    const std::vector<std::string> &section_titles()
-    {
-      static const std::vector<std::string> titles = {"Linear frequencies",    "Cubic modal coefficients",
-                                                      "Backbone curves",       "Slider contact dynamics",
-                                                      "FE against ROM",        "Operating range",
-                                                      "The seed's System 1 facts", "The beam against the continuum"};
-      return titles;
-    }
 
     // The other ranks' share of the report: the ladder's members, in the
     // order rank 0 runs them: the region (full report), the ladder.
@@ -233,17 +252,18 @@ namespace beamslider
         {
           if (!selected(v.options, k + 1))
             continue;
-          const auto section_start = std::chrono::steady_clock::now();
-          double seconds           = -1;
           try
             {
               if (k + 1 == 8 && v.solid_process)
                 {
-                  report.text << finish_section_process(*v.solid_process, seconds);
+                  report.text << finish_section_process(*v.solid_process, v.beside_seconds);
                   v.beside = true;
                 }
               else
-                v.sections[k]();
+                {
+                  const dealii::TimerOutput::Scope wall_time(v.timer, section_name(k));
+                  v.sections[k]();
+                }
             }
           catch (const MemberRunsStopped &e)
             {
@@ -259,9 +279,7 @@ namespace beamslider
               flush_report(report);
               return false;
             }
-          if (seconds < 0)
-            seconds = elapsed_seconds(section_start);
-          v.section_seconds.emplace_back(k, seconds);
+          v.sections_run.push_back(k);
           flush_report(report);
           if (end_if_interrupted(report))
             return false;
@@ -283,9 +301,14 @@ namespace beamslider
                   << (!options.full ? "quick" : options.diagnostics ? "full with the ladder's diagnostic rungs (`--full --diagnostics`)" : "full (`--full`)")
                   << "\n\n"
                   << "| section | wall time [s] |\n|---|---|\n";
-      for (const auto &[k, s] : v.section_seconds)
-        report.text << "| " << k + 1 << ". " << section_titles()[k] << " | " << fixed(s, 0)
-                    << (k + 1 == 8 && v.beside ? " (beside 1–7)" : "") << " |\n";
+      const std::map<std::string, double> wall_times = v.timer.get_summary_data(dealii::TimerOutput::total_wall_time);
+      for (const std::size_t k : v.sections_run)
+        {
+          const bool beside = k + 1 == 8 && v.beside;
+          report.text << "| " << section_name(k) << " | "
+                      << fixed(beside ? v.beside_seconds : wall_times.at(section_name(k)), 0)
+                      << (beside ? " (beside 1–7)" : "") << " |\n";
+        }
       report.text << "| total | " << fixed(seconds, 0) << " |\n";
       if (v.beside)
         report.text << "\nSection 8 ran in a second process beside sections 1–7 (its wall time is its own, from the start "

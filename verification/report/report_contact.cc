@@ -8,7 +8,7 @@
 // other case to 20 s (~2–3 s each); full mode: every case to its end time.
 #include "io/csv_writer.h"
 #include "numerics/stop_request.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/report/report.h"
 #include "io/console.h"
 #include "verification/studies/pcs_sweep.h"

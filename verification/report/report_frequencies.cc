@@ -1,4 +1,5 @@
 // Verification section "Linear frequencies": see report.h.
+#include "numerics/elapsed.h"
 #include "io/csv_writer.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
@@ -263,7 +264,7 @@ namespace beamslider
     const auto start = std::chrono::steady_clock::now();
     const FEBeam default_beam(scene);
     const FEModes default_modes = compute_bending_modes(default_beam, n_modes);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms = 1e3 * elapsed_seconds(start);
     add_default_mesh_choice(report, scene, own, default_beam, default_modes, ms);
 
     console() << "[verify] linear frequencies: bonded slider against Eq. 5 ..." << std::endl;

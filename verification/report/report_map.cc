@@ -14,7 +14,7 @@
 #include "numerics/stop_request.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/report/charts.h"
 #include "verification/report/map_files.h"
 #include "verification/report/report.h"

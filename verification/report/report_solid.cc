@@ -25,7 +25,7 @@
 #include "numerics/newton.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/cubic_fit.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"
 #include "io/console.h"

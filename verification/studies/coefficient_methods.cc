@@ -1,4 +1,4 @@
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/coefficient_methods.h"
 
 #include "fem/fe_conservative_system.h"

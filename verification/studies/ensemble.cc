@@ -1,5 +1,6 @@
 // Ensembles of perturbed runs and two-sample comparisons, see ensemble.h.
 #include "verification/studies/ensemble.h"
+#include "numerics/elapsed.h"
 
 #include "contact/beam_system.h"
 #include "verification/studies/parallel_for.h"
@@ -92,7 +93,7 @@ namespace beamslider
     run.on_period       = [&member](const PeriodRecord &p) { member.periods.push_back(p); };
     member.result       = run.run();
     member.analysis     = analyse_trace(member.periods, member.result.status, thresholds);
-    member.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+    member.wall_seconds = elapsed_seconds(start);
     return member;
   }
 

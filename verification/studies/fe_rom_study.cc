@@ -1,4 +1,4 @@
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include "contact/beam_system.h"

@@ -3,7 +3,7 @@
 
 #include "numerics/stop_request.h"
 #include "verification/studies/build_info.h"
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"
 

@@ -2,7 +2,7 @@
 // (1.23e-04) or fixed (0.123) notation, a signed difference, a wall time.
 #pragma once
 
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 
 #include <chrono>
 #include <iomanip>

@@ -1,5 +1,5 @@
 // The prescribed-slider-position study, see pcs_sweep.h.
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/pcs_sweep.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/simulation_cases.h"

@@ -1,6 +1,6 @@
 // The seed's System 1 facts and the identification by maps; see
 // system1_facts.h for what a fact, a criterion and a score are.
-#include "verification/studies/elapsed.h"
+#include "numerics/elapsed.h"
 #include "verification/studies/system1_facts.h"
 #include "verification/studies/system1_fact_table.h"
 

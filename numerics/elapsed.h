@@ -1,6 +1,7 @@
-// The wall time of a run or a stage, as a number (summaries, timing
-// columns and checkpoints record it; number_text.h's seconds_since writes
-// it as text).
+// The wall time of a run or a stage, as a number: every layer's one clock
+// reading (result structs, timing columns and checkpoints record it; the
+// report's seconds_since writes it as text). Tables of named stages use
+// deal.II's TimerOutput where deal.II is linked (verify's section times).
 #pragma once
 
 #include <chrono>
