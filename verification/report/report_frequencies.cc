@@ -21,10 +21,12 @@ namespace beamslider
   {
     constexpr unsigned int n_modes = 7;
 
-    // The frequencies themselves, not only the errors: the CSV and the mesh
-    // choice need them, and the Markdown puts modes in rows and meshes in
-    // columns, which dealii::ConvergenceTable's text and TeX output cannot.
-    struct ConvergenceTable
+    // A mesh study's frequencies, their errors and observed orders. Not
+    // deal.II's ConvergenceTable: that class gives no read access to its
+    // values or rates (only text and TeX output), while the mesh choice
+    // (1.3) and the CSV need the numbers, and the Markdown puts modes in
+    // rows and meshes in columns, the transpose of its layout.
+    struct FrequencyConvergence
     {
       std::vector<unsigned int> meshes;
       std::vector<double> reference_hz;           // per mode
@@ -34,9 +36,9 @@ namespace beamslider
       double order(unsigned int m, unsigned int k) const { return std::log2(error(m - 1, k) / error(m, k)); }
     };
 
-    ConvergenceTable convergence_study(const Scene &scene, const std::vector<unsigned int> &meshes)
+    FrequencyConvergence convergence_study(const Scene &scene, const std::vector<unsigned int> &meshes)
     {
-      ConvergenceTable t;
+      FrequencyConvergence t;
       t.meshes = meshes;
       const double EI = scene.beam.bending_stiffness(), rhoA = scene.beam.mass_per_length(), L = scene.beam.length;
       // Both ends pinned is the spring equation with k_r = 0 (βL = nπ).
@@ -58,9 +60,9 @@ namespace beamslider
 
     // The FE frequencies on `meshes` (the mesh's elements split 1, 2, 4, ...
     // times) against the Richardson extrapolation of the two finest with order 4.
-    ConvergenceTable refinement_study(const Scene &scene, const std::vector<unsigned int> &meshes)
+    FrequencyConvergence refinement_study(const Scene &scene, const std::vector<unsigned int> &meshes)
     {
-      ConvergenceTable t;
+      FrequencyConvergence t;
       t.meshes = meshes;
       for (const unsigned int n : meshes)
         {
@@ -75,7 +77,7 @@ namespace beamslider
       return t;
     }
 
-    void write_convergence(Report &report, CsvWriter &csv, const std::string &label, const ConvergenceTable &t)
+    void write_convergence(Report &report, CsvWriter &csv, const std::string &label, const FrequencyConvergence &t)
     {
       auto &md = report.text;
       md << "| mode | reference [Hz] |";
@@ -106,10 +108,10 @@ namespace beamslider
 
     // Section 1.1 for a beam from a mesh, which has no closed form here:
     // the mesh's elements refined and extrapolated. Returns that study.
-    ConvergenceTable add_mesh_beam_study(Report &report, CsvWriter &csv, const Scene &scene)
+    FrequencyConvergence add_mesh_beam_study(Report &report, CsvWriter &csv, const Scene &scene)
     {
       const auto cells           = static_cast<unsigned int>(scene.beam.mesh_cells.size());
-      const ConvergenceTable own = refinement_study(scene, {cells, 2 * cells, 4 * cells, 8 * cells, 16 * cells});
+      const FrequencyConvergence own = refinement_study(scene, {cells, 2 * cells, 4 * cells, 8 * cells, 16 * cells});
       report.text << "### 1.1 The mesh beam under refinement\n\n"
                   << "Beam of scene `" << scene.name << "` from its mesh (" << cells << " elements, "
                   << scene.beam.sections.size() << " section(s)), each element split into 1, 2, 4, 8, 16. No closed form "
@@ -146,13 +148,13 @@ namespace beamslider
     // Sections 1.1 and 1.2 for a beam with a closed form: the clamped and the
     // spring-supported beam against their characteristic equations. Returns
     // the study of the scene's own supports, for the mesh choice.
-    ConvergenceTable add_analytic_studies(Report &report, CsvWriter &csv, const Scene &scene)
+    FrequencyConvergence add_analytic_studies(Report &report, CsvWriter &csv, const Scene &scene)
     {
       auto &md = report.text;
       const std::vector<unsigned int> meshes{8, 16, 32, 64, 128, 256};
       const Scene elastic       = elastic_variant(scene);
-      const ConvergenceTable cc = convergence_study(clamped_variant(scene), meshes);
-      const ConvergenceTable el = convergence_study(elastic, meshes);
+      const FrequencyConvergence cc = convergence_study(clamped_variant(scene), meshes);
+      const FrequencyConvergence el = convergence_study(elastic, meshes);
 
       md << "### 1.1 Clamped–clamped beam against cos βL cosh βL = 1\n\n"
          << "Beam of scene `" << scene.name << "` with the ideal clamp (w = w' = u = 0 by constraints). "
@@ -177,7 +179,7 @@ namespace beamslider
     // stepping itself makes on mode N (the midpoint rule lengthens the period
     // of an oscillation ω by the relative amount (ωΔt)²/24), against the
     // scene's mesh: `default_beam`, whose modes took `ms` to solve.
-    void add_default_mesh_choice(Report &report, const Scene &scene, const ConvergenceTable &own,
+    void add_default_mesh_choice(Report &report, const Scene &scene, const FrequencyConvergence &own,
                                  const FEBeam &default_beam, const FEModes &default_modes, const double ms)
     {
       auto &md = report.text;
@@ -258,7 +260,7 @@ namespace beamslider
                   {"supports", "n_elements", "mode", "fe_frequency_hz", "analytic_frequency_hz", "relative_error", "observed_order"});
     md << "## 1. Linear frequencies\n\n";
     // The scene's own supports, for the mesh choice below.
-    const ConvergenceTable own =
+    const FrequencyConvergence own =
       scene.beam.from_mesh() ? add_mesh_beam_study(report, csv, scene) : add_analytic_studies(report, csv, scene);
 
     const auto start = std::chrono::steady_clock::now();
