@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
+__all__ = ["Scene", "Run", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "read_table"]
 
 
@@ -116,6 +116,119 @@ class Scene:
 
     def __repr__(self):
         return f"Scene({self.path!r}, overrides={self._overrides!r})"
+
+
+class Run:
+    """One free-slider run held in this process and stepped from Python: the
+    scene's model (``model="rom"`` or ``"fe"``, each at the scene's own time
+    step), the slider at rest on the beam at t = 0. It is the run the command
+    ``simulate`` makes, kept in memory instead of written: advanced to T, its
+    ``trace`` holds the rows ``simulate`` writes to trace.csv for End time T.
+
+    ``advance(seconds)`` and ``step(n)`` return the status ("completed", or
+    "slider_at_support" once a corner reaches a support, after which the run
+    takes no more steps); a failing solver raises RuntimeError with its
+    message and the run keeps its last good state. Ctrl-C raises
+    KeyboardInterrupt within about a thousand steps, the run intact at the
+    end of a whole step: advance again to go on. Stepping releases the GIL.
+    """
+
+    def __init__(self, scene="mueller2023", model="rom"):
+        if isinstance(scene, _core.Run):  # from resume()
+            self._run = scene
+            self.scene = Scene(scene.scene_path)
+            for o in scene.overrides:
+                self.scene.set(*o.split("=", 1))
+            return
+        if not isinstance(scene, Scene):
+            scene = Scene(scene)
+        self.scene = scene
+        self._run = _core.Run(scene.path, list(scene._overrides), model)
+
+    def step(self, n=1):
+        """Takes n time steps; returns the status."""
+        return self._run.step(int(n))
+
+    def advance(self, seconds):
+        """Steps on by ``seconds`` of simulated time (the nearest whole number
+        of time steps); returns the status."""
+        if not seconds >= 0:
+            raise ValueError(f"error: advance: seconds = {seconds} is outside the allowed range [0, inf)")
+        return self._run.step(int(round(seconds / self._run.time_step)))
+
+    @property
+    def t(self):
+        """The run's time [s]."""
+        return self._run.t
+
+    @property
+    def time_step(self):
+        """The model's time step [s]."""
+        return self._run.time_step
+
+    @property
+    def model(self):
+        """The model in words (e.g. "ROM N=5, analytic")."""
+        return self._run.model
+
+    @property
+    def status(self):
+        """The last advance's status: completed, slider_at_support, ..."""
+        return self._run.status
+
+    @property
+    def state(self):
+        """The current state: t [s], q and u (the model's coordinates and
+        their rates: modal for the ROM, nodal for the FE), slider_x [m],
+        slider_x_over_L, slider_z [m], slider_beta [rad] and
+        slider_velocity (ẋ, ż [m/s], β̇ [rad/s]); copies."""
+        return self._run.state
+
+    @property
+    def trace(self):
+        """The trace so far as {column: array}, the columns of trace.csv."""
+        return self._run.trace
+
+    @property
+    def periods(self):
+        """The closed excitation periods as {column: array}, the columns of
+        periods.csv (index, times, mean slider position, amplitude, mean
+        horizontal contact force, the energy balance)."""
+        return self._run.periods
+
+    def analyse(self):
+        """The run so far read as ``simulate`` reads it: {"verdict": one line,
+        "outcome": its class, "initial_direction", "jumped", "jump_time",
+        "turned", "final_position", "final_amplitude", "adaptation_time",
+        "valid"}."""
+        return self._run.analyse()
+
+    def checkpoint(self, path):
+        """Writes the whole run (scene, model, state, trace) to ``path``,
+        checked and renamed into place; ``Run.resume(path)`` continues it
+        bit for bit."""
+        data = self._run.checkpoint_bytes()
+        folder = os.path.dirname(os.path.abspath(path))
+        fd, temporary = tempfile.mkstemp(prefix=".checkpoint-", dir=folder)
+        try:
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(temporary, path)
+        except BaseException:
+            if os.path.exists(temporary):
+                os.unlink(temporary)
+            raise
+
+    @classmethod
+    def resume(cls, path):
+        """The run a checkpoint holds; ValueError if the file is not one, is
+        damaged, or its scene file reads differently now."""
+        return cls(_core.Run.resume(str(path)))
+
+    def __repr__(self):
+        return f"<beamslider Run: {self.model}, t = {self.t:g} s, {self.status}>"
 
 
 def read_table(path):

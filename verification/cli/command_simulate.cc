@@ -208,17 +208,7 @@ namespace beamslider
       for (const auto &o : d.overrides)
         out.put(o);
       out.put(d.case_name);
-      out.put(d.setting.family);
-      out.put(std::uint64_t(d.setting.n_modes));
-      out.put(std::uint64_t(d.setting.n_elements));
-      out.put(d.setting.time_step);
-      // The rest of the model (format 2): --model auto may pick an implicit
-      // ROM or an FE with θ ≠ ½, and a resumed run must rebuild exactly it.
-      out.put(d.setting.coefficients);
-      out.put(d.setting.integrator);
-      out.put(d.setting.axial_inertia);
-      out.put(std::uint64_t(d.setting.damped_modes));
-      out.put(d.setting.theta);
+      save_setting(out, d.setting);
       out.put(d.end_time);
       out.put(d.why);
       out.put(d.identity);
@@ -244,15 +234,7 @@ namespace beamslider
       for (auto &o : d.overrides)
         o = in.get_string();
       d.case_name           = in.get_string();
-      d.setting.family      = in.get_string();
-      d.setting.n_modes     = in.get_uint();
-      d.setting.n_elements  = in.get_uint();
-      d.setting.time_step   = in.get_double();
-      d.setting.coefficients  = in.get_string();
-      d.setting.integrator    = in.get_string();
-      d.setting.axial_inertia = in.get_bool();
-      d.setting.damped_modes  = in.get_uint();
-      d.setting.theta         = in.get_double();
+      d.setting             = load_setting(in);
       d.end_time            = in.get_double();
       d.why                 = in.get_string();
       d.identity            = in.get_string();
@@ -486,19 +468,6 @@ namespace beamslider
           const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
           setting = choose_model(scene, *r.options.tolerance, cache, r.outcome.why);
           console() << r.outcome.why << std::endl;
-        }
-    }
-
-    void check_stable_time_step(const ModelSetting &setting, const BeamSystem &beam)
-    {
-      if (!(setting.time_step <= beam.max_stable_time_step()))
-        {
-          std::ostringstream m;
-          m << "Parameter 'Time stepping/" << (setting.family == "fe" ? "FE time step" : "Time step")
-            << "' = " << setting.time_step
-            << " s is not allowed: the " << setting.label() << " is stable only for time steps up to "
-            << beam.max_stable_time_step() << " s (explicit scheme: 2/omega_max)";
-          throw InputError(m.str());
         }
     }
 
@@ -760,7 +729,7 @@ namespace beamslider
               << " steps), output in " << dir << std::endl;
     RunOptions run_options        = RunOptions::from_scene(scene, setting.time_step);
     run_options.progress_interval = std::max(1., end_time / 20.);
-    check_stable_time_step(setting, *beam);
+    require_stable_time_step(setting, *beam);
     AdaptationRun run(scene, *beam, run_options);
     if (r.resuming)
       restore_checkpointed_run(r, run);

@@ -171,6 +171,47 @@ namespace beamslider
                                            BaseExcitation::from_scene(scene.excitation));
   }
 
+  void require_stable_time_step(const ModelSetting &setting, const BeamSystem &beam)
+  {
+    if (!(setting.time_step <= beam.max_stable_time_step()))
+      {
+        std::ostringstream m;
+        m << "Parameter 'Time stepping/" << (setting.family == "fe" ? "FE time step" : "Time step")
+          << "' = " << setting.time_step << " s is not allowed: the " << setting.label()
+          << " is stable only for time steps up to " << beam.max_stable_time_step()
+          << " s (explicit scheme: 2/omega_max)";
+        throw InputError(m.str());
+      }
+  }
+
+  void save_setting(CheckpointWriter &out, const ModelSetting &setting)
+  {
+    out.put(setting.family);
+    out.put(std::uint64_t(setting.n_modes));
+    out.put(std::uint64_t(setting.n_elements));
+    out.put(setting.time_step);
+    out.put(setting.coefficients);
+    out.put(setting.integrator);
+    out.put(setting.axial_inertia);
+    out.put(std::uint64_t(setting.damped_modes));
+    out.put(setting.theta);
+  }
+
+  ModelSetting load_setting(CheckpointReader &in)
+  {
+    ModelSetting s;
+    s.family        = in.get_string();
+    s.n_modes       = in.get_uint();
+    s.n_elements    = in.get_uint();
+    s.time_step     = in.get_double();
+    s.coefficients  = in.get_string();
+    s.integrator    = in.get_string();
+    s.axial_inertia = in.get_bool();
+    s.damped_modes  = in.get_uint();
+    s.theta         = in.get_double();
+    return s;
+  }
+
   ModelRun run_setting(const Scene &scene_in, const ModelSetting &setting, const double window,
                        const std::function<void(const PeriodRecord &)> &on_period)
   {

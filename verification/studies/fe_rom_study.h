@@ -17,6 +17,7 @@
 // (ensemble.h), not run against run.
 #pragma once
 
+#include "numerics/state_bytes.h"
 #include "runs/adaptation_run.h"
 #include "runs/trace_analysis.h"
 #include "meshes/scene.h"
@@ -72,6 +73,15 @@ namespace beamslider
   // (minutes), and its progress reported to set_model_build_progress's
   // callback.
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting);
+
+  // Refuses (InputError, naming the parameter, its value and the bound) a
+  // setting whose time step is above the model's stability limit.
+  void require_stable_time_step(const ModelSetting &setting, const BeamSystem &beam);
+
+  // A setting in a checkpoint (numerics/state_bytes.h), every field, so
+  // that a resumed run rebuilds exactly its model.
+  void save_setting(CheckpointWriter &out, const ModelSetting &setting);
+  ModelSetting load_setting(CheckpointReader &in);
 
   // Where the build of a solid's reduced model reports its progress, a line
   // each (without '\n'): the command line sends it to the console

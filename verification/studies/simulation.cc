@@ -1,0 +1,109 @@
+// One free-slider run in memory, see simulation.h.
+#include "verification/studies/simulation.h"
+
+#include "contact/beam_system.h"
+#include "verification/studies/simulation_cases.h"
+
+#include <sstream>
+
+namespace beamslider
+{
+  Simulation::Simulation(const Scene &scene, const ModelSetting &setting)
+    : scene_(scene)
+    , setting_(setting)
+    , beam_(make_beam_model(scene, setting))
+  {
+    require_stable_time_step(setting_, *beam_);
+    RunOptions options        = RunOptions::from_scene(scene_, setting_.time_step);
+    options.progress_interval = 1e300; // the caller steps in pieces and sees the time itself
+    run_                 = std::make_unique<AdaptationRun>(scene_, *beam_, options);
+    run_->on_trace_row = [this](const TraceRow &row) { rows_.push_back(row); };
+    run_->on_period    = [this](const PeriodRecord &p) { periods_.push_back(p); };
+    // The state at t = 0, as simulate's trace starts with it.
+    run_->run_until(0.);
+  }
+
+  Simulation::~Simulation() = default;
+
+  RunResult Simulation::step(const unsigned long n)
+  {
+    if (stopped_ || n == 0)
+      return last_;
+    // run_until takes llround((t_end − t)/Δt) steps: exactly n.
+    last_    = run_->run_until(time() + static_cast<double>(n) * setting_.time_step);
+    stopped_ = last_.status != RunStatus::completed && last_.status != RunStatus::interrupted;
+    return last_;
+  }
+
+  TraceAnalysis Simulation::analyse() const
+  {
+    return case_verdict(periods_, last_, trace_thresholds(scene_));
+  }
+
+  namespace
+  {
+    void save_row(CheckpointWriter &out, const TraceRow &r)
+    {
+      for (const double x : {r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h})
+        out.put(x);
+    }
+
+    TraceRow load_row(CheckpointReader &in)
+    {
+      TraceRow r;
+      for (double *x : {&r.t, &r.slider_x_over_L, &r.slider_z, &r.slider_beta, &r.w_center, &r.w_probe, &r.amplitude_over_h})
+        *x = in.get_double();
+      return r;
+    }
+
+    // The first line in which two scene texts differ ("" if none).
+    std::string first_difference(const std::string &a, const std::string &b)
+    {
+      std::istringstream x(a), y(b);
+      std::string p, q;
+      while (true)
+        {
+          const bool more_x = static_cast<bool>(std::getline(x, p)), more_y = static_cast<bool>(std::getline(y, q));
+          if (!more_x && !more_y)
+            return "";
+          if (!more_x || !more_y || p != q)
+            return "this scene has '" + (more_x ? p : std::string("(end)")) + "' where the checkpoint's has '" +
+                   (more_y ? q : std::string("(end)")) + "'";
+        }
+    }
+  } // namespace
+
+  void Simulation::save(CheckpointWriter &out) const
+  {
+    save_setting(out, setting_);
+    out.put(scene_file_text(scene_));
+    out.put(stopped_);
+    run_->save(out);
+    out.put(std::uint64_t(rows_.size()));
+    for (const TraceRow &r : rows_)
+      save_row(out, r);
+    out.put(std::uint64_t(periods_.size()));
+    for (const PeriodRecord &p : periods_)
+      save_period(out, p);
+  }
+
+  std::unique_ptr<Simulation> Simulation::load(CheckpointReader &in, const Scene &scene)
+  {
+    const ModelSetting setting = load_setting(in);
+    const std::string saved_scene = in.get_string();
+    const std::string difference  = first_difference(scene_file_text(scene), saved_scene);
+    if (!difference.empty())
+      throw InputError("the checkpoint is of another scene: " + difference);
+    auto simulation      = std::make_unique<Simulation>(scene, setting);
+    simulation->stopped_ = in.get_bool();
+    simulation->run_->load(in);
+    simulation->rows_.clear();
+    const std::uint64_t n_rows = in.get_count(7 * sizeof(double));
+    for (std::uint64_t i = 0; i < n_rows; ++i)
+      simulation->rows_.push_back(load_row(in));
+    const std::uint64_t n_periods = in.get_count(17 * sizeof(std::uint64_t));
+    for (std::uint64_t i = 0; i < n_periods; ++i)
+      simulation->periods_.push_back(load_period(in));
+    return simulation;
+  }
+} // namespace beamslider
