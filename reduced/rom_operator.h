@@ -71,6 +71,8 @@ namespace beamslider
     // The analytic tensor in the sorted storage above (for reports and
     // comparisons with STEP/ICE).
     std::vector<CubicTerm> analytic_cubic_terms() const;
+    // The tensor f uses: the one set by set_cubic_terms, else the analytic one.
+    std::vector<CubicTerm> cubic_terms() const { return terms_ ? *terms_ : analytic_cubic_terms(); }
 
   private:
     ModalBasis basis_;

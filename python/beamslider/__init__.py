@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Run", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
+__all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "read_table"]
 
 
@@ -231,6 +231,100 @@ class Run:
         return f"<beamslider Run: {self.model}, t = {self.t:g} s, {self.status}>"
 
 
+def _as_scene(scene):
+    return scene if isinstance(scene, Scene) else Scene(scene)
+
+
+def _sparse(arrays, n):
+    """CSR arrays (indptr, indices, data) as a scipy.sparse CSR matrix."""
+    import scipy.sparse  # here, not at import: it costs a tenth of a second
+    indptr, indices, data = arrays
+    matrix = scipy.sparse.csr_matrix((data, indices, indptr), shape=(n, n))
+    matrix.sort_indices()
+    return matrix
+
+
+class FEBeam:
+    """The scene's FE beam (Hermite cubic bending, axial displacement): its
+    matrices as scipy.sparse CSR over every DoF (no constraint applied;
+    ``free_dofs()`` are the DoFs the bending modes leave free), its internal
+    force and tangent at a displacement q, and its bending modes.
+    ``elements`` (default: the scene's Number of elements) sets the mesh."""
+
+    def __init__(self, scene="mueller2023", elements=None):
+        self.scene = _as_scene(scene)
+        self._beam = _core.FEBeam(self.scene.path, list(self.scene._overrides), int(elements or 0))
+        self.n_dofs = self._beam.n_dofs
+
+    def mass(self):
+        """The consistent mass matrix [kg, kg m, kg m²] with the scene's point bodies."""
+        return _sparse(self._beam.mass_csr(), self.n_dofs)
+
+    def stiffness(self):
+        """The linear stiffness, the tangent at q = 0."""
+        return self.tangent(np.zeros(self.n_dofs))
+
+    def tangent(self, q):
+        """K_t(q) = ∂f/∂q (geometric nonlinearity as the scene says)."""
+        return _sparse(self._beam.tangent_csr(np.asarray(q, dtype=float)), self.n_dofs)
+
+    def internal_force(self, q):
+        """f(q) = ∂Π/∂q, the internal force at the DoF vector q [N, N m]."""
+        return self._beam.internal_force(np.asarray(q, dtype=float))
+
+    def free_dofs(self):
+        """The DoFs the bending modes leave free, ascending (an int array)."""
+        return np.array(self._beam.free_dofs(), dtype=int)
+
+    def dof_kinds(self):
+        """{"axial", "deflection", "slope"}: boolean masks over the DoFs."""
+        return {"axial": np.array(self._beam.axial_dofs()), "deflection": np.array(self._beam.deflection_dofs()),
+                "slope": np.array(self._beam.slope_dofs())}
+
+    def nodes(self):
+        """The element ends x [m], 0 to L."""
+        return np.array(self._beam.nodes())
+
+    def modes(self, n=7):
+        """The n lowest bending modes: (frequencies [Hz], shapes), the shapes
+        mass-normalised columns over every DoF (the command ``modes``)."""
+        omega, shapes = self._beam.modes(int(n))
+        return omega / (2 * np.pi), shapes
+
+
+class ReducedModel:
+    """The scene's reduced-order model as the runs build it: ``omega``
+    (ω_n [rad/s]), ``damping`` (c_n = 2 D ω_n [1/s]), ``coefficients`` (the
+    tensor [n, j, k, l] with f_n = Σ tensor[n, j, k, l] q_j q_k q_l),
+    ``force(q)`` and ``tangent(q)`` (f and ∂f/∂q), ``shapes(x)`` (φ and φ′).
+    ``modes`` (default: the scene's N) and ``coefficients`` ("analytic",
+    "step", "step-condensed", "ice"; default the scene's) choose the model."""
+
+    def __init__(self, scene="mueller2023", modes=None, coefficients=None):
+        self.scene = _as_scene(scene)
+        self._rom = _core.ReducedModel(self.scene.path, list(self.scene._overrides), int(modes or 0),
+                                       coefficients or "")
+        self.omega = self._rom.omega
+        self.damping = self._rom.damping
+        self.length = self._rom.length
+
+    @property
+    def coefficients(self):
+        return self._rom.coefficients
+
+    def force(self, q):
+        """The cubic modal force f(q)."""
+        return self._rom.force(np.asarray(q, dtype=float))
+
+    def tangent(self, q):
+        """∂f/∂q at q (N × N)."""
+        return self._rom.tangent(np.asarray(q, dtype=float))
+
+    def shapes(self, x):
+        """(φ, φ′) at the points x [m]: arrays len(x) × N."""
+        return self._rom.shapes(np.atleast_1d(np.asarray(x, dtype=float)).tolist())
+
+
 def read_table(path):
     """A CSV file of beamslider as {column: array}: float arrays where every
     cell is a number (an empty cell is NaN), else arrays of str."""
@@ -261,7 +355,10 @@ class Result:
             if name.endswith(".csv"):
                 self.tables[name[:-4]] = read_table(os.path.join(folder, name))
         summary = os.path.join(folder, "summary.md")
-        self.summary = open(summary, encoding="utf-8").read() if os.path.exists(summary) else ""
+        self.summary = ""
+        if os.path.exists(summary):
+            with open(summary, encoding="utf-8") as f:
+                self.summary = f.read()
 
     def __getattr__(self, name):
         tables = self.__dict__.get("tables", {})

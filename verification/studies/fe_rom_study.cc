@@ -122,6 +122,35 @@ namespace beamslider
     return s;
   }
 
+  ReducedOrderModel make_reduced_model(const Scene &scene, const ModelSetting &setting)
+  {
+    std::optional<ReducedOrderModel> rom;
+    if (scene.solid.enabled())
+      {
+        // The solid's beam line and its coefficients: the FE beam is not used.
+        const auto solid = shared_solid_rom(scene, setting.n_modes, setting.coefficients);
+        rom.emplace(solid->basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+        if (!solid->cubic.empty())
+          rom->set_cubic_terms(solid->cubic);
+      }
+    else
+      {
+        const FEBeam beam(scene);
+        const FEModes modes = compute_bending_modes(beam, setting.n_modes);
+        ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
+        rom.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
+        if (setting.coefficients != "analytic")
+          {
+            // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).
+            const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
+            rom->set_cubic_terms(compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
+          }
+      }
+    if (setting.damped_modes)
+      rom->set_damped_modes(setting.damped_modes);
+    return std::move(*rom);
+  }
+
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting)
   {
     if (setting.family == "fe")
@@ -135,33 +164,7 @@ namespace beamslider
       }
     if (setting.family != "rom")
       throw InputError("model family '" + setting.family + "' is not one of fe, rom");
-
-    std::optional<ReducedOrderModel> rom_storage;
-    if (scene.solid.enabled())
-      {
-        // The solid's beam line and its coefficients: the FE beam is not used.
-        const auto solid = shared_solid_rom(scene, setting.n_modes, setting.coefficients);
-        rom_storage.emplace(solid->basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
-        if (!solid->cubic.empty())
-          rom_storage->set_cubic_terms(solid->cubic);
-      }
-    else
-      {
-        const FEBeam beam(scene);
-        const FEModes modes = compute_bending_modes(beam, setting.n_modes);
-        ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
-        rom_storage.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
-        if (setting.coefficients != "analytic")
-          {
-            // STEP amplitude one thickness; ICE at 0.03 h (report section 2.4).
-            const double level = setting.coefficients == "ice" ? 0.03 : 1.0;
-            rom_storage->set_cubic_terms(
-              compute_coefficients(beam, modes, basis, setting.coefficients, level).fit.cubic);
-          }
-      }
-    ReducedOrderModel &rom = *rom_storage;
-    if (setting.damped_modes)
-      rom.set_damped_modes(setting.damped_modes);
+    ReducedOrderModel rom = make_reduced_model(scene, setting);
     if (setting.integrator == "implicit")
       return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
                                                      BaseExcitation::from_scene(scene.excitation));

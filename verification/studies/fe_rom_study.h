@@ -18,6 +18,7 @@
 #pragma once
 
 #include "numerics/state_bytes.h"
+#include "reduced/rom_operator.h"
 #include "runs/adaptation_run.h"
 #include "runs/trace_analysis.h"
 #include "meshes/scene.h"
@@ -73,6 +74,11 @@ namespace beamslider
   // (minutes), and its progress reported to set_model_build_progress's
   // callback.
   std::unique_ptr<BeamSystem> make_beam_model(const Scene &scene, const ModelSetting &setting);
+
+  // The reduced-order model of a "rom" setting for `scene` (its modes,
+  // coefficients and damped set; no integrator): what make_beam_model
+  // steps, for callers that evaluate it (the Python module's ReducedModel).
+  ReducedOrderModel make_reduced_model(const Scene &scene, const ModelSetting &setting);
 
   // Refuses (InputError, naming the parameter, its value and the bound) a
   // setting whose time step is above the model's stability limit.

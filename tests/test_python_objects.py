@@ -1,10 +1,13 @@
-"""beamslider.Run, the run held in the Python process: its trace and periods
-are the command line's `simulate` files to the last written digit (ROM and
-FE); a checkpoint resumes bit for bit; steps in pieces equal one advance;
-Ctrl-C raises KeyboardInterrupt and the run goes on as if never stopped; bad
-input and foreign checkpoints raise ValueError with the reason. Run by ctest
-with PYTHONPATH set to build/python and BEAMSLIDER_EXECUTABLE to the built
-program."""
+"""The objects of the Python module. beamslider.Run, the run held in the
+Python process: its trace and periods are the command line's `simulate`
+files to the last written digit (ROM and FE); a checkpoint resumes bit for
+bit; steps in pieces equal one advance; Ctrl-C raises KeyboardInterrupt and
+the run goes on as if never stopped; bad input and foreign checkpoints raise
+ValueError with the reason. FEBeam: its modes are the command `modes`' and
+SciPy's eigsh on its matrices; its tangent is the derivative of its force.
+ReducedModel: its tensor is coefficients.csv's; its force is that tensor's
+polynomial. Run by ctest with PYTHONPATH set to build/python and
+BEAMSLIDER_EXECUTABLE to the built program."""
 
 import csv
 import os
@@ -22,7 +25,11 @@ EXECUTABLE = os.environ["BEAMSLIDER_EXECUTABLE"]
 
 
 def simulate_cli(folder, *args):
-    done = subprocess.run([EXECUTABLE, "simulate", "mueller2023", *args, "--output", folder, "--quiet"],
+    run_cli(folder, "simulate", *args)
+
+
+def run_cli(folder, command, *args):
+    done = subprocess.run([EXECUTABLE, command, "mueller2023", *args, "--output", folder, "--quiet"],
                           capture_output=True, text=True, timeout=600)
     if done.returncode != 0:
         raise AssertionError(done.stderr)
@@ -173,6 +180,80 @@ class CtrlC(unittest.TestCase):
         for column, values in whole.trace.items():
             self.assertTrue(np.array_equal(values, run.trace[column]), column)
         self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
+
+
+class FEBeamMatrices(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.beam = beamslider.FEBeam()
+        cls.frequencies, cls.shapes = cls.beam.modes(7)
+
+    def test_modes_are_the_modes_command_and_scipys_eigsh_on_the_matrices(self):
+        import scipy.sparse.linalg
+        with tempfile.TemporaryDirectory() as tmp:
+            run_cli(tmp, "modes", "--modes", "7")
+            header, rows = csv_rows(os.path.join(tmp, "modes.csv"))
+            column = header.index("frequency_hz")
+            cli = np.array([float(r[column]) for r in rows])
+        np.testing.assert_allclose(self.frequencies, cli, rtol=1e-9)
+        free = self.beam.free_dofs()
+        K = self.beam.stiffness()[free][:, free]
+        M = self.beam.mass()[free][:, free]
+        self.assertLess(abs(K - K.T).max(), 1e-9 * abs(K).max())
+        eigenvalues = np.sort(scipy.sparse.linalg.eigsh(K.tocsc(), k=7, M=M.tocsc(), sigma=0,
+                                                        return_eigenvectors=False))
+        np.testing.assert_allclose(np.sqrt(eigenvalues) / (2 * np.pi), self.frequencies, rtol=1e-9)
+        # Mass-normalised shapes.
+        phi = self.shapes
+        np.testing.assert_allclose(phi.T @ (self.beam.mass() @ phi), np.eye(7), atol=1e-9)
+
+    def test_the_tangent_is_the_derivative_of_the_internal_force(self):
+        q = 0.5 * self.beam.scene.get("Beam/Thickness") * self.shapes[:, 0] / abs(self.shapes[:, 0]).max()
+        K = self.beam.tangent(q)
+        rng = np.random.default_rng(7)
+        direction = rng.standard_normal(self.beam.n_dofs) * abs(q).max()
+        h = 1e-4
+        difference = (self.beam.internal_force(q + h * direction) - self.beam.internal_force(q - h * direction)) / (2 * h)
+        exact = K @ direction
+        self.assertLess(np.linalg.norm(difference - exact), 1e-6 * np.linalg.norm(exact))
+        # At this amplitude the nonlinearity is there to be checked.
+        linear = self.beam.stiffness() @ direction
+        self.assertGreater(np.linalg.norm(exact - linear), 1e-4 * np.linalg.norm(exact))
+
+
+class ReducedModelCoefficients(unittest.TestCase):
+    def check_tensor(self, method):
+        rom = beamslider.ReducedModel(coefficients=method)
+        with tempfile.TemporaryDirectory() as tmp:
+            run_cli(tmp, "coefficients", "--method", method)
+            expected = beamslider.CoefficientsResult(tmp, keep=False).tensor
+        self.assertEqual(rom.coefficients.shape, expected.shape)
+        self.assertTrue(np.array_equal(rom.coefficients, expected), method)
+        return rom
+
+    def test_the_tensor_is_coefficients_csvs_and_the_force_its_polynomial(self):
+        rom = self.check_tensor("analytic")
+        q = np.array([2e-4, -1e-4, 5e-5, 3e-5, -2e-5])
+        polynomial = np.einsum("njkl,j,k,l->n", rom.coefficients, q, q, q)
+        np.testing.assert_allclose(rom.force(q), polynomial, rtol=1e-10, atol=1e-14 * abs(polynomial).max())
+        h = 1e-7
+        numeric = np.column_stack([(rom.force(q + h * e) - rom.force(q - h * e)) / (2 * h) for e in np.eye(5)])
+        np.testing.assert_allclose(rom.tangent(q), numeric, rtol=1e-5, atol=1e-6 * abs(numeric).max())
+        fe_frequencies, _ = beamslider.FEBeam().modes(5)
+        np.testing.assert_allclose(rom.omega / (2 * np.pi), fe_frequencies, rtol=1e-12)
+
+    def test_step_condensed_tensor_is_coefficients_csvs(self):
+        self.check_tensor("step-condensed")
+
+    def test_shapes_slopes_are_the_derivative_of_the_shapes(self):
+        rom = beamslider.ReducedModel()
+        x = np.linspace(0.05, 0.95, 13) * rom.length
+        h = 1e-6 * rom.length
+        phi, dphi = rom.shapes(x)
+        numeric = (rom.shapes(x + h)[0] - rom.shapes(x - h)[0]) / (2 * h)
+        np.testing.assert_allclose(dphi, numeric, rtol=1e-5, atol=1e-6 * abs(dphi).max())
+        with self.assertRaises(ValueError):
+            rom.shapes([2 * rom.length])
 
 
 if __name__ == "__main__":

@@ -1,0 +1,268 @@
+// The compiled part of beamslider.FEBeam and beamslider.ReducedModel: the
+// FE beam's matrices, forces and modes, and the reduced model's frequencies,
+// damping, cubic coefficients, force and mode shapes, from the library's own
+// objects (fem/fe_beam.h, reduced/rom_operator.h as make_reduced_model
+// builds it for the runs). Sparse matrices leave as CSR arrays (indptr,
+// indices, data); __init__.py makes them scipy.sparse matrices.
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+#include "python/bindings.h"
+#include "verification/studies/fe_rom_study.h"
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace beamslider_python
+{
+  namespace
+  {
+    using CsrArrays = std::tuple<py::array_t<py::ssize_t>, py::array_t<py::ssize_t>, py::array_t<double>>;
+
+    // deal.II's rows (diagonal first) as CSR arrays; the Python side sorts
+    // the column indices.
+    CsrArrays csr(const dealii::SparseMatrix<double> &A)
+    {
+      const auto n = static_cast<py::ssize_t>(A.m());
+      py::array_t<py::ssize_t> indptr(n + 1), indices(static_cast<py::ssize_t>(A.n_nonzero_elements()));
+      py::array_t<double> data(static_cast<py::ssize_t>(A.n_nonzero_elements()));
+      auto p = indptr.mutable_unchecked<1>();
+      auto c = indices.mutable_unchecked<1>();
+      auto v = data.mutable_unchecked<1>();
+      py::ssize_t k = 0;
+      for (py::ssize_t row = 0; row < n; ++row)
+        {
+          p(row) = k;
+          for (auto entry = A.begin(row); entry != A.end(row); ++entry, ++k)
+            {
+              c(k) = static_cast<py::ssize_t>(entry->column());
+              v(k) = entry->value();
+            }
+        }
+      p(n) = k;
+      return {indptr, indices, data};
+    }
+
+    Eigen::VectorXd to_eigen(const dealii::Vector<double> &x)
+    {
+      return Eigen::Map<const Eigen::VectorXd>(x.begin(), static_cast<Eigen::Index>(x.size()));
+    }
+
+    // The FE beam of a scene, matrices without constraints (every DoF kept;
+    // free_dofs names the ones the modes leave free).
+    class PyFEBeam
+    {
+    public:
+      PyFEBeam(const std::string &path, const std::vector<std::string> &overrides, const unsigned int n_elements)
+      {
+        as_value_error([&] {
+          beam_.emplace(beamslider::read_scene(path, overrides), n_elements);
+          return 0;
+        });
+        none_.close();
+      }
+
+      unsigned int n_dofs() const { return beam_->n_dofs(); }
+
+      CsrArrays mass() const
+      {
+        dealii::SparseMatrix<double> M(beam_->sparsity_pattern());
+        beam_->assemble_mass_matrix(M, none_);
+        return csr(M);
+      }
+
+      CsrArrays tangent(const Eigen::VectorXd &q) const
+      {
+        dealii::SparseMatrix<double> K(beam_->sparsity_pattern());
+        beam_->assemble_internal_force(from(q), nullptr, &K, none_);
+        return csr(K);
+      }
+
+      Eigen::VectorXd internal_force(const Eigen::VectorXd &q) const
+      {
+        dealii::Vector<double> f(beam_->n_dofs());
+        beam_->assemble_internal_force(from(q), &f, nullptr, none_);
+        return to_eigen(f);
+      }
+
+      // The DoFs the bending modes leave free (u = 0 and the supports'
+      // constraints taken out), ascending.
+      std::vector<unsigned int> free_dofs() const
+      {
+        std::vector<unsigned int> free;
+        for (unsigned int i = 0; i < beam_->n_dofs(); ++i)
+          if (!beam_->bending_constraints().is_constrained(i))
+            free.push_back(i);
+        return free;
+      }
+
+      std::vector<bool> axial_dofs() const { return beam_->axial_dofs(); }
+      std::vector<bool> deflection_dofs() const { return beam_->deflection_dofs(); }
+      std::vector<bool> slope_dofs() const { return beam_->slope_dofs(); }
+
+      // The element ends x [m], from 0 to L.
+      std::vector<double> nodes() const
+      {
+        std::vector<double> x;
+        for (const auto &cell : beam_->cells_in_order())
+          x.push_back(cell->vertex(0)[0]);
+        x.push_back(beam_->cells_in_order().back()->vertex(1)[0]);
+        return x;
+      }
+
+      // ω [rad/s] of the lowest n bending modes and their mass-normalised
+      // shapes as columns (n_dofs × n).
+      std::pair<Eigen::VectorXd, Eigen::MatrixXd> modes(const unsigned int n) const
+      {
+        const beamslider::FEModes modes = as_value_error([&] { return beamslider::compute_bending_modes(*beam_, n); });
+        Eigen::MatrixXd shapes(beam_->n_dofs(), modes.shapes.size());
+        for (std::size_t k = 0; k < modes.shapes.size(); ++k)
+          shapes.col(static_cast<Eigen::Index>(k)) = to_eigen(modes.shapes[k]);
+        return {Eigen::Map<const Eigen::VectorXd>(modes.omega.data(), static_cast<Eigen::Index>(modes.omega.size())),
+                shapes};
+      }
+
+    private:
+      dealii::Vector<double> from(const Eigen::VectorXd &q) const
+      {
+        if (q.size() != static_cast<Eigen::Index>(beam_->n_dofs()))
+          throw py::value_error("error: q has " + std::to_string(q.size()) + " entries, the beam has " +
+                                std::to_string(beam_->n_dofs()) + " DoFs");
+        dealii::Vector<double> x(q.size());
+        for (Eigen::Index i = 0; i < q.size(); ++i)
+          x[static_cast<unsigned int>(i)] = q[i];
+        return x;
+      }
+
+      std::optional<beamslider::FEBeam> beam_;
+      dealii::AffineConstraints<double> none_;
+    };
+
+    // The reduced model of a scene as the runs build it.
+    class PyReducedModel
+    {
+    public:
+      PyReducedModel(const std::string &path, const std::vector<std::string> &overrides, const unsigned int n_modes,
+                     const std::string &coefficients)
+      {
+        as_value_error([&] {
+          const beamslider::Scene scene = beamslider::read_scene(path, overrides);
+          beamslider::ModelSetting setting = beamslider::scene_model(scene, "rom");
+          if (n_modes > 0)
+            setting.n_modes = n_modes;
+          if (!coefficients.empty())
+            setting.coefficients = coefficients;
+          rom_.emplace(beamslider::make_reduced_model(scene, setting));
+          return 0;
+        });
+      }
+
+      Eigen::VectorXd omega() const { return rom_->basis().omega; }
+      Eigen::VectorXd damping() const { return rom_->damping_coefficients(); }
+      double length() const { return rom_->basis().length; }
+
+      // The tensor [n, j, k, l] of f_n = Σ t[n,j,k,l] q_j q_k q_l, each sorted
+      // entry spread evenly over its distinct permutations.
+      py::array_t<double> coefficients() const
+      {
+        const auto N = static_cast<py::ssize_t>(rom_->n_modes());
+        py::array_t<double> t({N, N, N, N});
+        auto v = t.mutable_unchecked<4>();
+        for (py::ssize_t a = 0; a < N; ++a)
+          for (py::ssize_t b = 0; b < N; ++b)
+            for (py::ssize_t c = 0; c < N; ++c)
+              for (py::ssize_t d = 0; d < N; ++d)
+                v(a, b, c, d) = 0.;
+        for (const beamslider::CubicTerm &term : rom_->cubic_terms())
+          {
+            std::vector<std::array<unsigned int, 3>> permutations;
+            std::array<unsigned int, 3> p{{term.j, term.k, term.l}};
+            do
+              permutations.push_back(p);
+            while (std::next_permutation(p.begin(), p.end()));
+            for (const auto &q : permutations)
+              v(term.n, q[0], q[1], q[2]) = term.value / static_cast<double>(permutations.size());
+          }
+        return t;
+      }
+
+      Eigen::VectorXd force(const Eigen::VectorXd &q) const
+      {
+        check(q);
+        return rom_->nonlinear_force(q);
+      }
+
+      Eigen::MatrixXd tangent(const Eigen::VectorXd &q) const
+      {
+        check(q);
+        return rom_->nonlinear_tangent(q);
+      }
+
+      // φ_n(x) and φ_n'(x) at each x, as len(x) × N matrices.
+      std::pair<Eigen::MatrixXd, Eigen::MatrixXd> shapes(const std::vector<double> &x) const
+      {
+        const unsigned int N = rom_->n_modes();
+        Eigen::MatrixXd phi(x.size(), N), dphi(x.size(), N);
+        Eigen::VectorXd p(N), d(N);
+        for (std::size_t i = 0; i < x.size(); ++i)
+          {
+            if (!(x[i] >= 0 && x[i] <= length()))
+              throw py::value_error("error: x = " + std::to_string(x[i]) + " is outside the beam [0, " +
+                                    std::to_string(length()) + "] m");
+            rom_->basis().evaluate(x[i], p, d);
+            phi.row(static_cast<Eigen::Index>(i))  = p;
+            dphi.row(static_cast<Eigen::Index>(i)) = d;
+          }
+        return {phi, dphi};
+      }
+
+    private:
+      void check(const Eigen::VectorXd &q) const
+      {
+        if (q.size() != static_cast<Eigen::Index>(rom_->n_modes()))
+          throw py::value_error("error: q has " + std::to_string(q.size()) + " entries, the model has " +
+                                std::to_string(rom_->n_modes()) + " modes");
+      }
+
+      std::optional<beamslider::ReducedOrderModel> rom_;
+    };
+  } // namespace
+
+  void bind_models(py::module_ &m)
+  {
+    py::class_<PyFEBeam>(m, "FEBeam", "The FE beam of a scene (use beamslider.FEBeam)")
+      .def(py::init<const std::string &, const std::vector<std::string> &, unsigned int>(), py::arg("path"),
+           py::arg("overrides"), py::arg("elements"))
+      .def_property_readonly("n_dofs", &PyFEBeam::n_dofs)
+      .def("mass_csr", &PyFEBeam::mass)
+      .def("tangent_csr", &PyFEBeam::tangent, py::arg("q"))
+      .def("internal_force", &PyFEBeam::internal_force, py::arg("q"))
+      .def("free_dofs", &PyFEBeam::free_dofs)
+      .def("axial_dofs", &PyFEBeam::axial_dofs)
+      .def("deflection_dofs", &PyFEBeam::deflection_dofs)
+      .def("slope_dofs", &PyFEBeam::slope_dofs)
+      .def("nodes", &PyFEBeam::nodes)
+      .def("modes", &PyFEBeam::modes, py::arg("n"), py::call_guard<py::gil_scoped_release>());
+    py::class_<PyReducedModel>(m, "ReducedModel", "The reduced model of a scene (use beamslider.ReducedModel)")
+      .def(py::init<const std::string &, const std::vector<std::string> &, unsigned int, const std::string &>(),
+           py::arg("path"), py::arg("overrides"), py::arg("modes"), py::arg("coefficients"))
+      .def_property_readonly("omega", &PyReducedModel::omega)
+      .def_property_readonly("damping", &PyReducedModel::damping)
+      .def_property_readonly("length", &PyReducedModel::length)
+      .def_property_readonly("coefficients", &PyReducedModel::coefficients)
+      .def("force", &PyReducedModel::force, py::arg("q"))
+      .def("tangent", &PyReducedModel::tangent, py::arg("q"))
+      .def("shapes", &PyReducedModel::shapes, py::arg("x"));
+  }
+} // namespace beamslider_python
