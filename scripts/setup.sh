@@ -19,7 +19,7 @@ esac
 
 packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
           libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-dev
-          pybind11-dev openmpi-bin)
+          pybind11-dev openmpi-bin python3-scipy python3-nbconvert python3-ipykernel)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
