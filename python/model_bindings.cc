@@ -7,6 +7,7 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "python/bindings.h"
+#include "reduced/beam_backbone.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <deal.II/lac/affine_constraints.h>
@@ -164,6 +165,7 @@ namespace beamslider_python
           if (!coefficients.empty())
             setting.coefficients = coefficients;
           rom_.emplace(beamslider::make_reduced_model(scene, setting));
+          thickness_ = scene.beam.thickness;
           return 0;
         });
       }
@@ -227,6 +229,41 @@ namespace beamslider_python
         return {phi, dphi};
       }
 
+      // The mode-1 backbone by harmonic balance (odd harmonics 1…H,
+      // pseudo-arclength, restarts past internal-resonance tongues) of the
+      // deflection at x_out (default L/2), as the command `backbone` computes
+      // it: {amplitude_over_h, frequency_hz, peak_over_h, segment, tongue}.
+      py::dict backbone(const unsigned int n_harmonics, const double max_amplitude_over_h, const double x_out) const
+      {
+        beamslider::BeamBackboneSettings settings;
+        settings.n_harmonics = n_harmonics;
+        settings.thickness   = thickness_;
+        settings.end_over_h  = max_amplitude_over_h;
+        const double x = x_out >= 0 ? x_out : 0.5 * length();
+        const beamslider::Backbone b = as_value_error([&] {
+          py::gil_scoped_release no_gil;
+          return beamslider::compute_rom_backbone(*rom_, x, settings);
+        });
+        std::vector<double> a, f, peak, segment, tongue;
+        for (const auto &p : b.points)
+          {
+            a.push_back(std::abs(p.amplitude) / thickness_);
+            f.push_back(p.omega / (2 * M_PI));
+            peak.push_back(p.peak / thickness_);
+            segment.push_back(p.segment);
+            tongue.push_back(p.tongue);
+          }
+        py::dict d;
+        d["amplitude_over_h"] = py::array(py::cast(a));
+        d["frequency_hz"]     = py::array(py::cast(f));
+        d["peak_over_h"]      = py::array(py::cast(peak));
+        d["segment"]          = py::array(py::cast(segment));
+        d["tongue"]           = py::array(py::cast(tongue)).attr("astype")("bool");
+        d["completed"]        = b.completed;
+        d["message"]          = b.message;
+        return d;
+      }
+
     private:
       void check(const Eigen::VectorXd &q) const
       {
@@ -236,6 +273,7 @@ namespace beamslider_python
       }
 
       std::optional<beamslider::ReducedOrderModel> rom_;
+      double thickness_ = 0;
     };
   } // namespace
 
@@ -263,6 +301,8 @@ namespace beamslider_python
       .def_property_readonly("coefficients", &PyReducedModel::coefficients)
       .def("force", &PyReducedModel::force, py::arg("q"))
       .def("tangent", &PyReducedModel::tangent, py::arg("q"))
-      .def("shapes", &PyReducedModel::shapes, py::arg("x"));
+      .def("shapes", &PyReducedModel::shapes, py::arg("x"))
+      .def("backbone", &PyReducedModel::backbone, py::arg("harmonics"), py::arg("max_amplitude_over_h"),
+           py::arg("x_out"));
   }
 } // namespace beamslider_python

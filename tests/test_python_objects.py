@@ -245,6 +245,18 @@ class ReducedModelCoefficients(unittest.TestCase):
     def test_step_condensed_tensor_is_coefficients_csvs(self):
         self.check_tensor("step-condensed")
 
+    def test_the_backbone_is_the_backbone_commands(self):
+        backbone = beamslider.ReducedModel().backbone(harmonics=5, max_amplitude_over_h=2.0)
+        self.assertTrue(backbone["completed"], backbone["message"])
+        with tempfile.TemporaryDirectory() as tmp:
+            run_cli(tmp, "backbone", "--harmonics", "5", "--max-amplitude", "2")
+            header, rows = csv_rows(os.path.join(tmp, "backbone.csv"))
+        for name in ("amplitude_over_h", "frequency_hz"):
+            column = header.index(name)
+            self.assertEqual(["%.10g" % x for x in backbone[name]], [r[column] for r in rows], name)
+        # Hardening: the frequency grows with the amplitude.
+        self.assertGreater(backbone["frequency_hz"][-1], backbone["frequency_hz"][0])
+
     def test_shapes_slopes_are_the_derivative_of_the_shapes(self):
         rom = beamslider.ReducedModel()
         x = np.linspace(0.05, 0.95, 13) * rom.length

@@ -324,6 +324,14 @@ class ReducedModel:
         """(φ, φ′) at the points x [m]: arrays len(x) × N."""
         return self._rom.shapes(np.atleast_1d(np.asarray(x, dtype=float)).tolist())
 
+    def backbone(self, harmonics=10, max_amplitude_over_h=4.0, x_out=None):
+        """The mode-1 backbone by harmonic balance, as the command ``backbone``
+        computes it: {"amplitude_over_h" (first harmonic of w(x_out), default
+        mid-span), "frequency_hz", "peak_over_h", "segment", "tongue",
+        "completed", "message"}."""
+        return self._rom.backbone(int(harmonics), float(max_amplitude_over_h),
+                                  -1.0 if x_out is None else float(x_out))
+
 
 def read_table(path):
     """A CSV file of beamslider as {column: array}: float arrays where every
