@@ -2,6 +2,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/base/mpi.h>
@@ -11,6 +12,7 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -275,32 +277,182 @@ namespace beamslider
     v.reinit(owned_dofs, relevant_dofs, mpi_communicator);
   }
 
+  namespace
+  {
+    // The assembly loops in the style of deal.II's step-44: a cell worker
+    // fills a CellCopy from the FEValues and work arrays of a scratch
+    // object, a copier adds it to the global matrix and vector. With the
+    // thread limit at 1 (main), WorkStream runs the cells in order on one
+    // scratch object, so the global sums are the plain loop's.
+    template <int dim>
+    struct CellScratch
+    {
+      CellScratch(const Mapping<dim> &mapping, const FiniteElement<dim> &fe, const Quadrature<dim> &quadrature,
+                  const UpdateFlags flags)
+        : fe_values(mapping, fe, quadrature, flags)
+      {}
+      // FEValues cannot be copied: WorkStream's copies build their own.
+      CellScratch(const CellScratch &other)
+        : fe_values(other.fe_values.get_mapping(), other.fe_values.get_fe(), other.fe_values.get_quadrature(),
+                    other.fe_values.get_update_flags())
+      {}
+
+      FEValues<dim> fe_values;
+    };
+
+    // A cell's matrix and/or vector and its DoFs.
+    struct CellCopy
+    {
+      explicit CellCopy(const unsigned int n)
+        : matrix(n, n)
+        , vector(n)
+        , dofs(n)
+      {}
+
+      FullMatrix<double> matrix;
+      Vector<double> vector;
+      std::vector<types::global_dof_index> dofs;
+    };
+
+    // The internal force's work arrays. A shape function φ_i of the vector
+    // FE_Q is e_c ⊗ N_i in one component c = c_i, so ∇φ_i = e_c ⊗ ∇N_i: per
+    // i we keep c_i and g_i = ∇N_i, and δE_i = sym(Fᵀ∇φ_i) = sym(a_i ⊗ g_i)
+    // with a_i = Fᵀ e_c (row c of F), ∇φ_iᵀ∇φ_j = δ_{c_i c_j} g_i ⊗ g_j. The
+    // tangent's double contraction needs no tensors: with F g_j (per j) and
+    // F Fᵀ (per point),
+    //   tr δE_i = (F g_i)_{c_i},  S : δE_i = a_i · S g_i,
+    //   δE_i : δE_j = ½ [(F Fᵀ)_{c_i c_j} g_i·g_j + (F g_j)_{c_i} (F g_i)_{c_j}].
+    template <int dim>
+    struct StrainScratch : CellScratch<dim>
+    {
+      StrainScratch(const Mapping<dim> &mapping, const FiniteElement<dim> &fe, const Quadrature<dim> &quadrature)
+        : CellScratch<dim>(mapping, fe, quadrature, update_gradients | update_JxW_values)
+        , grad_u(quadrature.size())
+        , component(fe.n_dofs_per_cell())
+        , g(fe.n_dofs_per_cell())
+        , Sg(fe.n_dofs_per_cell())
+        , Fg(fe.n_dofs_per_cell())
+        , trace_dE(fe.n_dofs_per_cell())
+      {
+        for (unsigned int i = 0; i < component.size(); ++i)
+          component[i] = fe.system_to_component_index(i).first;
+      }
+
+      std::vector<Tensor<2, dim>> grad_u;
+      std::vector<unsigned int> component;
+      std::vector<Tensor<1, dim>> g, Sg, Fg;
+      std::vector<double> trace_dE;
+    };
+
+    // ∫ ρ v·w dV on one cell.
+    template <int dim>
+    void mass_on_cell(const SolidModel<dim> &model, const typename DoFHandler<dim>::active_cell_iterator &cell,
+                      CellScratch<dim> &scratch, CellCopy &copy)
+    {
+      FEValues<dim> &fe_values = scratch.fe_values;
+      const FiniteElement<dim> &fe = fe_values.get_fe();
+      const unsigned int n = fe.n_dofs_per_cell();
+      FullMatrix<double> &cell_matrix = copy.matrix;
+      const double rho = model.material(cell->material_id()).density * model.out_of_plane_thickness();
+      fe_values.reinit(cell);
+      cell_matrix = 0;
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int ci = fe.system_to_component_index(i).first;
+            for (unsigned int j = 0; j < n; ++j)
+              if (fe.system_to_component_index(j).first == ci)
+                cell_matrix(i, j) += rho * fe_values.shape_value(i, q) * fe_values.shape_value(j, q) * fe_values.JxW(q);
+          }
+      cell->get_dof_indices(copy.dofs);
+    }
+
+    // f(u) on one cell, and K_t(u) if `tangent` (scratch's comment says how).
+    template <int dim>
+    void internal_force_on_cell(const SolidModel<dim> &model, const PETScWrappers::MPI::Vector &u,
+                                const bool tangent, const typename DoFHandler<dim>::active_cell_iterator &cell,
+                                StrainScratch<dim> &scratch, CellCopy &copy)
+    {
+      FEValues<dim> &fe_values = scratch.fe_values;
+      const std::vector<unsigned int> &component = scratch.component;
+      std::vector<Tensor<1, dim>> &g = scratch.g, &Sg = scratch.Sg, &Fg = scratch.Fg;
+      std::vector<double> &trace_dE = scratch.trace_dE;
+      FullMatrix<double> &cell_matrix = copy.matrix;
+      Vector<double> &cell_force = copy.vector;
+      const unsigned int n = component.size();
+      const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
+      const double factor    = model.out_of_plane_thickness();
+
+      const SolidMaterial &law = model.material(cell->material_id());
+      const double lambda = law.lambda, mu = law.mu;
+      fe_values.reinit(cell);
+      fe_values[FEValuesExtractors::Vector(0)].get_function_gradients(u, scratch.grad_u);
+      cell_matrix = 0;
+      cell_force  = 0;
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          const Tensor<2, dim> F  = I + scratch.grad_u[q];
+          const Tensor<2, dim> E  = 0.5 * (transpose(F) * F - I);
+          const Tensor<2, dim> S  = lambda * trace(E) * I + 2 * mu * E;
+          const double JxW        = fe_values.JxW(q) * factor;
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              g[i] = fe_values.shape_grad_component(i, q, component[i]);
+              Tensor<1, dim> a_i; // Fᵀ e_c: row c of F
+              for (unsigned int a = 0; a < dim; ++a)
+                a_i[a] = F[component[i]][a];
+              Sg[i] = S * g[i];
+              cell_force(i) += (a_i * Sg[i]) * JxW; // S : δE_i (S symmetric)
+              if (tangent)
+                {
+                  Fg[i]       = F * g[i];
+                  trace_dE[i] = Fg[i][component[i]];
+                }
+            }
+          // K_t is the Hessian of the strain energy, so symmetric: the
+          // upper triangle here, the lower one copied after the loop
+          // over quadrature points (half the work of the costliest loop
+          // of a solid's statics and ICE; `verify --section 8`).
+          if (tangent)
+            {
+              const Tensor<2, dim> FFt = F * transpose(F);
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const unsigned int c_i = component[i];
+                  for (unsigned int j = i; j < n; ++j)
+                    {
+                      // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j), C = λ I⊗I + 2μ 𝕀
+                      const unsigned int c_j = component[j];
+                      double k_ij = lambda * trace_dE[i] * trace_dE[j] +
+                                    mu * (FFt[c_i][c_j] * (g[i] * g[j]) + Fg[j][c_i] * Fg[i][c_j]);
+                      if (c_i == c_j)
+                        k_ij += g[i] * Sg[j];
+                      cell_matrix(i, j) += k_ij * JxW;
+                    }
+                }
+            }
+        }
+      if (tangent)
+        for (unsigned int i = 1; i < n; ++i)
+          for (unsigned int j = 0; j < i; ++j)
+            cell_matrix(i, j) = cell_matrix(j, i);
+      cell->get_dof_indices(copy.dofs);
+    }
+  } // namespace
+
   template <int dim>
   void SolidModel<dim>::assemble_mass_matrix(PETScWrappers::MPI::SparseMatrix &M) const
   {
     reinit_matrix(M);
-    const FESystem<dim> &fe = *this->fe;
-    FEValues<dim> fe_values(*cell_mapping, fe, cell_quadrature, update_values | update_JxW_values);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    std::vector<types::global_dof_index> dofs(n);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const double rho = material(cell->material_id()).density * out_of_plane_thickness();
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                const unsigned int ci = fe.system_to_component_index(i).first;
-                for (unsigned int j = 0; j < n; ++j)
-                  if (fe.system_to_component_index(j).first == ci)
-                    cell_matrix(i, j) += rho * fe_values.shape_value(i, q) * fe_values.shape_value(j, q) * fe_values.JxW(q);
-              }
-          cell->get_dof_indices(dofs);
-          clamp_constraints.distribute_local_to_global(cell_matrix, dofs, M);
-        }
+    using CellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    WorkStream::run(
+      filter_iterators(dof_handler.active_cell_iterators(), IteratorFilters::LocallyOwnedCell()),
+      [this](const CellIterator &cell, CellScratch<dim> &scratch, CellCopy &copy) {
+        mass_on_cell(*this, cell, scratch, copy);
+      },
+      [this, &M](const CellCopy &copy) { clamp_constraints.distribute_local_to_global(copy.matrix, copy.dofs, M); },
+      CellScratch<dim>(*cell_mapping, *fe, cell_quadrature, update_values | update_JxW_values),
+      CellCopy(fe->n_dofs_per_cell()));
     M.compress(VectorOperation::add);
   }
 
@@ -321,94 +473,22 @@ namespace beamslider
     else if (K_t)
       reinit_matrix(*K_t);
 
-    const FESystem<dim> &fe = *this->fe;
-    const Quadrature<dim> &quadrature = cell_quadrature;
-    FEValues<dim> fe_values(*cell_mapping, fe, quadrature, update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    Vector<double> cell_force(n);
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<Tensor<2, dim>> grad_u(quadrature.size());
-    // A shape function φ_i of the vector FE_Q is e_c ⊗ N_i in one component
-    // c = c_i, so ∇φ_i = e_c ⊗ ∇N_i: per i we keep c_i and g_i = ∇N_i, and
-    // δE_i = sym(Fᵀ∇φ_i) = sym(a_i ⊗ g_i) with a_i = Fᵀ e_c (row c of F),
-    // ∇φ_iᵀ∇φ_j = δ_{c_i c_j} g_i ⊗ g_j. The tangent's double contraction
-    // needs no tensors: with F g_j (per j) and F Fᵀ (per point),
-    //   tr δE_i = (F g_i)_{c_i},  S : δE_i = a_i · S g_i,
-    //   δE_i : δE_j = ½ [(F Fᵀ)_{c_i c_j} g_i·g_j + (F g_j)_{c_i} (F g_i)_{c_j}].
-    std::vector<unsigned int> component(n);
-    for (unsigned int i = 0; i < n; ++i)
-      component[i] = fe.system_to_component_index(i).first;
-    std::vector<Tensor<1, dim>> g(n), Sg(n), Fg(n);
-    std::vector<double> trace_dE(n);
-    const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
-    const double factor    = out_of_plane_thickness();
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const SolidMaterial &law = material(cell->material_id());
-          const double lambda = law.lambda, mu = law.mu;
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_gradients(u, grad_u);
-          cell_matrix = 0;
-          cell_force  = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Tensor<2, dim> F  = I + grad_u[q];
-              const Tensor<2, dim> E  = 0.5 * (transpose(F) * F - I);
-              const Tensor<2, dim> S  = lambda * trace(E) * I + 2 * mu * E;
-              const double JxW        = fe_values.JxW(q) * factor;
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  g[i] = fe_values.shape_grad_component(i, q, component[i]);
-                  Tensor<1, dim> a_i; // Fᵀ e_c: row c of F
-                  for (unsigned int a = 0; a < dim; ++a)
-                    a_i[a] = F[component[i]][a];
-                  Sg[i] = S * g[i];
-                  cell_force(i) += (a_i * Sg[i]) * JxW; // S : δE_i (S symmetric)
-                  if (K_t)
-                    {
-                      Fg[i]       = F * g[i];
-                      trace_dE[i] = Fg[i][component[i]];
-                    }
-                }
-              // K_t is the Hessian of the strain energy, so symmetric: the
-              // upper triangle here, the lower one copied after the loop
-              // over quadrature points (half the work of the costliest loop
-              // of a solid's statics and ICE; `verify --section 8`).
-              if (K_t)
-                {
-                  const Tensor<2, dim> FFt = F * transpose(F);
-                  for (unsigned int i = 0; i < n; ++i)
-                    {
-                      const unsigned int c_i = component[i];
-                      for (unsigned int j = i; j < n; ++j)
-                        {
-                          // δE_i : C : δE_j + S : (∇φ_iᵀ ∇φ_j), C = λ I⊗I + 2μ 𝕀
-                          const unsigned int c_j = component[j];
-                          double k_ij = lambda * trace_dE[i] * trace_dE[j] +
-                                        mu * (FFt[c_i][c_j] * (g[i] * g[j]) + Fg[j][c_i] * Fg[i][c_j]);
-                          if (c_i == c_j)
-                            k_ij += g[i] * Sg[j];
-                          cell_matrix(i, j) += k_ij * JxW;
-                        }
-                    }
-                }
-            }
-          if (K_t)
-            for (unsigned int i = 1; i < n; ++i)
-              for (unsigned int j = 0; j < i; ++j)
-                cell_matrix(i, j) = cell_matrix(j, i);
-          cell->get_dof_indices(dofs);
-          if (f && K_t)
-            clamp_constraints.distribute_local_to_global(cell_matrix, cell_force, dofs, *K_t, *f);
-          else if (f)
-            clamp_constraints.distribute_local_to_global(cell_force, dofs, *f);
-          else
-            clamp_constraints.distribute_local_to_global(cell_matrix, dofs, *K_t);
-        }
+    using CellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    const bool tangent = K_t != nullptr;
+    auto copier = [this, f, K_t](const CellCopy &copy) {
+      if (f && K_t)
+        clamp_constraints.distribute_local_to_global(copy.matrix, copy.vector, copy.dofs, *K_t, *f);
+      else if (f)
+        clamp_constraints.distribute_local_to_global(copy.vector, copy.dofs, *f);
+      else
+        clamp_constraints.distribute_local_to_global(copy.matrix, copy.dofs, *K_t);
+    };
+    WorkStream::run(
+      filter_iterators(dof_handler.active_cell_iterators(), IteratorFilters::LocallyOwnedCell()),
+      [this, &u, tangent](const CellIterator &cell, StrainScratch<dim> &scratch, CellCopy &copy) {
+        internal_force_on_cell(*this, u, tangent, cell, scratch, copy);
+      },
+      copier, StrainScratch<dim>(*cell_mapping, *fe, cell_quadrature), CellCopy(fe->n_dofs_per_cell()));
     if (f)
       f->compress(VectorOperation::add);
     if (K_t)
