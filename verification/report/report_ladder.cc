@@ -423,9 +423,11 @@ namespace beamslider
        << "Files: ladder.csv, ladder_members.csv, ladder_steps.csv, convergence.csv; member_runs.csv holds every "
           "member as it finished, member_runs.check-1.csv, … the members of the checks' later rounds (the same "
           "command started again into this folder runs only the members not there yet). "
-       << (n_kept ? std::to_string(n_kept) + " of the " + std::to_string(size.n_member_runs) +
-                      " members were read back from there, computed by an earlier, stopped run of this same build "
-                      "and settings. "
+       // n_kept counts every round's members, the convergence checks' too,
+       // so it is not a share of the ladder's own n_member_runs.
+       << (n_kept ? std::to_string(n_kept) +
+                      " members (the ladder's and its convergence checks') were read back from there, computed by "
+                      "an earlier, stopped run of this same build and settings. "
                   : std::string())
        << "This run of the ladder took " << seconds_since(start) << ".\n\n";
     run_plot_script("plot_ladder.py", {dir, scene.name});
