@@ -189,4 +189,5 @@ PYBIND11_MODULE(_core, m)
         "The path of a scene given by name (meshes/NAME.prm) or path.");
   beamslider_python::bind_run(m);
   beamslider_python::bind_models(m);
+  beamslider_python::bind_solid(m);
 }

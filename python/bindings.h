@@ -4,8 +4,12 @@
 #pragma once
 
 #include "meshes/scene.h"
+#include "reduced/rom_operator.h"
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+
+#include <vector>
 
 #include <stdexcept>
 #include <string>
@@ -34,6 +38,12 @@ namespace beamslider_python
       }
   }
 
+  // Sorted cubic terms as the tensor [n, j, k, l] (N⁴ entries): each term
+  // spread evenly over the distinct permutations of (j, k, l), so that
+  // f_n = Σ t[n,j,k,l] q_j q_k q_l (model_bindings.cc).
+  py::array_t<double> cubic_tensor(const std::vector<beamslider::CubicTerm> &terms, unsigned int n_modes);
+
   void bind_run(py::module_ &m);
   void bind_models(py::module_ &m);
+  void bind_solid(py::module_ &m);
 } // namespace beamslider_python

@@ -174,30 +174,8 @@ namespace beamslider_python
       Eigen::VectorXd damping() const { return rom_->damping_coefficients(); }
       double length() const { return rom_->basis().length; }
 
-      // The tensor [n, j, k, l] of f_n = Σ t[n,j,k,l] q_j q_k q_l, each sorted
-      // entry spread evenly over its distinct permutations.
-      py::array_t<double> coefficients() const
-      {
-        const auto N = static_cast<py::ssize_t>(rom_->n_modes());
-        py::array_t<double> t({N, N, N, N});
-        auto v = t.mutable_unchecked<4>();
-        for (py::ssize_t a = 0; a < N; ++a)
-          for (py::ssize_t b = 0; b < N; ++b)
-            for (py::ssize_t c = 0; c < N; ++c)
-              for (py::ssize_t d = 0; d < N; ++d)
-                v(a, b, c, d) = 0.;
-        for (const beamslider::CubicTerm &term : rom_->cubic_terms())
-          {
-            std::vector<std::array<unsigned int, 3>> permutations;
-            std::array<unsigned int, 3> p{{term.j, term.k, term.l}};
-            do
-              permutations.push_back(p);
-            while (std::next_permutation(p.begin(), p.end()));
-            for (const auto &q : permutations)
-              v(term.n, q[0], q[1], q[2]) = term.value / static_cast<double>(permutations.size());
-          }
-        return t;
-      }
+      // The tensor [n, j, k, l] of f_n = Σ t[n,j,k,l] q_j q_k q_l.
+      py::array_t<double> coefficients() const { return cubic_tensor(rom_->cubic_terms(), rom_->n_modes()); }
 
       Eigen::VectorXd force(const Eigen::VectorXd &q) const
       {
@@ -276,6 +254,26 @@ namespace beamslider_python
       double thickness_ = 0;
     };
   } // namespace
+
+  py::array_t<double> cubic_tensor(const std::vector<beamslider::CubicTerm> &terms, const unsigned int n_modes)
+  {
+    const auto N = static_cast<py::ssize_t>(n_modes);
+    py::array_t<double> t({N, N, N, N});
+    std::fill(t.mutable_data(), t.mutable_data() + t.size(), 0.);
+    auto v = t.mutable_unchecked<4>();
+    for (const beamslider::CubicTerm &term : terms)
+      {
+        std::vector<std::array<unsigned int, 3>> permutations;
+        std::array<unsigned int, 3> p{{term.j, term.k, term.l}};
+        std::sort(p.begin(), p.end());
+        do
+          permutations.push_back(p);
+        while (std::next_permutation(p.begin(), p.end()));
+        for (const auto &q : permutations)
+          v(term.n, q[0], q[1], q[2]) = term.value / static_cast<double>(permutations.size());
+      }
+    return t;
+  }
 
   void bind_models(py::module_ &m)
   {

@@ -268,5 +268,31 @@ class ReducedModelCoefficients(unittest.TestCase):
             rom.shapes([2 * rom.length])
 
 
+class SolidObject(unittest.TestCase):
+    def test_modes_and_coefficients_are_the_commands_on_the_solid_scene(self):
+        solid = beamslider.Solid("mueller2023-solid")
+        self.assertEqual(solid.dimension, 3 if solid.scene.get("Solid/Continuum") == "3d" else 2)
+        modes = solid.modes(3)
+        coefficients = solid.coefficients("exact", 3)
+        with tempfile.TemporaryDirectory() as tmp:
+            done = subprocess.run([EXECUTABLE, "modes", "mueller2023-solid", "--modes", "3", "--output", tmp, "--quiet"],
+                                  capture_output=True, text=True, timeout=600)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            header, rows = csv_rows(os.path.join(tmp, "modes.csv"))
+            column = header.index("frequency_hz")
+            cli = np.array([float(r[column]) for r in rows])
+        np.testing.assert_allclose(modes["frequency_hz"][:len(cli)], cli, rtol=1e-9)
+        self.assertEqual(len(modes["bending"]), 3)
+        with tempfile.TemporaryDirectory() as tmp:
+            done = subprocess.run([EXECUTABLE, "coefficients", "mueller2023-solid", "--method", "exact", "--modes", "3",
+                                   "--output", tmp, "--quiet"], capture_output=True, text=True, timeout=600)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            expected = beamslider.CoefficientsResult(tmp, keep=False).tensor
+        np.testing.assert_allclose(coefficients, expected, rtol=1e-9, atol=1e-9 * abs(expected).max())
+        with self.assertRaises(ValueError) as raised:
+            beamslider.Solid("mueller2023")
+        self.assertIn("no solid", str(raised.exception))
+
+
 if __name__ == "__main__":
     unittest.main()

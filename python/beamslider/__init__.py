@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
+__all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Solid", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "read_table"]
 
 
@@ -331,6 +331,32 @@ class ReducedModel:
         "completed", "message"}."""
         return self._rom.backbone(int(harmonics), float(max_amplitude_over_h),
                                   -1.0 if x_out is None else float(x_out))
+
+
+class Solid:
+    """The continuum model of a solid scene (Solid/Continuum "plane stress"
+    or "3d": a St. Venant–Kirchhoff strip or a mesh, deal.II with PETSc and
+    SLEPc on one process): ``modes(n)`` and ``coefficients(method, n)`` as
+    the commands ``modes`` and ``coefficients`` compute them on that scene.
+    The modes are computed once and kept for later calls."""
+
+    def __init__(self, scene="mueller2023-solid"):
+        self.scene = _as_scene(scene)
+        self._solid = _core.Solid(self.scene.path, list(self.scene._overrides))
+        self.dimension = self._solid.dimension
+        self.n_dofs = self._solid.n_dofs
+
+    def modes(self, n_bending=5):
+        """The lowest modes until ``n_bending`` bending ones: {"frequency_hz"
+        (every mode found), "shape" (bending, torsion, lateral, axial),
+        "bending" (the indices of the first n_bending bending modes)}."""
+        return self._solid.modes(int(n_bending))
+
+    def coefficients(self, method="ice", n=5):
+        """The cubic tensor [n, j, k, l] of the first n bending modes by
+        "exact", "step", "step-relaxed" or "ice" (coefficients.csv's values
+        spread over the permutations, as ReducedModel.coefficients)."""
+        return self._solid.coefficients(method, int(n))
 
 
 def read_table(path):
