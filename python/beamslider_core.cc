@@ -125,6 +125,27 @@ namespace
   // console, the interruption flag, the recorded command line).
   std::mutex one_command_at_a_time;
 
+  // Whether a command runs, under its own lock: interrupt() requests a stop
+  // only then, and a command's end clears the request, so that no request
+  // outlives its command (the solvers of the objects poll the same flag).
+  std::mutex command_state;
+  bool command_running = false;
+
+  void interrupt_running_command()
+  {
+    const std::lock_guard<std::mutex> lock(command_state);
+    if (command_running)
+      beamslider::request_interruption(SIGINT);
+  }
+
+  void set_command_running(const bool running)
+  {
+    const std::lock_guard<std::mutex> lock(command_state);
+    command_running = running;
+    if (!running)
+      beamslider::clear_interruption();
+  }
+
   std::tuple<int, std::string, int> run(const std::vector<std::string> &args, py::object progress)
   {
     std::unique_lock<std::mutex> running(one_command_at_a_time, std::try_to_lock);
@@ -146,8 +167,10 @@ namespace
     {
       SignalHandlersOfTheRun handlers;
       py::gil_scoped_release no_gil;
+      set_command_running(true);
       status = beamslider::run_beamslider(argc, argv.data(), errors);
       signal = beamslider::interruption_signal();
+      set_command_running(false);
     }
     to_python.raise_if_failed();
     return {status, errors.str(), signal};
@@ -179,8 +202,8 @@ PYBIND11_MODULE(_core, m)
   dealii::MultithreadInfo::set_thread_limit(1);
   m.def("run", &run, py::arg("args"), py::arg("progress") = py::none(),
         "Runs `beamslider ARGS...`; returns (exit status, error text, signal or 0).");
-  m.def("interrupt", [] { beamslider::request_interruption(SIGINT); },
-        "Stops the running command at its next step, as Ctrl-C does.");
+  m.def("interrupt", &interrupt_running_command,
+        "Stops the running command at its next step, as Ctrl-C does; nothing when none runs.");
   m.def("scene_text", &scene_text, py::arg("path"), py::arg("overrides"),
         "The scene file's text after the overrides (\"Section/Name=value\").");
   m.def("scene_parameters", &scene_parameters, py::arg("path"), py::arg("overrides"),

@@ -242,7 +242,7 @@ namespace beamslider
 
   bool AdaptationRun::stop_if_interrupted(RunResult &result) const
   {
-    if (!interruption_requested())
+    if (!options_.stop_on_request || !interruption_requested())
       return false;
     std::ostringstream m;
     m << "interrupted by signal " << interruption_signal() << " at t = " << stepper_.state().t

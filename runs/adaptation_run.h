@@ -108,6 +108,11 @@ namespace beamslider
     double output_rate = 1000.; // trace rows per second [1/s]; 0: every step
     double probe_position_over_L = 4. / 7.;
     bool prescribed_slider_position = false; // hold x_C (seed §4.2)
+    // Stop at the process's stop request (Ctrl-C, SIGTERM: numerics/
+    // stop_request.h). False for a caller that steps in pieces and checks
+    // for its own interruptions between them (the Python module's Run),
+    // so that a request left from an earlier command cannot stop it.
+    bool stop_on_request = true;
     ProxSolverSettings solver;
     double progress_interval = 1.; // simulated seconds between progress reports [s]
     // Period of the bookkeeping when the scene has no excitation [s].

@@ -181,6 +181,13 @@ class CtrlC(unittest.TestCase):
             self.assertTrue(np.array_equal(values, run.trace[column]), column)
         self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
 
+    def test_an_interrupt_with_no_command_running_stops_nothing_later(self):
+        beamslider.interrupt()  # no command runs: nothing to stop, nothing kept
+        run = beamslider.Run()
+        self.assertEqual(run.advance(0.05), "completed")
+        self.assertAlmostEqual(run.t, 0.05, delta=1e-9)
+        self.assertEqual(beamslider.simulate(end_time=0.05).status, "completed")
+
 
 class FEBeamMatrices(unittest.TestCase):
     @classmethod

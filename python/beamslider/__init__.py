@@ -51,7 +51,8 @@ class Interrupted(KeyboardInterrupt):
 
 def interrupt():
     """Stops the running beamslider command (in another thread) at its next
-    step, as Ctrl-C does; the command then raises Interrupted."""
+    step, as Ctrl-C does; the command then raises Interrupted. With no
+    command running it does nothing (no request is kept for later)."""
     _core.interrupt()
 
 

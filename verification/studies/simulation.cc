@@ -16,6 +16,7 @@ namespace beamslider
     require_stable_time_step(setting_, *beam_);
     RunOptions options        = RunOptions::from_scene(scene_, setting_.time_step);
     options.progress_interval = 1e300; // the caller steps in pieces and sees the time itself
+    options.stop_on_request   = false; // ... and checks for its own interruptions between them
     run_                 = std::make_unique<AdaptationRun>(scene_, *beam_, options);
     run_->on_trace_row = [this](const TraceRow &row) { rows_.push_back(row); };
     run_->on_period    = [this](const PeriodRecord &p) { periods_.push_back(p); };

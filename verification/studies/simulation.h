@@ -36,6 +36,8 @@ namespace beamslider
     // Takes n steps, fewer if the run stops (a support reached, a solver
     // failure: the result's status and message say which and when). A
     // stopped run takes no more steps: the result is the stopping one.
+    // The process's stop request does not stop it: a caller that wants to
+    // be interruptible steps in pieces and checks between them.
     RunResult step(unsigned long n);
     // Whether a step failed or the slider reached a support.
     bool stopped() const { return stopped_; }
