@@ -21,20 +21,24 @@ namespace beamslider_python
 {
   namespace
   {
-    // Columns of records as {name: float array}, one array per member.
-    template <typename Record>
-    py::dict columns(const std::vector<Record> &records, const std::vector<std::string> &names,
-                     const std::vector<double (*)(const Record &)> &fields)
+    // Records as {column name: float array}, `values` giving each record's
+    // row in the order of `names` (runs/adaptation_run.h).
+    template <typename Record, typename Values>
+    py::dict columns(const std::vector<Record> &records, const std::vector<std::string> &names, Values values)
     {
+      const auto n = static_cast<py::ssize_t>(records.size());
+      std::vector<py::array_t<double>> arrays;
+      for (std::size_t c = 0; c < names.size(); ++c)
+        arrays.emplace_back(n);
+      for (py::ssize_t i = 0; i < n; ++i)
+        {
+          const auto row = values(records[static_cast<std::size_t>(i)]);
+          for (std::size_t c = 0; c < names.size(); ++c)
+            arrays[c].mutable_at(i) = row[c];
+        }
       py::dict out;
       for (std::size_t c = 0; c < names.size(); ++c)
-        {
-          py::array_t<double> a(static_cast<py::ssize_t>(records.size()));
-          auto view = a.mutable_unchecked<1>();
-          for (std::size_t i = 0; i < records.size(); ++i)
-            view(static_cast<py::ssize_t>(i)) = fields[c](records[i]);
-          out[py::str(names[c])] = a;
-        }
+        out[py::str(names[c])] = arrays[c];
       return out;
     }
 
@@ -126,30 +130,14 @@ namespace beamslider_python
 
       py::dict trace() const
       {
-        using R         = beamslider::TraceRow;
         const auto held = hold();
-        return columns<R>(simulation_->trace(), beamslider::trace_csv_columns(),
-                          {[](const R &r) { return r.t; }, [](const R &r) { return r.slider_x_over_L; },
-                           [](const R &r) { return r.slider_z; }, [](const R &r) { return r.slider_beta; },
-                           [](const R &r) { return r.w_center; }, [](const R &r) { return r.w_probe; },
-                           [](const R &r) { return r.amplitude_over_h; }});
+        return columns(simulation_->trace(), beamslider::trace_csv_columns(), beamslider::trace_row_values);
       }
 
       py::dict periods() const
       {
-        using P         = beamslider::PeriodRecord;
         const auto held = hold();
-        return columns<P>(
-          simulation_->periods(), beamslider::period_csv_columns(),
-          {[](const P &p) { return double(p.index); }, [](const P &p) { return p.t_start; },
-           [](const P &p) { return p.t_end; }, [](const P &p) { return p.slider_x_over_L; },
-           [](const P &p) { return p.amplitude_over_h; }, [](const P &p) { return p.mean_horizontal_contact_force; },
-           [](const P &p) { return p.energy_start; }, [](const P &p) { return p.energy_end; },
-           [](const P &p) { return p.work_gravity; }, [](const P &p) { return p.work_damping; },
-           [](const P &p) { return p.work_excitation; }, [](const P &p) { return p.work_impact; },
-           [](const P &p) { return p.work_friction; }, [](const P &p) { return p.work_base_contact; },
-           [](const P &p) { return p.energy_residual; }, [](const P &p) { return double(p.max_solver_iterations); },
-           [](const P &p) { return p.contact_fraction; }});
+        return columns(simulation_->periods(), beamslider::period_csv_columns(), beamslider::period_values);
       }
 
       py::dict analyse() const

@@ -116,6 +116,33 @@ namespace beamslider
     p.max_solver_iterations = in.get_uint();
     return p;
   }
+  std::array<double, 7> trace_row_values(const TraceRow &r)
+  {
+    return {{r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h}};
+  }
+
+  void save_trace_row(CheckpointWriter &out, const TraceRow &r)
+  {
+    for (const double x : trace_row_values(r))
+      out.put(x);
+  }
+
+  TraceRow load_trace_row(CheckpointReader &in)
+  {
+    TraceRow r;
+    for (double *x : {&r.t, &r.slider_x_over_L, &r.slider_z, &r.slider_beta, &r.w_center, &r.w_probe, &r.amplitude_over_h})
+      *x = in.get_double();
+    return r;
+  }
+
+  std::array<double, 17> period_values(const PeriodRecord &p)
+  {
+    return {{double(p.index), p.t_start, p.t_end, p.slider_x_over_L, p.amplitude_over_h,
+             p.mean_horizontal_contact_force, p.energy_start, p.energy_end, p.work_gravity, p.work_damping,
+             p.work_excitation, p.work_impact, p.work_friction, p.work_base_contact, p.energy_residual,
+             double(p.max_solver_iterations), p.contact_fraction}};
+  }
+
 
   void AdaptationRun::save(CheckpointWriter &out) const
   {
@@ -394,7 +421,8 @@ namespace beamslider
 
   void write_trace_row(CsvWriter &csv, const TraceRow &r)
   {
-    csv.numbers({r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h}, 10);
+    const std::array<double, 7> values = trace_row_values(r);
+    csv.numbers(std::vector<double>(values.begin(), values.end()), 10);
   }
 
   std::vector<std::string> period_csv_columns()

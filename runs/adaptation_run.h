@@ -25,6 +25,7 @@
 #include "contact/moreau_stepper.h"
 #include "meshes/scene.h"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -64,6 +65,15 @@ namespace beamslider
   // A period record in a checkpoint (checkpoint.h), bit for bit.
   void save_period(CheckpointWriter &out, const PeriodRecord &record);
   PeriodRecord load_period(CheckpointReader &in);
+
+  // A trace row's values in trace_csv_columns()' order, and the row in a
+  // checkpoint, bit for bit.
+  std::array<double, 7> trace_row_values(const TraceRow &row);
+  void save_trace_row(CheckpointWriter &out, const TraceRow &row);
+  TraceRow load_trace_row(CheckpointReader &in);
+  // A period record's values in period_csv_columns()' order (the counts as
+  // doubles).
+  std::array<double, 17> period_values(const PeriodRecord &record);
 
   struct RunProgress
   {

@@ -26,6 +26,7 @@
 #include "numerics/elapsed.h"
 #include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
+#include "verification/studies/simulation.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <cerrno>
@@ -436,12 +437,10 @@ namespace beamslider
         {
           // The scene file reads differently now (another build's defaults):
           // the first line in which the two runs differ.
-          std::istringstream now(identity), then(r.saved.identity);
-          std::string a, b;
-          while (std::getline(now, a) && std::getline(then, b) && a == b)
-            ;
+          const auto lines = first_differing_lines(identity, r.saved.identity);
           throw InputError("--resume: the checkpoint in '" + r.options.resume_dir +
-                           "' is of another run: this run has '" + a + "' where the checkpoint's has '" + b +
+                           "' is of another run: this run has '" + (lines ? lines->first : identity) +
+                           "' where the checkpoint's has '" + (lines ? lines->second : r.saved.identity) +
                            "'; not resumed");
         }
     }

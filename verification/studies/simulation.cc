@@ -26,6 +26,21 @@ namespace beamslider
 
   Simulation::~Simulation() = default;
 
+  std::optional<std::pair<std::string, std::string>> first_differing_lines(const std::string &now,
+                                                                           const std::string &then)
+  {
+    std::istringstream x(now), y(then);
+    std::string a, b;
+    while (true)
+      {
+        const bool more_a = static_cast<bool>(std::getline(x, a)), more_b = static_cast<bool>(std::getline(y, b));
+        if (!more_a && !more_b)
+          return std::nullopt;
+        if (!more_a || !more_b || a != b)
+          return std::make_pair(more_a ? a : std::string("(end)"), more_b ? b : std::string("(end)"));
+      }
+  }
+
   RunResult Simulation::step(const unsigned long n)
   {
     if (stopped_ || n == 0)
@@ -41,39 +56,6 @@ namespace beamslider
     return case_verdict(periods_, last_, trace_thresholds(scene_));
   }
 
-  namespace
-  {
-    void save_row(CheckpointWriter &out, const TraceRow &r)
-    {
-      for (const double x : {r.t, r.slider_x_over_L, r.slider_z, r.slider_beta, r.w_center, r.w_probe, r.amplitude_over_h})
-        out.put(x);
-    }
-
-    TraceRow load_row(CheckpointReader &in)
-    {
-      TraceRow r;
-      for (double *x : {&r.t, &r.slider_x_over_L, &r.slider_z, &r.slider_beta, &r.w_center, &r.w_probe, &r.amplitude_over_h})
-        *x = in.get_double();
-      return r;
-    }
-
-    // The first line in which two scene texts differ ("" if none).
-    std::string first_difference(const std::string &a, const std::string &b)
-    {
-      std::istringstream x(a), y(b);
-      std::string p, q;
-      while (true)
-        {
-          const bool more_x = static_cast<bool>(std::getline(x, p)), more_y = static_cast<bool>(std::getline(y, q));
-          if (!more_x && !more_y)
-            return "";
-          if (!more_x || !more_y || p != q)
-            return "this scene has '" + (more_x ? p : std::string("(end)")) + "' where the checkpoint's has '" +
-                   (more_y ? q : std::string("(end)")) + "'";
-        }
-    }
-  } // namespace
-
   void Simulation::save(CheckpointWriter &out) const
   {
     save_setting(out, setting_);
@@ -82,7 +64,7 @@ namespace beamslider
     run_->save(out);
     out.put(std::uint64_t(rows_.size()));
     for (const TraceRow &r : rows_)
-      save_row(out, r);
+      save_trace_row(out, r);
     out.put(std::uint64_t(periods_.size()));
     for (const PeriodRecord &p : periods_)
       save_period(out, p);
@@ -92,16 +74,16 @@ namespace beamslider
   {
     const ModelSetting setting = load_setting(in);
     const std::string saved_scene = in.get_string();
-    const std::string difference  = first_difference(scene_file_text(scene), saved_scene);
-    if (!difference.empty())
-      throw InputError("the checkpoint is of another scene: " + difference);
+    if (const auto lines = first_differing_lines(scene_file_text(scene), saved_scene))
+      throw InputError("the checkpoint is of another scene: this scene has '" + lines->first +
+                       "' where the checkpoint's has '" + lines->second + "'");
     auto simulation      = std::make_unique<Simulation>(scene, setting);
     simulation->stopped_ = in.get_bool();
     simulation->run_->load(in);
     simulation->rows_.clear();
     const std::uint64_t n_rows = in.get_count(7 * sizeof(double));
     for (std::uint64_t i = 0; i < n_rows; ++i)
-      simulation->rows_.push_back(load_row(in));
+      simulation->rows_.push_back(load_trace_row(in));
     const std::uint64_t n_periods = in.get_count(17 * sizeof(std::uint64_t));
     for (std::uint64_t i = 0; i < n_periods; ++i)
       simulation->periods_.push_back(load_period(in));

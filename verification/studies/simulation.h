@@ -13,10 +13,19 @@
 #include "verification/studies/fe_rom_study.h"
 
 #include <memory>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace beamslider
 {
+  // The first line in which two texts (a scene's, a run's identity) differ,
+  // now's and then's, "(end)" for a text that ended first; none if equal.
+  // How a checkpoint of another run says what changed.
+  std::optional<std::pair<std::string, std::string>> first_differing_lines(const std::string &now,
+                                                                           const std::string &then);
+
   class Simulation
   {
   public:
