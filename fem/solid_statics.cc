@@ -321,6 +321,36 @@ namespace beamslider
     return integral; // the weights sum to 1
   }
 
+  template <int dim>
+  void SolidStatics<dim>::load_path(
+    const PETScWrappers::MPI::Vector &F, const unsigned int n_steps,
+    const std::function<void(unsigned int, double, const PETScWrappers::MPI::Vector &, unsigned int)> &on_step)
+  {
+    PETScWrappers::MPI::Vector u, F_k, F_previous, u_ghosted;
+    model.reinit_vector(u);
+    model.reinit_vector(F_previous);
+    model.reinit_ghosted_vector(u_ghosted);
+    for (unsigned int k = 1; k <= n_steps; ++k)
+      {
+        const double lambda = double(k) / n_steps;
+        F_k                 = F;
+        F_k *= lambda;
+        const std::string step = "load step " + std::to_string(k) + " of " + std::to_string(n_steps) + ": ";
+        unsigned int iterations = 0;
+        try
+          {
+            iterations = solve(F_k, u, &F_previous);
+          }
+        catch (const SolidStaticSolveError &e)
+          {
+            throw SolidStaticSolveError(step + e.what());
+          }
+        F_previous = F_k;
+        u_ghosted  = u;
+        on_step(k, lambda, u_ghosted, iterations);
+      }
+  }
+
   template class SolidStatics<2>;
   template class SolidStatics<3>;
 } // namespace beamslider

@@ -39,6 +39,7 @@
 #include "fem/kept_factorisation.h"
 #include "fem/solid_model.h"
 
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -61,6 +62,16 @@ namespace beamslider
     // number of Newton iterations (back-substitutions).
     unsigned int solve(const dealii::PETScWrappers::MPI::Vector &F, dealii::PETScWrappers::MPI::Vector &u,
                        const dealii::PETScWrappers::MPI::Vector *F_start = nullptr);
+
+    // The load path of F from rest in n_steps equal steps, λ = k/n_steps:
+    // each converged step k (1-based) to `on_step(k, λ, u, iterations)`, u
+    // ghosted (every rank calls it; collective evaluations are allowed). A
+    // step that fails throws SolidStaticSolveError beginning "load step k of
+    // n: "; an interruption throws Interrupted.
+    void load_path(const dealii::PETScWrappers::MPI::Vector &F, unsigned int n_steps,
+                   const std::function<void(unsigned int k, double lambda,
+                                            const dealii::PETScWrappers::MPI::Vector &u, unsigned int iterations)>
+                     &on_step);
 
     // A uniform dead line load of q_n_per_m [N/m] along the strip in +z,
     // applied as the pressure q/b on the top face (z = h/2 of the generated

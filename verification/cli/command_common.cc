@@ -3,6 +3,7 @@
 #include "meshes/scene.h"
 #include "meshes/source_directory.h"
 #include "verification/cli/commands.h"
+#include "verification/studies/simulation.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/simulation_cases.h"
 
@@ -270,6 +271,20 @@ namespace beamslider
       throw InputError(option + " " + std::to_string(n_modes) + " needs a mesh of at least " +
                        std::to_string(n_modes + 1) + " elements; 'Discretisation/Number of elements' (or --elements) is " +
                        std::to_string(n_elements));
+  }
+
+  void StudyHandover::refuse(const StudyHandover *handover, const std::string &command)
+  {
+    if (handover)
+      throw InputError("the command '" + command +
+                       "' cannot hand its result over in memory; only ensemble, ladder, sweep and map can");
+  }
+
+  void require_same_scene(const Scene &kept, const Scene &now, const std::string &command)
+  {
+    if (const auto differ = first_differing_lines(scene_file_text(now), scene_file_text(kept)))
+      throw InputError(command + ": the scene now reads differently from the one the result was computed with ('" +
+                       differ->second + "' is now '" + differ->first + "'); compute it again");
   }
 
 } // namespace beamslider

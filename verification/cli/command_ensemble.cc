@@ -24,6 +24,7 @@
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/study_results.h"
 #include "numerics/elapsed.h"
 #include "verification/report/member_files.h"
 #include "verification/studies/member_runs.h"
@@ -249,20 +250,6 @@ namespace beamslider
       return md.str();
     }
 
-    // One ensemble on rank 0, shared by the stages that run and report it:
-    // the scene and settings, the folder, the members and the FE's check in
-    // Δt, and the cost.
-    struct EnsembleRun
-    {
-      Scene scene;
-      EnsembleSettings settings;
-      std::string dir;
-      std::vector<EnsembleMember> members;
-      std::optional<ConvergenceCheck> check; // the FE's, unless --unchecked
-      std::size_t n_kept  = 0; // members read back from member_runs.csv
-      double wall_seconds = 0;
-    };
-
     // The scene (and case) with --end-time, checked before any member runs.
     Scene ensemble_scene(const CommonOptions &common, const EnsembleOptions &options)
     {
@@ -286,7 +273,7 @@ namespace beamslider
       console() << "ensemble " << e.scene.name << (options.case_name.empty() ? "" : " --case " + options.case_name)
                 << ": " << e.settings.n_members << " members of " << e.settings.model.label() << ", "
                 << e.scene.time_stepping.end_time << " s each, start x_C/L + m x " << e.settings.perturbation
-                << ", into " << e.dir << std::endl;
+                << (e.dir.empty() ? std::string(", in memory") : ", into " + e.dir) << std::endl;
       if (checked)
         console() << "  checked in Δt: the same members at Δt/2 beside them, halved further (at most "
                   << reference_max_halvings << " times) until two steps end alike" << std::endl;
@@ -369,7 +356,7 @@ namespace beamslider
     }
   } // namespace
 
-  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options)
+  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options, StudyHandover *handover)
   {
     // Under mpirun every rank runs this; only rank 0 writes and prints.
     MpiSession mpi(launched_by_mpi_launcher());
@@ -396,13 +383,34 @@ namespace beamslider
       }
     const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
 
-    e.dir =
-      prepare_output_dir(common, e.scene, options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
-    MemberRunsSettings runs = member_files_settings(e.dir, "ensemble", &mpi, "  ");
-    runs.n_kept             = &e.n_kept;
-    announce_ensemble(e, options, checked);
-    if (!run_members(e, plans.front(), runs, checked))
-      return interruption_exit_code();
+    const auto prepare_dir = [&] {
+      return prepare_output_dir(common, e.scene,
+                                options.case_name.empty() ? "ensemble" : "ensemble/" + options.case_name);
+    };
+    if (handover && handover->mode == StudyHandover::Mode::write)
+      {
+        // The ensemble computed before, from the same options (python/study_bindings.cc).
+        const EnsembleRun &kept = std::any_cast<const EnsembleRun &>(handover->result);
+        require_same_scene(kept.scene, e.scene, "ensemble");
+        e     = kept;
+        e.dir = prepare_dir();
+      }
+    else
+      {
+        // Computed for a handover: in memory only, nothing persisted.
+        e.dir = handover ? std::string() : prepare_dir();
+        MemberRunsSettings runs = member_files_settings(e.dir, "ensemble", &mpi, "  ");
+        runs.n_kept             = &e.n_kept;
+        announce_ensemble(e, options, checked);
+        if (!run_members(e, plans.front(), runs, checked))
+          return interruption_exit_code();
+        if (handover)
+          {
+            e.against        = other;
+            handover->result = e;
+            return 0;
+          }
+      }
 
     write_member_tables(e.dir, e.members);
     const std::string md = ensemble_summary(e, options, mpi.size(), other);

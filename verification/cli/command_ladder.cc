@@ -9,6 +9,9 @@
 // (verification/studies/member_runs.h).
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/study_results.h"
+#include "numerics/elapsed.h"
+#include "verification/studies/number_text.h"
 #include "verification/studies/member_runs.h"
 #include "verification/report/report_ladder.h"
 #include "io/console.h"
@@ -59,7 +62,7 @@ namespace beamslider
     }
   } // namespace
 
-  int run_ladder_command(const CommonOptions &common, const LadderOptions &options)
+  int run_ladder_command(const CommonOptions &common, const LadderOptions &options, StudyHandover *handover)
   {
     // Under mpirun every rank runs this; only rank 0 writes and prints.
     MpiSession mpi(launched_by_mpi_launcher());
@@ -85,7 +88,10 @@ namespace beamslider
         return 0;
       }
     const WorkerRelease release(mpi); // the other ranks stop with this one, however it ends
-    const std::string dir = prepare_output_dir(common, scene, "ladder");
+    const bool write_kept = handover && handover->mode == StudyHandover::Mode::write;
+    if (write_kept)
+      require_same_scene(std::any_cast<const LadderRun &>(handover->result).scene, scene, "ladder");
+    const std::string dir = handover && !write_kept ? std::string() : prepare_output_dir(common, scene, "ladder");
 
     std::ostringstream md;
     md << "# Error ladder of scene `" << scene.name << "`\n\n"
@@ -95,7 +101,25 @@ namespace beamslider
     bool proven = true;
     try
       {
-        md << run_and_describe_ladder(dir, scene, rungs, reference, settings, &proven);
+        if (write_kept)
+          {
+            // The ladder computed before, from the same options (python/study_bindings.cc).
+            const LadderRun &kept = std::any_cast<const LadderRun &>(handover->result);
+            proven                = kept.study.proven();
+            md << write_and_describe_ladder(dir, scene, rungs, kept.study, settings, 0,
+                                            fixed(kept.wall_seconds, 0) + " s");
+          }
+        else if (handover)
+          {
+            const auto start  = std::chrono::steady_clock::now();
+            std::size_t n_kept = 0;
+            LadderRun run{scene, rungs, settings, run_ladder_study("", scene, rungs, reference, settings, n_kept), 0};
+            run.wall_seconds = elapsed_seconds(start);
+            handover->result = std::move(run);
+            return 0;
+          }
+        else
+          md << run_and_describe_ladder(dir, scene, rungs, reference, settings, &proven);
       }
     catch (const MemberRunsStopped &e)
       {

@@ -335,7 +335,7 @@ CLI::App *declare_ladder(CLI::App &app, const AddCommon &add_common, LadderOptio
   return ladder_cmd;
 }
 
-int parse_and_run(int argc, char **argv, std::ostream &errors)
+int parse_and_run(int argc, char **argv, std::ostream &errors, StudyHandover *handover)
 {
   CLI::App app{"beamslider: FE and reduced-order models of a beam with a sliding mass (cross-verification suite)"};
   app.require_subcommand(1);
@@ -407,6 +407,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
   record_effective_options(*app.get_subcommands().front());
   try
     {
+      if (handover && !*sweep_cmd && !*ensemble_cmd && !*map_cmd && !*ladder_cmd)
+        StudyHandover::refuse(handover, app.get_subcommands().front()->get_name());
       if (*modes_cmd)
         return run_modes(common, modes);
       if (*coefficients_cmd)
@@ -424,19 +426,19 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
           return run_simulate(common, simulate);
         }
       if (*sweep_cmd)
-        return run_sweep(common, sweep);
+        return run_sweep(common, sweep, handover);
       if (*animate_cmd)
         return run_animate(common, animate);
       if (*ensemble_cmd)
-        return run_ensemble_command(common, ensemble);
+        return run_ensemble_command(common, ensemble, handover);
       if (*map_cmd)
-        return run_map(common, map);
+        return run_map(common, map, handover);
       if (*identify_cmd)
         return run_identify(common, identify);
       if (*verify_cmd)
         return run_verify(common, verify);
       if (*ladder_cmd)
-        return run_ladder_command(common, ladder);
+        return run_ladder_command(common, ladder, handover);
       if (*template_cmd)
         {
           // A full disk or a closed pipe must not pass for a written template.
@@ -456,7 +458,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors)
 }
 } // namespace
 
-int run_beamslider(int argc, char **argv, std::ostream &errors)
+int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *handover)
 {
   // Under mpirun every rank runs the command; rank 0 says what went wrong,
   // once. Another rank keeps its message where rank 0 meets the same error:
@@ -470,7 +472,7 @@ int run_beamslider(int argc, char **argv, std::ostream &errors)
   // A solid's reduced model (built on first use by any command) says what it builds.
   set_model_build_progress([](const std::string &line) { console() << line << std::endl; });
   std::ostringstream messages; // also the first line of run.txt's `ended:` record
-  int status = parse_and_run(argc, argv, messages);
+  int status = parse_and_run(argc, argv, messages, handover);
   if (status == 0 && !output_failures().empty())
     status = 1; // a chart or another result file was not written
   if (interruption_requested())

@@ -12,5 +12,8 @@ namespace beamslider
   // when interrupted. Each error is one line on `errors` ("error: …" for bad
   // input, "beamslider failed: …" for a failure); progress goes to console().
   // The caller installs the interruption handlers and records the command line.
-  int run_beamslider(int argc, char **argv, std::ostream &errors);
+  // `handover` (the Python module's study objects) computes a study without
+  // writing it, or writes one computed before (commands.h, StudyHandover).
+  struct StudyHandover;
+  int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *handover = nullptr);
 } // namespace beamslider

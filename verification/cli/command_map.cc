@@ -24,6 +24,7 @@
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/study_results.h"
 #include "verification/report/map_files.h"
 #include "numerics/elapsed.h"
 #include "verification/studies/mpi_cells.h"
@@ -93,6 +94,8 @@ namespace beamslider
       std::size_t n_skipped = 0, n_done = 0;
       std::map<std::string, unsigned int> class_counts;
       clock::time_point work_start;
+      MapCells *kept = nullptr; // computing for a handover: the cells' rows go here, not to files
+      bool replaying = false;   // writing a kept map: no progress per cell
     };
 
     MapGrid map_grid(const MapOptions &options)
@@ -220,7 +223,7 @@ namespace beamslider
                 << " s each, on " << m.mpi.size() << " rank(s)";
       if (m.n_skipped)
         console() << "; " << m.n_skipped << " cells already in map.csv are kept";
-      console() << "; into " << m.dir << std::endl;
+      console() << (m.dir.empty() ? std::string("; in memory") : "; into " + m.dir) << std::endl;
     }
 
     // A cell's rows of map.csv ("" when interrupted), and its wall time on a
@@ -249,11 +252,20 @@ namespace beamslider
       while (std::getline(lines, line))
         {
           const std::vector<std::string> cells = CsvWriter::cells(line);
-          m.map_rows->row(cells);
+          if (m.map_rows)
+            m.map_rows->row(cells);
           ++m.class_counts[cells[m.grid.axes.size() + 3]]; // the outcome column
         }
-      m.timing->row({"\"" + map_cell_key(m.grid, cell) + "\"", std::to_string(rank), std::to_string(wall)});
+      if (m.timing)
+        m.timing->row({"\"" + map_cell_key(m.grid, cell) + "\"", std::to_string(rank), std::to_string(wall)});
+      if (m.kept)
+        {
+          m.kept->rows[cell]         = rows;
+          m.kept->wall_seconds[cell] = wall;
+        }
       ++m.n_done;
+      if (m.replaying)
+        return;
       const double elapsed = elapsed_seconds(m.work_start);
       const double rate    = m.n_done / elapsed;
       console() << "  cells " << m.n_done + m.n_skipped << "/" << m.grid.n_cells() << " (" << map_cell_key(m.grid, cell)
@@ -287,7 +299,7 @@ namespace beamslider
     }
   } // namespace
 
-  int run_map(const CommonOptions &common, const MapOptions &options)
+  int run_map(const CommonOptions &common, const MapOptions &options, StudyHandover *handover)
   {
     const auto start_time = clock::now();
     // Under mpirun every rank runs this; only rank 0 reads back, writes and prints.
@@ -295,24 +307,63 @@ namespace beamslider
     const bool root = mpi.rank() == 0;
     MapRun m(common, options, mpi);
     read_map_setup(m);
-    if (root)
+    // A map computed before from the same options (python/study_bindings.cc)
+    // is written as its cells come, replayed instead of computed.
+    const MapCells *replay = nullptr;
+    MapCells computed;
+    if (handover && handover->mode == StudyHandover::Mode::write)
       {
-        open_map_files(m, take_map_folder(m));
+        replay = &std::any_cast<const MapCells &>(handover->result);
+        require_same_scene(replay->base, m.base, "map");
+      }
+    else if (handover)
+      {
+        computed.base = m.base;
+        computed.grid = m.grid;
+        computed.rows.resize(m.grid.n_cells());
+        computed.wall_seconds.resize(m.grid.n_cells());
+        m.kept = &computed;
+        for (std::size_t c = 0; c < m.grid.n_cells(); ++c)
+          m.todo.push_back(c);
         announce_map(m);
+      }
+    if (root && !m.kept)
+      {
+        std::map<std::string, std::string> finished = take_map_folder(m);
+        if (replay)
+          finished.clear(); // every cell anew, from the kept map
+        open_map_files(m, finished);
+        if (!replay)
+          announce_map(m);
       }
 
     m.work_start = clock::now();
-    distribute_cells(
-      mpi, m.todo, [&m](const std::size_t cell) { return compute_map_cell(m, cell); },
-      [&m](const std::size_t cell, const std::string &result, const unsigned int rank) {
-        record_map_cell(m, cell, result, rank);
-      },
-      [] { return interruption_requested(); });
+    m.replaying = replay != nullptr;
+    if (replay)
+      {
+        for (const std::size_t cell : m.todo)
+          if (!replay->rows[cell].empty()) // a cell an interruption left out stays out: the map says it is partial
+            record_map_cell(m, cell,
+                            replay->rows[cell] + "#wall " + std::to_string(replay->wall_seconds[cell]) + "\n", 0);
+      }
+    else
+      distribute_cells(
+        mpi, m.todo, [&m](const std::size_t cell) { return compute_map_cell(m, cell); },
+        [&m](const std::size_t cell, const std::string &result, const unsigned int rank) {
+          record_map_cell(m, cell, result, rank);
+        },
+        [] { return interruption_requested(); });
+    if (m.kept)
+      {
+        computed.work_seconds = elapsed_seconds(m.work_start);
+        handover->result      = std::move(computed);
+        return 0;
+      }
 
     if (!root)
       return 0;
     const double wall      = elapsed_seconds(start_time);
-    const double work_wall = elapsed_seconds(m.work_start);
+    const double work_wall = replay ? replay->work_seconds : elapsed_seconds(m.work_start);
     if (interruption_requested() || m.n_done < m.todo.size())
       {
         std::cerr << "map: stopped after " << m.n_done << " of " << m.todo.size()

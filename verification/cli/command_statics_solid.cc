@@ -56,9 +56,6 @@ namespace beamslider
       else
         F = basis->modal_load(*f * Eigen::VectorXd::Unit(n, n - 1));
       const double load = Q ? *Q : *f;
-      dealii::PETScWrappers::MPI::Vector u, F_k, F_previous;
-      model.reinit_vector(u);
-      model.reinit_vector(F_previous);
       std::optional<CsvWriter> csv;
       CsvOptions in_place; // each load step's row as it converges
       in_place.in_place = true;
@@ -80,46 +77,41 @@ namespace beamslider
           tail.close();
         });
       };
-      std::vector<dealii::PETScWrappers::MPI::Vector> states(options.n_steps);
+      std::vector<dealii::PETScWrappers::MPI::Vector> states;
       double w_mid = 0, q_n = 0;
-      for (unsigned int k = 1; k <= options.n_steps; ++k)
+      try
         {
-          const double lambda = double(k) / options.n_steps;
-          F_k                 = F;
-          F_k *= lambda;
-          const std::string step = "load step " + std::to_string(k) + " of " + std::to_string(options.n_steps);
-          unsigned int iterations = 0;
-          try
-            {
-              iterations = statics.solve(F_k, u, &F_previous);
-            }
-          catch (const SolidStaticSolveError &e)
-            {
-              mark_stopped(step + ": " + e.what());
-              throw SolidStaticSolveError(step + ": " + e.what() + "; " + dir + "/statics.csv holds the " +
-                                          std::to_string(k - 1) + " converged steps before it; statics.pvtu not written");
-            }
-          catch (const Interrupted &e)
-            {
-              mark_stopped(step + ": " + e.what());
-              throw;
-            }
-          F_previous = F_k;
-          model.reinit_ghosted_vector(states[k - 1]);
-          states[k - 1] = u;
-          w_mid         = statics.mid_span_deflection(states[k - 1]);
-          if (f)
-            q_n = basis->modal_coordinates(u)[n - 1]; // collective
-          fail_together(comm, [&] {
-            if (!root)
-              return;
-            std::vector<std::string> row{CsvWriter::cell(lambda * load)};
+          statics.load_path(F, options.n_steps, [&](unsigned int, const double lambda,
+                                                    const dealii::PETScWrappers::MPI::Vector &u,
+                                                    const unsigned int iterations) {
+            states.push_back(u);
+            w_mid = statics.mid_span_deflection(u);
             if (f)
-              row.push_back(CsvWriter::cell(q_n));
-            row.push_back(CsvWriter::cell(w_mid));
-            row.push_back(CsvWriter::cell(iterations));
-            csv->row(row);
+              q_n = basis->modal_coordinates(u)[n - 1]; // collective
+            fail_together(comm, [&] {
+              if (!root)
+                return;
+              std::vector<std::string> row{CsvWriter::cell(lambda * load)};
+              if (f)
+                row.push_back(CsvWriter::cell(q_n));
+              row.push_back(CsvWriter::cell(w_mid));
+              row.push_back(CsvWriter::cell(iterations));
+              csv->row(row);
+            });
           });
+        }
+      catch (const SolidStaticSolveError &e)
+        {
+          mark_stopped(e.what());
+          throw SolidStaticSolveError(std::string(e.what()) + "; " + dir + "/statics.csv holds the " +
+                                      std::to_string(states.size()) +
+                                      " converged steps before it; statics.pvtu not written");
+        }
+      catch (const Interrupted &e)
+        {
+          mark_stopped("load step " + std::to_string(states.size() + 1) + " of " + std::to_string(options.n_steps) +
+                       ": " + e.what());
+          throw;
         }
       fail_together(comm, [&] {
         if (root)

@@ -4,6 +4,7 @@
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/study_results.h"
 #include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
 #include "io/console.h"
@@ -18,7 +19,7 @@
 
 namespace beamslider
 {
-  int run_sweep(const CommonOptions &common, const SweepOptions &options)
+  int run_sweep(const CommonOptions &common, const SweepOptions &options, StudyHandover *handover)
   {
     const Scene scene = read_command_scene(common, options.case_name);
     PcsStudySettings settings;
@@ -59,22 +60,38 @@ namespace beamslider
         other_label   = (at == std::string::npos ? std::string() : title.substr(at + 8) + " ") + "'" + options.against + "'";
       }
 
-    const std::string dir = prepare_output_dir(common, scene, "sweep");
+    const bool write_kept = handover && handover->mode == StudyHandover::Mode::write;
+    if (write_kept)
+      require_same_scene(std::any_cast<const SweepRun &>(handover->result).scene, scene, "sweep");
+    const std::string dir = handover && !write_kept ? std::string() : prepare_output_dir(common, scene, "sweep");
     const std::size_t n_positions = settings.sweep.positions(SweepDirection::up).size();
     const double simulated =
       2 * n_positions * (settings.sweep.settle_time + settings.sweep.average_time) + settings.free_time;
     // The three runs go on the cores at once: the longest chain of them sets the wall time.
     const double longest = pcs_sweep_chain_time(settings, std::max(1u, std::thread::hardware_concurrency()));
-    console() << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
-              << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
-              << n_positions << " positions per direction), " << simulated
-              << " s simulated in all, in three runs at once on the cores (ROM: ~" << std::ceil(longest / 5.)
-              << " s wall; FE at its step of "
-              << scene.time_stepping.fe_time_step << " s: about "
-              << std::ceil(longest * 15e-6 / scene.time_stepping.fe_time_step) // ~15 µs per FE step
-              << " s wall), into " << dir << std::endl;
+    if (!write_kept)
+      console() << "sweep " << scene.name << " --model " << settings.model << ": x_C/L " << settings.sweep.low_over_L
+                << " … " << settings.sweep.high_over_L << " step " << settings.sweep.step_over_L << " ("
+                << n_positions << " positions per direction), " << simulated
+                << " s simulated in all, in three runs at once on the cores (ROM: ~" << std::ceil(longest / 5.)
+                << " s wall; FE at its step of " << scene.time_stepping.fe_time_step << " s: about "
+                << std::ceil(longest * 15e-6 / scene.time_stepping.fe_time_step) // ~15 µs per FE step
+                << " s wall), " << (dir.empty() ? std::string("in memory") : "into " + dir) << std::endl;
 
-    const PcsStudy study = run_pcs_sweep_into(scene, settings, dir);
+    PcsStudy study;
+    if (write_kept)
+      {
+        // The sweep computed before, from the same options (python/study_bindings.cc).
+        study = std::any_cast<const SweepRun &>(handover->result).study;
+        write_pcs_files(study, dir);
+      }
+    else if (handover)
+      {
+        handover->result = SweepRun{scene, settings, run_pcs_sweep_in_memory(scene, settings)};
+        return 0;
+      }
+    else
+      study = run_pcs_sweep_into(scene, settings, dir);
     const bool plotted   = run_plot_script("plot_pcs.py", {dir, scene.name});
     std::string text     = describe(study, scene);
     if (!options.against.empty())

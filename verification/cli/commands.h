@@ -5,6 +5,7 @@
 
 #include "verification/report/charts.h"
 
+#include <any>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,31 @@ namespace beamslider
   // results are marked so; a script can tell it from success (0) and from
   // failure (1).
   constexpr int not_converged_exit_code = 3;
+
+  // A study computed in one call and written in another: the Python
+  // module's study objects (python/study_bindings.cc) hold the result in
+  // memory and write its folder only when asked. With `compute`, a command
+  // that supports it (ensemble, ladder, sweep, map) checks its input and computes as
+  // always, keeps the result in `result` and writes nothing; with `write`, it
+  // checks the same input again and writes the kept result into its folder,
+  // exactly as it writes a result it has just computed (the same files and
+  // run record), without computing it again. Other commands refuse it.
+  struct StudyHandover
+  {
+    enum class Mode
+    {
+      compute,
+      write
+    };
+    Mode mode = Mode::compute;
+    std::any result; // the command's own result type (EnsembleRun, LadderRun, SweepRun, MapCells: study_results.h)
+    // Refused (InputError) by a command that cannot hand its study over.
+    static void refuse(const StudyHandover *handover, const std::string &command);
+  };
+  struct Scene;
+  // Refuses (InputError) to write a kept study whose scene is not the one
+  // the command reads now (its scene file changed in between).
+  void require_same_scene(const Scene &kept, const Scene &now, const std::string &command);
 
   struct CommonOptions
   {
@@ -126,7 +152,7 @@ namespace beamslider
     std::string case_name;               // a published case or ablation ("" = the scene as it is)
     std::string against;                 // another sweep's folder (same positions) to compare with
   };
-  int run_sweep(const CommonOptions &common, const SweepOptions &options);
+  int run_sweep(const CommonOptions &common, const SweepOptions &options, StudyHandover *handover = nullptr);
 
   struct AnimateOptions
   {
@@ -155,7 +181,8 @@ namespace beamslider
     // result then says that it is unchecked.
     bool unchecked = false;
   };
-  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options);
+  int run_ensemble_command(const CommonOptions &common, const EnsembleOptions &options,
+                           StudyHandover *handover = nullptr);
 
   // `beamslider ladder`: the error ladder alone (report section 5.1–5.2),
   // with a choice of rungs, members and end time (command_ladder.cc).
@@ -167,7 +194,7 @@ namespace beamslider
     std::optional<unsigned int> members; // default 4 (quick) or 8 (full)
     std::optional<double> end_time;      // [s], default 25 (quick) or 40 (full)
   };
-  int run_ladder_command(const CommonOptions &common, const LadderOptions &options);
+  int run_ladder_command(const CommonOptions &common, const LadderOptions &options, StudyHandover *handover = nullptr);
 
   // `beamslider map`: the adaptation over a grid of scene parameters, on MPI
   // ranks when started by mpirun (command_map.cc).
@@ -182,7 +209,7 @@ namespace beamslider
     double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
     std::optional<double> end_time; // [s]; default the scene's
   };
-  int run_map(const CommonOptions &common, const MapOptions &options);
+  int run_map(const CommonOptions &common, const MapOptions &options, StudyHandover *handover = nullptr);
 
   // `beamslider identify`: System 1's unknowns by the seed's facts, one map
   // per fact over the unknowns (command_identify.cc, studies/system1_facts.h).

@@ -49,6 +49,25 @@ namespace beamslider
           runs_->row({"free", to_string(study.free_run.status), "", "", CsvWriter::cell(study.free_run.t_end)});
       }
 
+      // The files of a finished study, as if its results came now: each
+      // branch's points in its order, up first.
+      void write_all(const PcsStudy &study)
+      {
+        open(study);
+        for (const PcsBranch *branch : {&study.up, &study.down})
+          for (const PcsPoint &p : branch->points)
+            write_point(p);
+        if (study.with_free_run)
+          {
+            for (const PeriodRecord &r : study.free_periods)
+              write_period_row(*free_periods_, r);
+            free_periods_->close();
+          }
+        write_run_rows(study);
+        pcs_->close();
+        runs_->close();
+      }
+
     private:
       // resonance.csv whole; pcs.csv and runs.csv in place (rows as
       // positions finish: kept by a stopped sweep); free_periods.csv for
@@ -96,6 +115,18 @@ namespace beamslider
     PcsStudy study = run_pcs_sweep(scene, settings, files.observer());
     files.write_run_rows(study);
     return study;
+  }
+
+  PcsStudy run_pcs_sweep_in_memory(const Scene &scene, const PcsStudySettings &settings)
+  {
+    PcsSweepObserver progress;
+    progress.on_progress = [](const std::string &line) { console() << line << std::endl; };
+    return run_pcs_sweep(scene, settings, progress);
+  }
+
+  void write_pcs_files(const PcsStudy &study, const std::string &dir)
+  {
+    PcsSweepFiles(dir).write_all(study);
   }
 
   std::vector<PcsPoint> read_pcs_csv(const std::string &path)

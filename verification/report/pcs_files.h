@@ -49,6 +49,13 @@ namespace beamslider
   // progress lines on the console.
   PcsStudy run_pcs_sweep_into(const Scene &scene, const PcsStudySettings &settings, const std::string &dir);
 
+  // run_pcs_sweep with its progress lines on the console and no file.
+  PcsStudy run_pcs_sweep_in_memory(const Scene &scene, const PcsStudySettings &settings);
+  // The files run_pcs_sweep_into writes, of a sweep finished before (the
+  // Python module's Sweep.save): each branch's rows in its own order, the up
+  // branch first.
+  void write_pcs_files(const PcsStudy &study, const std::string &dir);
+
   // comparison.csv and crossings.csv into dir.
   void write_pcs_comparison(const PcsComparison &comparison, const std::string &dir);
 

@@ -111,33 +111,38 @@ namespace beamslider
       unsigned int n_member_runs = 0;
     };
 
-    // Counts the members and says on the console what runs and roughly how long it takes.
-    LadderSize announce_ladder(const Scene &scene, const std::vector<LadderRung> &rungs,
-                               const LadderRunSettings &settings)
+    // Counts the members.
+    LadderSize ladder_size(const std::vector<LadderRung> &rungs, const LadderRunSettings &settings)
     {
       const unsigned int n_members = settings.members;
-      double expected              = 0;
       unsigned int n_diagnostic    = 0;
       LadderSize size;
       for (const auto &r : rungs)
         {
-          expected += expected_member_seconds(r.model, scene, settings.end_time) * rung_members(r, n_members) / 2; // two cores
           n_diagnostic += r.diagnostic;
           size.n_member_runs += rung_members(r, n_members);
         }
       if (n_diagnostic > 0)
         size.diagnostic_members = " (" + std::to_string(rung_members(LadderRung{"", "", {}, true}, n_members)) +
                                   " on the " + std::to_string(n_diagnostic) + " diagnostic rungs)";
-      console() << settings.progress_prefix << "error ladder, " << rungs.size() << " rungs × " << n_members
-                << " members" << size.diagnostic_members << " over " << settings.end_time << " s, expected about "
-                << fixed(expected / 60, 1) << " min" << std::endl;
       return size;
     }
 
+    // Says on the console what runs and roughly how long it takes.
+    void announce_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const LadderRunSettings &settings)
+    {
+      double expected = 0;
+      for (const auto &r : rungs)
+        expected += expected_member_seconds(r.model, scene, settings.end_time) * rung_members(r, settings.members) /
+                    2; // two cores
+      console() << settings.progress_prefix << "error ladder, " << rungs.size() << " rungs × " << settings.members
+                << " members" << ladder_size(rungs, settings).diagnostic_members << " over " << settings.end_time
+                << " s, expected about " << fixed(expected / 60, 1) << " min" << std::endl;
+    }
+
     // Runs the members of every rung and of the reference's convergence
-    // checks (member_runs.csv, convergence.csv) and says on the console how
-    // each check ended. `n_kept`: the members read back from an earlier,
-    // stopped run.
+    // checks (member_runs.csv) and says on the console how each check
+    // ended. `n_kept`: the members read back from an earlier, stopped run.
     LadderStudy run_ladder_members(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
                                    const std::size_t reference, const LadderRunSettings &settings,
                                    std::size_t &n_kept)
@@ -152,7 +157,6 @@ namespace beamslider
                     << ")" << std::endl;
         },
         member_runs_runner(runs), check_rounds_runner(runs), round_sharer(runs.mpi));
-      write_convergence_csv(dir, study.checks);
       for (const ConvergenceCheck &c : study.checks)
         (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
       return study;
@@ -403,19 +407,23 @@ namespace beamslider
       }
   }
 
-  std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
-                                    const std::size_t reference, const LadderRunSettings &settings, bool *proven)
+  LadderStudy run_ladder_study(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                               const std::size_t reference, const LadderRunSettings &settings, std::size_t &n_kept)
   {
-    const auto start      = clock::now();
-    const LadderSize size = announce_ladder(scene, rungs, settings);
-    std::size_t n_kept    = 0;
-    const LadderStudy study = run_ladder_members(dir, scene, rungs, reference, settings, n_kept);
-    if (proven)
-      *proven = study.proven();
+    announce_ladder(scene, rungs, settings);
+    return run_ladder_members(dir, scene, rungs, reference, settings, n_kept);
+  }
+
+  std::string write_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                                        const LadderStudy &study, const LadderRunSettings &settings,
+                                        const std::size_t n_kept, const std::string &took)
+  {
+    const std::size_t reference = study.reference;
+    write_convergence_csv(dir, study.checks);
     write_ladder_tables(dir, study, reference);
 
     std::ostringstream md;
-    describe_headline(md, study, reference, settings, size.diagnostic_members);
+    describe_headline(md, study, reference, settings, ladder_size(rungs, settings).diagnostic_members);
     md << "\n" << ladder_convergence_paragraph(study.checks) << "\n";
     describe_end_state(md, study, study.rungs[reference], settings);
     describe_steps(md, study, ladder_heading(settings.numbering, 2, "The ladder: what each step contributes"));
@@ -429,9 +437,20 @@ namespace beamslider
                       " members (the ladder's and its convergence checks') were read back from there, computed by "
                       "an earlier, stopped run of this same build and settings. "
                   : std::string())
-       << "This run of the ladder took " << seconds_since(start) << ".\n\n";
+       << "This run of the ladder took " << took << ".\n\n";
     run_plot_script("plot_ladder.py", {dir, scene.name});
     return md.str();
+  }
+
+  std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                                      const std::size_t reference, const LadderRunSettings &settings, bool *proven)
+  {
+    const auto start        = clock::now();
+    std::size_t n_kept      = 0;
+    const LadderStudy study = run_ladder_study(dir, scene, rungs, reference, settings, n_kept);
+    if (proven)
+      *proven = study.proven();
+    return write_and_describe_ladder(dir, scene, rungs, study, settings, n_kept, seconds_since(start));
   }
 
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,

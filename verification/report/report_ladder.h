@@ -65,6 +65,17 @@ namespace beamslider
                                       std::size_t reference, const LadderRunSettings &settings,
                                       bool *proven = nullptr);
 
+  // Its two halves, for a ladder computed in one call and written in
+  // another (the command's StudyHandover): the members run (member_runs.csv
+  // in `dir`; "" persists nothing), with the progress on the console; and
+  // the files of that study into `dir` with the Markdown, `took` the wall
+  // time as the text says it.
+  LadderStudy run_ladder_study(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                               std::size_t reference, const LadderRunSettings &settings, std::size_t &n_kept);
+  std::string write_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
+                                        const LadderStudy &study, const LadderRunSettings &settings,
+                                        std::size_t n_kept, const std::string &took);
+
   // The other MPI ranks' part of run_and_describe_ladder (same arguments
   // but the folder): compute the members rank 0 hands out.
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, std::size_t reference,
