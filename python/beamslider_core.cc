@@ -146,34 +146,45 @@ namespace
       beamslider::clear_interruption();
   }
 
+} // namespace
+
+std::tuple<int, std::string, int> beamslider_python::run_command(const std::vector<std::string> &args,
+                                                                 py::object progress,
+                                                                 beamslider::StudyHandover *handover)
+{
+  std::unique_lock<std::mutex> running(one_command_at_a_time, std::try_to_lock);
+  if (!running.owns_lock())
+    throw std::runtime_error("another beamslider command is running in this process; run one at a time (studies "
+                             "spread over the cores themselves)");
+  std::vector<std::string> words = {"beamslider"};
+  words.insert(words.end(), args.begin(), args.end());
+  std::vector<char *> argv;
+  for (std::string &w : words)
+    argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const int argc = static_cast<int>(words.size());
+
+  beamslider::record_command_line(argc, argv.data());
+  ProgressToPython to_python(std::move(progress));
+  std::ostringstream errors;
+  int status = 0, signal = 0;
+  {
+    SignalHandlersOfTheRun handlers;
+    py::gil_scoped_release no_gil;
+    set_command_running(true);
+    status = beamslider::run_beamslider(argc, argv.data(), errors, handover);
+    signal = beamslider::interruption_signal();
+    set_command_running(false);
+  }
+  to_python.raise_if_failed();
+  return {status, errors.str(), signal};
+}
+
+namespace
+{
   std::tuple<int, std::string, int> run(const std::vector<std::string> &args, py::object progress)
   {
-    std::unique_lock<std::mutex> running(one_command_at_a_time, std::try_to_lock);
-    if (!running.owns_lock())
-      throw std::runtime_error("another beamslider command is running in this process; run one at a time (studies "
-                               "spread over the cores themselves)");
-    std::vector<std::string> words = {"beamslider"};
-    words.insert(words.end(), args.begin(), args.end());
-    std::vector<char *> argv;
-    for (std::string &w : words)
-      argv.push_back(w.data());
-    argv.push_back(nullptr);
-    const int argc = static_cast<int>(words.size());
-
-    beamslider::record_command_line(argc, argv.data());
-    ProgressToPython to_python(std::move(progress));
-    std::ostringstream errors;
-    int status = 0, signal = 0;
-    {
-      SignalHandlersOfTheRun handlers;
-      py::gil_scoped_release no_gil;
-      set_command_running(true);
-      status = beamslider::run_beamslider(argc, argv.data(), errors);
-      signal = beamslider::interruption_signal();
-      set_command_running(false);
-    }
-    to_python.raise_if_failed();
-    return {status, errors.str(), signal};
+    return beamslider_python::run_command(args, std::move(progress));
   }
 
   std::string scene_text(const std::string &path, const std::vector<std::string> &overrides)
@@ -213,4 +224,5 @@ PYBIND11_MODULE(_core, m)
   beamslider_python::bind_run(m);
   beamslider_python::bind_models(m);
   beamslider_python::bind_solid(m);
+  beamslider_python::bind_studies(m);
 }

@@ -9,10 +9,15 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include <vector>
-
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
+
+namespace beamslider
+{
+  struct StudyHandover;
+}
 
 namespace beamslider_python
 {
@@ -43,7 +48,14 @@ namespace beamslider_python
   // f_n = Σ t[n,j,k,l] q_j q_k q_l (model_bindings.cc).
   py::array_t<double> cubic_tensor(const std::vector<beamslider::CubicTerm> &terms, unsigned int n_modes);
 
+  // Runs `beamslider args...` in this process with the GIL released (one
+  // command at a time; Ctrl-C stops it): (exit status, error text, signal
+  // or 0). `handover` computes or writes a study (commands.h).
+  std::tuple<int, std::string, int> run_command(const std::vector<std::string> &args, py::object progress,
+                                                beamslider::StudyHandover *handover = nullptr);
+
   void bind_run(py::module_ &m);
   void bind_models(py::module_ &m);
   void bind_solid(py::module_ &m);
+  void bind_studies(py::module_ &m);
 } // namespace beamslider_python

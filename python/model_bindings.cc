@@ -5,6 +5,7 @@
 // builds it for the runs). Sparse matrices leave as CSR arrays (indptr,
 // indices, data); __init__.py makes them scipy.sparse matrices.
 #include "fem/fe_beam.h"
+#include "fem/fe_statics.h"
 #include "fem/fe_modes.h"
 #include "python/bindings.h"
 #include "reduced/beam_backbone.h"
@@ -132,6 +133,51 @@ namespace beamslider_python
           shapes.col(static_cast<Eigen::Index>(k)) = to_eigen(modes.shapes[k]);
         return {Eigen::Map<const Eigen::VectorXd>(modes.omega.data(), static_cast<Eigen::Index>(modes.omega.size())),
                 shapes};
+      }
+
+      // The load path of the uniform dead line load Q [N/m], downward, in
+      // `steps` equal steps (the command `statics`): each step's load,
+      // mid-span deflection [m] (+w up), Newton iterations and displacement.
+      py::dict statics(const double Q, const unsigned int steps) const
+      {
+        as_value_error([&] {
+          if (!std::isfinite(Q) || Q == 0)
+            throw beamslider::InputError("line_load = " + std::to_string(Q) +
+                                         " is not allowed: a finite, non-zero load Q [N/m], positive downward");
+          if (steps < 1 || steps > 10000)
+            throw beamslider::InputError("steps = " + std::to_string(steps) + " is not in [1, 10000]");
+          return 0;
+        });
+        std::vector<beamslider::FEStatics::LoadStep> path;
+        {
+          py::gil_scoped_release no_gil;
+          beamslider::FEStatics statics(*beam_);
+          dealii::Vector<double> F;
+          beam_->assemble_line_load(-Q, F); // downward = -w
+          try
+            {
+              path = statics.load_path(F, steps);
+            }
+          catch (const beamslider::StaticSolveError &e)
+            {
+              throw std::runtime_error(std::string("statics of the FE beam: ") + e.what());
+            }
+        }
+        std::vector<double> load, w_mid, iterations;
+        Eigen::MatrixXd x(beam_->n_dofs(), path.size());
+        for (std::size_t k = 0; k < path.size(); ++k)
+          {
+            load.push_back(path[k].load_factor * Q);
+            w_mid.push_back(beam_->deflection(path[k].x, 0.5 * beam_->length()));
+            iterations.push_back(path[k].newton_iterations);
+            x.col(static_cast<Eigen::Index>(k)) = to_eigen(path[k].x);
+          }
+        py::dict d;
+        d["line_load_n_per_m"] = py::array(py::cast(load));
+        d["w_mid_m"]           = py::array(py::cast(w_mid));
+        d["newton_iterations"] = py::array(py::cast(iterations));
+        d["displacement"]      = x;
+        return d;
       }
 
     private:
@@ -289,7 +335,8 @@ namespace beamslider_python
       .def("deflection_dofs", &PyFEBeam::deflection_dofs)
       .def("slope_dofs", &PyFEBeam::slope_dofs)
       .def("nodes", &PyFEBeam::nodes)
-      .def("modes", &PyFEBeam::modes, py::arg("n"), py::call_guard<py::gil_scoped_release>());
+      .def("modes", &PyFEBeam::modes, py::arg("n"), py::call_guard<py::gil_scoped_release>())
+      .def("statics", &PyFEBeam::statics, py::arg("line_load"), py::arg("steps"));
     py::class_<PyReducedModel>(m, "ReducedModel", "The reduced model of a scene (use beamslider.ReducedModel)")
       .def(py::init<const std::string &, const std::vector<std::string> &, unsigned int, const std::string &>(),
            py::arg("path"), py::arg("overrides"), py::arg("modes"), py::arg("coefficients"))

@@ -7,6 +7,7 @@
 #include "fem/petsc_session.h"
 #include "fem/solid_coefficients.h"
 #include "fem/solid_modes.h"
+#include "fem/solid_statics.h"
 #include "python/bindings.h"
 
 #include <pybind11/eigen.h>
@@ -14,6 +15,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <memory>
 #include <optional>
@@ -80,7 +82,49 @@ namespace beamslider_python
         return solid3_ ? coefficients_of(*solid3_, method, n) : coefficients_of(*solid2_, method, n);
       }
 
+      // The load path of the uniform dead line load Q [N/m], downward, in
+      // `steps` equal steps: each step's load, mid-span deflection [m] (+z
+      // up) and Newton iterations, as the command `statics` writes them.
+      py::dict statics(const double line_load, const unsigned int steps)
+      {
+        as_value_error([&] {
+          if (!std::isfinite(line_load) || line_load == 0)
+            throw beamslider::InputError("line_load = " + std::to_string(line_load) +
+                                         " is not allowed: a finite, non-zero load Q [N/m], positive downward");
+          if (steps < 1 || steps > 10000)
+            throw beamslider::InputError("steps = " + std::to_string(steps) + " is not in [1, 10000]");
+          return 0;
+        });
+        return solid3_ ? statics_of(*solid3_, line_load, steps) : statics_of(*solid2_, line_load, steps);
+      }
+
     private:
+      template <int dim>
+      py::dict statics_of(SolidOfDim<dim> &solid, const double Q, const unsigned int steps)
+      {
+        std::vector<double> load, w_mid, iterations;
+        beamslider::SolidStatics<dim> statics(solid.model);
+        const auto F = as_value_error([&] { return statics.line_load(-Q); }); // downward = −z
+        try
+          {
+            statics.load_path(F, steps, [&](unsigned int, const double lambda, const auto &u, const unsigned int n) {
+              load.push_back(lambda * Q);
+              w_mid.push_back(statics.mid_span_deflection(u));
+              iterations.push_back(n);
+            });
+          }
+        catch (const beamslider::SolidStaticSolveError &e)
+          {
+            throw std::runtime_error(std::string("statics of the solid: ") + e.what() + " (" +
+                                     std::to_string(load.size()) + " converged steps before it)");
+          }
+        py::dict d;
+        d["line_load_n_per_m"] = py::array(py::cast(load));
+        d["w_mid_m"]           = py::array(py::cast(w_mid));
+        d["newton_iterations"] = py::array(py::cast(iterations));
+        return d;
+      }
+
       template <int dim>
       py::dict modes_of(SolidOfDim<dim> &solid, const unsigned int n_bending)
       {
@@ -125,6 +169,7 @@ namespace beamslider_python
       .def_property_readonly("dimension", &PySolid::dimension)
       .def_property_readonly("n_dofs", &PySolid::n_dofs)
       .def("modes", &PySolid::modes, py::arg("n_bending"))
-      .def("coefficients", &PySolid::coefficients, py::arg("method"), py::arg("n"));
+      .def("coefficients", &PySolid::coefficients, py::arg("method"), py::arg("n"))
+      .def("statics", &PySolid::statics, py::arg("line_load"), py::arg("steps"));
   }
 } // namespace beamslider_python

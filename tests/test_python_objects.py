@@ -228,6 +228,22 @@ class FEBeamMatrices(unittest.TestCase):
         self.assertGreater(np.linalg.norm(exact - linear), 1e-4 * np.linalg.norm(exact))
 
 
+    def test_statics_is_the_commands_load_path_and_in_equilibrium(self):
+        path = self.beam.statics(line_load=400.0, steps=3)
+        with tempfile.TemporaryDirectory() as tmp:
+            run_cli(tmp, "statics", "--line-load", "400", "--steps", "3")
+            written = beamslider.read_table(os.path.join(tmp, "statics.csv"))
+        for column in ("line_load_n_per_m", "w_mid_m", "newton_iterations"):
+            np.testing.assert_allclose(path[column], written[column], rtol=1e-9, err_msg=column)
+        # The load is λ F at every step: the internal force over λ is the same
+        # vector on the bending DoFs, although the response is not linear.
+        free = self.beam.free_dofs()
+        forces = [self.beam.internal_force(path["displacement"][:, k])[free] / (k + 1) for k in range(3)]
+        self.assertLess(np.linalg.norm(forces[2] - forces[0]), 1e-6 * np.linalg.norm(forces[0]))
+        w = path["w_mid_m"]
+        self.assertTrue(w[2] < 0 and abs(w[2]) < 0.9 * 3 * abs(w[0]))  # down, and stiffening (measured 2.19)
+
+
 class ReducedModelCoefficients(unittest.TestCase):
     def check_tensor(self, method):
         rom = beamslider.ReducedModel(coefficients=method)
@@ -299,6 +315,20 @@ class SolidObject(unittest.TestCase):
         with self.assertRaises(ValueError) as raised:
             beamslider.Solid("mueller2023")
         self.assertIn("no solid", str(raised.exception))
+
+    def test_statics_is_the_commands_load_path(self):
+        solid = beamslider.Solid("mueller2023-solid")
+        path = solid.statics(line_load=200.0, steps=3)
+        with tempfile.TemporaryDirectory() as tmp:
+            done = subprocess.run([EXECUTABLE, "statics", "mueller2023-solid", "--line-load", "200", "--steps", "3",
+                                   "--output", tmp, "--quiet"], capture_output=True, text=True, timeout=600)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            written = beamslider.read_table(os.path.join(tmp, "statics.csv"))
+        for column in ("line_load_n_per_m", "w_mid_m", "newton_iterations"):
+            np.testing.assert_allclose(path[column], written[column], rtol=1e-9, err_msg=column)
+        self.assertTrue(np.all(path["w_mid_m"] < 0))  # a downward load bends the strip down
+        with self.assertRaisesRegex(ValueError, "steps = 0"):
+            solid.statics(line_load=200.0, steps=0)
 
 
 if __name__ == "__main__":

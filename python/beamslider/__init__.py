@@ -22,6 +22,7 @@ table: doc/python.md and doc/cli.md.
 """
 
 import csv
+import io
 import os
 import shutil
 import tempfile
@@ -32,7 +33,7 @@ import numpy as np
 from . import _core
 
 __all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Solid", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
-           "ensemble", "sweep", "map", "read_table"]
+           "ensemble", "sweep", "map", "ladder", "verify", "Ensemble", "Ladder", "Sweep", "Map", "read_table"]
 
 
 class NotConvergedWarning(UserWarning):
@@ -286,6 +287,14 @@ class FEBeam:
         """The element ends x [m], 0 to L."""
         return np.array(self._beam.nodes())
 
+    def statics(self, line_load, steps=10):
+        """The load path of a uniform dead line load ``line_load`` [N/m],
+        positive downward, in ``steps`` equal steps (the command `statics`):
+        {"line_load_n_per_m", "w_mid_m" (+w up), "newton_iterations",
+        "displacement" (n_dofs × steps)}. A step that does not converge
+        raises RuntimeError naming the load it stopped at."""
+        return self._beam.statics(float(line_load), int(steps))
+
     def modes(self, n=7):
         """The n lowest bending modes: (frequencies [Hz], shapes), the shapes
         mass-normalised columns over every DoF (the command ``modes``)."""
@@ -358,6 +367,14 @@ class Solid:
         "exact", "step", "step-relaxed" or "ice" (coefficients.csv's values
         spread over the permutations, as ReducedModel.coefficients)."""
         return self._solid.coefficients(method, int(n))
+
+    def statics(self, line_load, steps=10):
+        """The load path of a uniform dead line load ``line_load`` [N/m],
+        positive downward, in ``steps`` equal steps (the command `statics`):
+        {"line_load_n_per_m", "w_mid_m" (the section x = L/2's mean u_z, +z
+        up), "newton_iterations"} per step. A step that does not converge
+        raises RuntimeError naming it."""
+        return self._solid.statics(float(line_load), int(steps))
 
 
 def read_table(path):
@@ -537,35 +554,226 @@ def simulate(scene="mueller2023", model="rom", case=None, end_time=None, output=
                 output, progress, read=SimulationResult)
 
 
+def _parse_rows(columns, text):
+    """map.csv's rows (text) as {column: array}, as read_table reads the file."""
+    body = [r for r in csv.reader(io.StringIO(text)) if r]
+    table = {}
+    for i, name in enumerate(columns):
+        cells = [r[i] if i < len(r) else "" for r in body]
+        try:
+            table[name] = np.array([float(c) if c != "" else np.nan for c in cells], dtype=float)
+        except ValueError:
+            table[name] = np.array(cells, dtype=str)
+    return table
+
+
+class _Study:
+    """A study computed in this process by its command, held in memory: its
+    tables as NumPy arrays; ``save(folder)`` writes the folder the command
+    writes (the same files, through the command itself)."""
+
+    _command = None
+
+    def __init__(self, scene, options, progress):
+        if not isinstance(scene, Scene):
+            scene = Scene(scene)
+        self._args = [self._command] + scene.arguments() + options
+        quiet = [] if progress is not None else ["--quiet"]
+        status, errors, signal, study = _core.compute(self._args + quiet, progress)
+        message = next((line for line in errors.splitlines() if line.strip()), "")
+        if study is not None:
+            self._study = study
+            self._read()
+        if signal:
+            raise Interrupted(message or f"interrupted by signal {signal}", self if study is not None else None)
+        if status == 2:
+            raise ValueError(message)
+        if status != 0 or study is None:
+            raise RuntimeError(message or f"beamslider {self._command} failed with status {status}")
+        self.output = None
+
+    def _read(self):
+        raise NotImplementedError
+
+    def save(self, folder, progress=None):
+        """Writes the command's folder (CSV files, charts, summary.md and the
+        run record with the equivalent command line) into ``folder``; returns
+        those files read back (a Result). A NotConvergedWarning when the
+        study's reference did not prove its convergence, as the command
+        exits with 3."""
+        args = self._args + ["--output", str(folder)] + ([] if progress is not None else ["--quiet"])
+        status, errors, signal = self._study.save(args, progress)
+        message = next((line for line in errors.splitlines() if line.strip()), "")
+        if signal:
+            raise Interrupted(message or f"interrupted by signal {signal}")
+        if status == 2:
+            raise ValueError(message)
+        if status == 3:
+            warnings.warn(message, NotConvergedWarning, stacklevel=2)
+        elif status != 0:
+            raise RuntimeError(message or f"beamslider {self._command} failed to write with status {status}")
+        self.output = str(folder)
+        return Result(str(folder), True)
+
+    def __repr__(self):
+        return f"<beamslider {self._command}: {' '.join(self._args[1:])}>"
+
+
+class Ensemble(_Study):
+    """K runs differing only by a tiny start shift (the command `ensemble`),
+    held in memory: ``members`` (members.csv's columns; NaN where an event
+    did not happen), ``member_periods``, ``statistics``, ``comparison``
+    (with ``against``, another ensemble's folder), ``convergence`` (the FE's
+    check in Δt, or None), ``model``, ``wall_seconds``;
+    ``compare(other)`` against another Ensemble; ``save(folder)``."""
+
+    _command = "ensemble"
+
+    def __init__(self, scene="mueller2023", model="rom", case=None, members=8, end_time=None, perturbation=None,
+                 integrator=None, coefficients=None, against=None, unchecked=False, progress=None):
+        super().__init__(scene, _options(model=model, case=case, members=members, end_time=end_time,
+                                         perturbation=perturbation, integrator=integrator,
+                                         coefficients=coefficients, against=against, unchecked=unchecked),
+                         progress)
+        if self.convergence is not None and not self.convergence["converged"]:
+            warnings.warn(f"ensemble: {self.convergence['verdict']}", NotConvergedWarning, stacklevel=2)
+
+    def _read(self):
+        s = self._study
+        self.members = s.members()
+        self.member_periods = s.member_periods()
+        self.statistics = s.statistics()
+        self.comparison = s.comparison()
+        self.convergence = s.convergence()
+        self.model = s.model()
+        self.wall_seconds = s.wall_seconds()
+
+    def compare(self, other):
+        """Each outcome of this ensemble against ``other``'s (an Ensemble):
+        the columns of comparison.csv (median shift, W₁ with its 90 %
+        bootstrap interval, KS D, own spread, distinguishable)."""
+        return self._study.compare(other._study)
+
+
+class Ladder(_Study):
+    """The error ladder (the command `ladder`: report section 5.1–5.2), held
+    in memory: ``rungs`` (ladder.csv's columns: each rung's model, cost and
+    outcome statistics, W₁ to the reference with its interval),
+    ``members`` (ladder_members.csv's), ``steps`` (ladder_steps.csv's: each
+    rung against the one before), ``checks`` ({name: {"converged",
+    "verdict", "trials"}}: the reference's convergence in Δt and the
+    converged ROM's in N); ``save(folder)``. A NotConvergedWarning when a
+    check did not converge."""
+
+    _command = "ladder"
+
+    def __init__(self, scene="mueller2023", full=False, diagnostics=False, rung=None, members=None, end_time=None,
+                 progress=None):
+        super().__init__(scene, _options(full=full, diagnostics=diagnostics, rung=rung, members=members,
+                                         end_time=end_time), progress)
+        for name, check in self.checks.items():
+            if not check["converged"]:
+                warnings.warn(f"ladder: {check['verdict']}", NotConvergedWarning, stacklevel=2)
+
+    def _read(self):
+        s = self._study
+        self.rungs = s.ladder_rungs()
+        self.members = s.ladder_members()
+        self.steps = s.ladder_steps()
+        self.checks = s.ladder_checks()
+
+
+class Sweep(_Study):
+    """Prescribed slider position sweeps (the command `sweep`), held in
+    memory: ``pcs`` (pcs.csv's columns, the up branch first), ``resonance``,
+    ``free_periods``, ``runs``; ``save(folder)``."""
+
+    _command = "sweep"
+
+    def __init__(self, scene="mueller2023", model="rom", case=None, step=None, from_=None, to=None,
+                 settle_time=None, average_time=None, free_time=None, progress=None):
+        options = _options(model=model, case=case, step=step, to=to, settle_time=settle_time,
+                           average_time=average_time, free_time=free_time)
+        if from_ is not None:
+            options += ["--from", repr(float(from_))]
+        super().__init__(scene, options, progress)
+
+    def _read(self):
+        s = self._study
+        self.pcs = s.pcs()
+        self.resonance = s.resonance()
+        self.free_periods = s.free_periods()
+        self.runs = s.runs()
+
+
+class Map(_Study):
+    """The adaptation over a parameter grid (the command `map`), held in
+    memory: ``map`` (map.csv's columns, one row per cell and member),
+    ``cells`` and ``cells_done`` (fewer after Ctrl-C); ``save(folder)``.
+    Axes as on the command line: "A:B:STEP" or one value."""
+
+    _command = "map"
+
+    def __init__(self, scene="mueller2023", frequency=None, acceleration=None, start=None, axis=None, model="rom",
+                 members=None, end_time=None, perturbation=None, progress=None):
+        super().__init__(scene, _options(frequency=frequency, acceleration=acceleration, start=start, axis=axis,
+                                         model=model, members=members, end_time=end_time,
+                                         perturbation=perturbation), progress)
+
+    def _read(self):
+        s = self._study
+        self.map = _parse_rows(s.map_columns(), s.map_rows())
+        self.cells = s.map_cells()
+        self.cells_done = s.map_cells_done()
+
+
+def _saved(study, output):
+    if output is not None:
+        study.save(output)
+    return study
+
+
 def ensemble(scene="mueller2023", model="rom", case=None, members=8, end_time=None, perturbation=None,
-             integrator=None, against=None, unchecked=False, output=None, progress=None):
-    """K runs differing by a tiny start shift: ``.members`` (one row per member:
-    final_x_over_L, outcome, ...), ``.statistics``, ``.comparison`` with
-    ``against`` (another ensemble's folder). With model="fe" the FE's step is
-    checked (``.convergence``: every step tried); if no two steps end alike a
-    NotConvergedWarning says so. ``unchecked=True`` skips the check."""
-    return _run("ensemble", scene,
-                _options(model=model, case=case, members=members, end_time=end_time, perturbation=perturbation,
-                         integrator=integrator, against=against, unchecked=unchecked),
-                output, progress)
+             integrator=None, coefficients=None, against=None, unchecked=False, output=None, progress=None):
+    """An Ensemble, saved into ``output`` when given."""
+    return _saved(Ensemble(scene, model, case, members, end_time, perturbation, integrator, coefficients, against,
+                           unchecked, progress), output)
+
+
+class VerificationResult(Result):
+    """The report `verify` wrote: ``report`` (report.md's text), ``tables``
+    (every CSV file of the report folder, by file stem), ``output``."""
+
+    def __init__(self, folder, keep):
+        super().__init__(folder, keep)
+        with open(os.path.join(folder, "report.md"), encoding="utf-8") as f:
+            self.report = f.read()
+
+
+def verify(scene="mueller2023", full=False, diagnostics=False, section=None, output=None, progress=None):
+    """The verification report (the command `verify`): sections 1–8, or
+    ``section`` (a number or a list). Unlike the studies it is written as it
+    goes, each section kept on disk as it finishes (a report of 16 minutes
+    to hours must not lose finished sections), into ``output`` or, without
+    it, a temporary folder read and removed."""
+    return _run("verify", scene, _options(full=full, diagnostics=diagnostics, section=section), output, progress,
+                read=VerificationResult)
+
+
+def ladder(scene="mueller2023", full=False, diagnostics=False, rung=None, members=None, end_time=None, output=None,
+           progress=None):
+    """A Ladder, saved into ``output`` when given."""
+    return _saved(Ladder(scene, full, diagnostics, rung, members, end_time, progress), output)
 
 
 def sweep(scene="mueller2023", model="rom", case=None, step=None, from_=None, to=None, settle_time=None,
           average_time=None, free_time=None, output=None, progress=None):
-    """Prescribed slider position sweeps (the slow manifold): ``.pcs`` and the
-    other tables of the command `sweep`."""
-    options = _options(model=model, case=case, step=step, to=to, settle_time=settle_time,
-                       average_time=average_time, free_time=free_time)
-    if from_ is not None:
-        options += ["--from", repr(float(from_))]
-    return _run("sweep", scene, options, output, progress)
+    """A Sweep, saved into ``output`` when given."""
+    return _saved(Sweep(scene, model, case, step, from_, to, settle_time, average_time, free_time, progress), output)
 
 
 def map(scene="mueller2023", frequency=None, acceleration=None, start=None, axis=None, model="rom", members=None,
-        end_time=None, output=None, progress=None):
-    """The adaptation over a parameter grid: ``.map`` (one row per cell and
-    member). Axes as on the command line: "A:B:STEP" or one value."""
-    return _run("map", scene,
-                _options(frequency=frequency, acceleration=acceleration, start=start, axis=axis, model=model,
-                         members=members, end_time=end_time),
-                output, progress)
+        end_time=None, perturbation=None, output=None, progress=None):
+    """A Map, saved into ``output`` when given."""
+    return _saved(Map(scene, frequency, acceleration, start, axis, model, members, end_time, perturbation, progress),
+                  output)
