@@ -187,6 +187,24 @@ class MapObject(unittest.TestCase):
             self.assertEqual(beamslider.read_table(os.path.join(tmp, "py", "map.csv"))["final_x_over_L"].tolist(),
                              [float("%.10g" % x) for x in grid.map["final_x_over_L"]])
 
+    def test_a_stopped_map_keeps_its_cells_and_saves_a_folder_marked_partial(self):
+        def stop_after_the_first_cell(line):
+            if line.startswith("  cells 1/"):
+                beamslider.interrupt()
+        with self.assertRaises(beamslider.Interrupted) as raised:
+            beamslider.Map("mueller2023", frequency="110:129:1", end_time=0.5, progress=stop_after_the_first_cell)
+        partial = raised.exception.result
+        self.assertEqual(partial.cells, 20)
+        self.assertTrue(1 <= partial.cells_done < 20, partial.cells_done)
+        self.assertEqual(len(partial.map["frequency_hz"]), partial.cells_done)
+        with tempfile.TemporaryDirectory() as tmp:
+            with self.assertWarns(beamslider.PartialResultWarning):
+                partial.save(tmp)
+            with open(os.path.join(tmp, "run.txt")) as f:
+                self.assertIn("the results in this folder are partial", f.read())
+            self.assertEqual(len(beamslider.read_table(os.path.join(tmp, "map.csv"))["frequency_hz"]),
+                             partial.cells_done)
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -32,13 +32,18 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Solid", "Result", "Interrupted", "NotConvergedWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
+__all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Solid", "Result", "Interrupted", "NotConvergedWarning", "PartialResultWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
            "ensemble", "sweep", "map", "ladder", "verify", "Ensemble", "Ladder", "Sweep", "Map", "read_table"]
 
 
 class NotConvergedWarning(UserWarning):
     """A study finished, but its reference did not prove its convergence in
     Δt (doc/verification.md §6): its result says so in ``.convergence``."""
+
+
+class PartialResultWarning(UserWarning):
+    """A study stopped by Ctrl-C was saved: the folder holds what it had
+    computed, and its run.txt says that it is partial."""
 
 
 class Interrupted(KeyboardInterrupt):
@@ -595,6 +600,10 @@ class _Study:
     def _read(self):
         raise NotImplementedError
 
+    def _partial(self):
+        """Whether Ctrl-C stopped the study before its end."""
+        return False
+
     def save(self, folder, progress=None):
         """Writes the command's folder (CSV files, charts, summary.md and the
         run record with the equivalent command line) into ``folder``; returns
@@ -610,6 +619,10 @@ class _Study:
             raise ValueError(message)
         if status == 3:
             warnings.warn(message, NotConvergedWarning, stacklevel=2)
+        elif status == 1 and self._partial():
+            # A study stopped by Ctrl-C: what it holds is written, and
+            # run.txt says that the folder is partial.
+            warnings.warn(message, PartialResultWarning, stacklevel=2)
         elif status != 0:
             raise RuntimeError(message or f"beamslider {self._command} failed to write with status {status}")
         self.output = str(folder)
@@ -705,6 +718,9 @@ class Sweep(_Study):
         self.free_periods = s.free_periods()
         self.runs = s.runs()
 
+    def _partial(self):
+        return bool(np.any(self.runs["status"] != "completed"))
+
 
 class Map(_Study):
     """The adaptation over a parameter grid (the command `map`), held in
@@ -725,6 +741,9 @@ class Map(_Study):
         self.map = _parse_rows(s.map_columns(), s.map_rows())
         self.cells = s.map_cells()
         self.cells_done = s.map_cells_done()
+
+    def _partial(self):
+        return self.cells_done < self.cells
 
 
 def _saved(study, output):

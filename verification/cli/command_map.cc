@@ -364,6 +364,12 @@ namespace beamslider
       return 0;
     const double wall      = elapsed_seconds(start_time);
     const double work_wall = replay ? replay->work_seconds : elapsed_seconds(m.work_start);
+    if (replay && m.n_done < m.todo.size())
+      {
+        std::cerr << "map: the kept map holds " << m.n_done << " of " << m.todo.size()
+                  << " cells (it was stopped): map.csv holds those, and run.txt says the folder is partial" << std::endl;
+        return 1;
+      }
     if (interruption_requested() || m.n_done < m.todo.size())
       {
         std::cerr << "map: stopped after " << m.n_done << " of " << m.todo.size()
