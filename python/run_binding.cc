@@ -125,6 +125,17 @@ namespace beamslider_python
         d["slider_z"]        = s.s[1];
         d["slider_beta"]     = s.s[2];
         d["slider_velocity"] = Eigen::Vector3d(s.v);
+        // The last step's contact impulses per corner (rows: upper-left,
+        // upper-right, lower-left, lower-right; columns: normal, tangential).
+        Eigen::Matrix<double, beamslider::n_slider_corners, 2> impulses;
+        std::vector<bool> in_contact;
+        for (unsigned int k = 0; k < beamslider::n_slider_corners; ++k)
+          {
+            impulses.row(k) = simulation_->corner_impulses()[k].transpose();
+            in_contact.push_back(impulses(k, 0) > 0);
+          }
+        d["contact_impulses"] = Eigen::MatrixXd(impulses);
+        d["corners_in_contact"] = in_contact;
         return d;
       }
 

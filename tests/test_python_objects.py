@@ -91,6 +91,26 @@ class RunIsSimulatesRun(unittest.TestCase):
         self.assertTrue(np.array_equal(whole.state["q"], pieces.state["q"]))
 
 
+    def test_contact_impulses_carry_the_slider(self):
+        # Over 2000 steps of the rattling slider, the vertical impulses the
+        # corners give it (upper corners push up, lower ones down) are its
+        # weight's impulse plus its change of vertical momentum.
+        run = beamslider.Run()
+        run.advance(0.5)
+        scene = beamslider.Scene()
+        mass, g = scene.get("Slider/Mass"), scene.get("Contact/Gravity")
+        before = run.state["slider_velocity"][1]
+        upward = 0.0
+        for _ in range(2000):
+            run.step(1)
+            impulses = run.state["contact_impulses"]
+            upward += impulses[0, 0] + impulses[1, 0] - impulses[2, 0] - impulses[3, 0]
+            self.assertTrue(np.array_equal(run.state["corners_in_contact"], impulses[:, 0] > 0))
+        change = mass * (run.state["slider_velocity"][1] - before)
+        expected = mass * g * 2000 * run.time_step + change
+        self.assertLess(abs(upward - expected), 0.01 * expected, (upward, expected))  # measured 1e-4
+
+
 class Checkpoints(unittest.TestCase):
     def test_a_resumed_run_ends_bit_for_bit_as_the_run_that_went_on(self):
         scene = beamslider.Scene().set("Excitation/Frequency", 121.0)

@@ -187,8 +187,11 @@ class Run:
     def state(self):
         """The current state: t [s], q and u (the model's coordinates and
         their rates: modal for the ROM, nodal for the FE), slider_x [m],
-        slider_x_over_L, slider_z [m], slider_beta [rad] and
-        slider_velocity (ẋ, ż [m/s], β̇ [rad/s]); copies."""
+        slider_x_over_L, slider_z [m], slider_beta [rad],
+        slider_velocity (ẋ, ż [m/s], β̇ [rad/s]), contact_impulses (the last
+        step's normal and tangential impulse [N s] at each corner: rows
+        upper-left, upper-right, lower-left, lower-right) and
+        corners_in_contact (a normal impulse in the last step); copies."""
         return self._run.state
 
     @property

@@ -40,6 +40,13 @@ namespace beamslider
     double time() const { return run_->state().t; }
     double time_step() const { return setting_.time_step; }
     const SystemState &state() const { return run_->state(); }
+    // The contact impulses (P_N, P_T) [N s] of each slider corner in the
+    // last step, zero at a corner not in contact; corners in the order
+    // upper-left, upper-right, lower-left, lower-right (contact/slider_contact.h).
+    const std::array<Eigen::Vector2d, n_slider_corners> &corner_impulses() const
+    {
+      return run_->stepper().corner_impulses();
+    }
     const BeamSystem &model() const { return *beam_; }
 
     // Takes n steps, fewer if the run stops (a support reached, a solver
