@@ -43,6 +43,11 @@ namespace beamslider_python
       }
   }
 
+  // Refuses (ValueError) a statics load path the command statics would
+  // refuse: a line load Q [N/m] that is zero or not finite, steps outside
+  // [1, 10000].
+  void require_statics_load(double line_load, unsigned int steps);
+
   // Sorted cubic terms as the tensor [n, j, k, l] (N⁴ entries): each term
   // spread evenly over the distinct permutations of (j, k, l), so that
   // f_n = Σ t[n,j,k,l] q_j q_k q_l (model_bindings.cc).

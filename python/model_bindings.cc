@@ -140,14 +140,7 @@ namespace beamslider_python
       // mid-span deflection [m] (+w up), Newton iterations and displacement.
       py::dict statics(const double Q, const unsigned int steps) const
       {
-        as_value_error([&] {
-          if (!std::isfinite(Q) || Q == 0)
-            throw beamslider::InputError("line_load = " + std::to_string(Q) +
-                                         " is not allowed: a finite, non-zero load Q [N/m], positive downward");
-          if (steps < 1 || steps > 10000)
-            throw beamslider::InputError("steps = " + std::to_string(steps) + " is not in [1, 10000]");
-          return 0;
-        });
+        require_statics_load(Q, steps);
         std::vector<beamslider::FEStatics::LoadStep> path;
         {
           py::gil_scoped_release no_gil;
@@ -300,6 +293,18 @@ namespace beamslider_python
       double thickness_ = 0;
     };
   } // namespace
+
+  void require_statics_load(const double line_load, const unsigned int steps)
+  {
+    as_value_error([&] {
+      if (!std::isfinite(line_load) || line_load == 0)
+        throw beamslider::InputError("line_load = " + std::to_string(line_load) +
+                                     " is not allowed: a finite, non-zero load Q [N/m], positive downward");
+      if (steps < 1 || steps > 10000)
+        throw beamslider::InputError("steps = " + std::to_string(steps) + " is not in [1, 10000]");
+      return 0;
+    });
+  }
 
   py::array_t<double> cubic_tensor(const std::vector<beamslider::CubicTerm> &terms, const unsigned int n_modes)
   {

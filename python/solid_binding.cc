@@ -87,14 +87,7 @@ namespace beamslider_python
       // up) and Newton iterations, as the command `statics` writes them.
       py::dict statics(const double line_load, const unsigned int steps)
       {
-        as_value_error([&] {
-          if (!std::isfinite(line_load) || line_load == 0)
-            throw beamslider::InputError("line_load = " + std::to_string(line_load) +
-                                         " is not allowed: a finite, non-zero load Q [N/m], positive downward");
-          if (steps < 1 || steps > 10000)
-            throw beamslider::InputError("steps = " + std::to_string(steps) + " is not in [1, 10000]");
-          return 0;
-        });
+        require_statics_load(line_load, steps);
         return solid3_ ? statics_of(*solid3_, line_load, steps) : statics_of(*solid2_, line_load, steps);
       }
 

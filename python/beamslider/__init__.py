@@ -390,9 +390,11 @@ def read_table(path):
     cell is a number (an empty cell is NaN), else arrays of str."""
     with open(path, newline="", encoding="utf-8") as f:
         rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
-    if not rows:
-        return {}
-    header, body = rows[0], rows[1:]
+    return _columns(rows[0], rows[1:]) if rows else {}
+
+
+def _columns(header, body):
+    """Rows of CSV cells as {column: array}, as read_table reads them."""
     table = {}
     for i, name in enumerate(header):
         cells = [r[i] if i < len(r) else "" for r in body]
@@ -562,19 +564,6 @@ def simulate(scene="mueller2023", model="rom", case=None, end_time=None, output=
                 output, progress, read=SimulationResult)
 
 
-def _parse_rows(columns, text):
-    """map.csv's rows (text) as {column: array}, as read_table reads the file."""
-    body = [r for r in csv.reader(io.StringIO(text)) if r]
-    table = {}
-    for i, name in enumerate(columns):
-        cells = [r[i] if i < len(r) else "" for r in body]
-        try:
-            table[name] = np.array([float(c) if c != "" else np.nan for c in cells], dtype=float)
-        except ValueError:
-            table[name] = np.array(cells, dtype=str)
-    return table
-
-
 class _Study:
     """A study computed in this process by its command, held in memory: its
     tables as NumPy arrays; ``save(folder)`` writes the folder the command
@@ -741,7 +730,7 @@ class Map(_Study):
 
     def _read(self):
         s = self._study
-        self.map = _parse_rows(s.map_columns(), s.map_rows())
+        self.map = _columns(s.map_columns(), [r for r in csv.reader(io.StringIO(s.map_rows())) if r])
         self.cells = s.map_cells()
         self.cells_done = s.map_cells_done()
 
