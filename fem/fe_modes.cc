@@ -76,25 +76,10 @@ namespace beamslider
                      const AffineConstraints<double> &constraints, const unsigned int n_modes,
                      std::vector<double> &eigenvalues, std::vector<Vector<double>> &vectors)
     {
-      std::vector<int> free_index(K.m(), -1);
-      std::vector<unsigned int> free_dofs;
-      for (unsigned int i = 0; i < K.m(); ++i)
-        if (!constraints.is_constrained(i))
-          {
-            free_index[i] = free_dofs.size();
-            free_dofs.push_back(i);
-          }
-      const Eigen::Index n = free_dofs.size();
-      Eigen::MatrixXd K_free = Eigen::MatrixXd::Zero(n, n), M_free = Eigen::MatrixXd::Zero(n, n);
-      for (Eigen::Index a = 0; a < n; ++a)
-        {
-          for (auto it = K.begin(free_dofs[a]); it != K.end(free_dofs[a]); ++it)
-            if (free_index[it->column()] >= 0)
-              K_free(a, free_index[it->column()]) = it->value();
-          for (auto it = M.begin(free_dofs[a]); it != M.end(free_dofs[a]); ++it)
-            if (free_index[it->column()] >= 0)
-              M_free(a, free_index[it->column()]) = it->value();
-        }
+      const FreeDofProblem free       = restrict_to_free_dofs(K, M, constraints);
+      const std::vector<unsigned int> &free_dofs = free.dofs;
+      const Eigen::MatrixXd &K_free = free.K, &M_free = free.M;
+      const Eigen::Index n          = free_dofs.size();
       const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(M_free, K_free);
       AssertThrow(solver.info() == Eigen::Success,
                   ExcMessage("dense eigensolver failed: the stiffness matrix is not positive definite (is the beam "
@@ -147,6 +132,47 @@ namespace beamslider
     }
   } // namespace
 
+  FreeDofProblem restrict_to_free_dofs(const SparseMatrix<double> &K, const SparseMatrix<double> &M,
+                                       const AffineConstraints<double> &constraints)
+  {
+    AssertThrow(pins_to_zero(constraints), ExcMessage("restrict_to_free_dofs needs constraints that pin DoFs to zero"));
+    FreeDofProblem free;
+    std::vector<int> free_index(K.m(), -1);
+    for (unsigned int i = 0; i < K.m(); ++i)
+      if (!constraints.is_constrained(i))
+        {
+          free_index[i] = free.dofs.size();
+          free.dofs.push_back(i);
+        }
+    const Eigen::Index n = free.dofs.size();
+    free.K               = Eigen::MatrixXd::Zero(n, n);
+    free.M               = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index a = 0; a < n; ++a)
+      {
+        for (auto it = K.begin(free.dofs[a]); it != K.end(free.dofs[a]); ++it)
+          if (free_index[it->column()] >= 0)
+            free.K(a, free_index[it->column()]) = it->value();
+        for (auto it = M.begin(free.dofs[a]); it != M.end(free.dofs[a]); ++it)
+          if (free_index[it->column()] >= 0)
+            free.M(a, free_index[it->column()]) = it->value();
+      }
+    return free;
+  }
+
+  void fix_shape_sign(const FEBeam &beam, Vector<double> &phi)
+  {
+    const double L               = beam.length();
+    double moment                = 0;
+    const unsigned int n_samples = 8 * beam.n_elements();
+    for (unsigned int s = 0; s < n_samples; ++s)
+      {
+        const double x = (s + 0.5) * L / n_samples;
+        moment += beam.deflection(phi, x) * (L - x);
+      }
+    if (moment < 0)
+      phi *= -1.;
+  }
+
   FEModes compute_bending_modes(const FEBeam &beam, const unsigned int n_modes, const std::optional<BondedBody> &body,
                                 const EigenSolverMethod method)
   {
@@ -177,7 +203,6 @@ namespace beamslider
 
     FEModes modes;
     modes.eigensolver_iterations = iterations;
-    const double L               = beam.length();
     for (unsigned int k = 0; k < n_modes; ++k)
       {
         const unsigned int i = order[k];
@@ -189,16 +214,7 @@ namespace beamslider
         constraints.distribute(phi);
         phi /= std::sqrt(M.matrix_norm_square(phi));
 
-        // Sign: ∫ φ (L - x) dx > 0, by the 8-point midpoint sum on each element.
-        double moment = 0;
-        const unsigned int n_samples = 8 * beam.n_elements();
-        for (unsigned int s = 0; s < n_samples; ++s)
-          {
-            const double x = (s + 0.5) * L / n_samples;
-            moment += beam.deflection(phi, x) * (L - x);
-          }
-        if (moment < 0)
-          phi *= -1.;
+        fix_shape_sign(beam, phi);
         modes.omega.push_back(std::sqrt(eigenvalues[i]));
         modes.shapes.push_back(std::move(phi));
       }

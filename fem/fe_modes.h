@@ -23,7 +23,11 @@
 
 #include "fem/fe_beam.h"
 
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
+
+#include <Eigen/Core>
 
 #include <optional>
 #include <vector>
@@ -51,6 +55,21 @@ namespace beamslider
     slepc      // SLEPc shift-invert Krylov–Schur, whatever the size
   };
   constexpr unsigned int max_dense_eigenproblem_size = 600; // free DoFs; ~0.2 s dense
+
+  // K and M on the DoFs that `constraints` leaves free, as dense matrices
+  // (the dense eigensolver's problem, and the static corrections' solves);
+  // dofs[a] is the global DoF of row a. The constraints must pin DoFs to zero.
+  struct FreeDofProblem
+  {
+    std::vector<unsigned int> dofs;
+    Eigen::MatrixXd K, M;
+  };
+  FreeDofProblem restrict_to_free_dofs(const dealii::SparseMatrix<double> &K, const dealii::SparseMatrix<double> &M,
+                                       const dealii::AffineConstraints<double> &constraints);
+
+  // Flips φ so that ∫ φ(x) (L − x) dx > 0 (the midpoint sum of 8 points per
+  // element): a shape's sign then does not depend on the solver or the mesh.
+  void fix_shape_sign(const FEBeam &beam, dealii::Vector<double> &phi);
 
   // The `n_modes` lowest bending modes. Throws with the solver's message if
   // the eigensolver fails.

@@ -228,6 +228,10 @@ namespace beamslider
     unsigned int n_elements   = 32; // beam elements of the FE model
     unsigned int axial_degree = 2;  // polynomial degree of the axial field u
     unsigned int n_modes      = 5;  // N, bending modes kept by the reduced model
+    // Static corrections the reduced model adds to its N modes: the
+    // residual flexibility of unit point loads at m positions evenly over
+    // the beam (fem/static_corrections.h); 0: the modes alone.
+    unsigned int n_static_corrections = 0;
     bool geometric_nonlinearity = true; // von Kármán bending–stretching coupling
   };
 

@@ -323,6 +323,9 @@ namespace beamslider
       e.bind("Axial degree", s.discretisation.axial_degree, Integer(1, 6), "polynomial degree of the axial displacement u");
       e.bind("Number of modes", s.discretisation.n_modes, Integer(1, 40),
              "N, bending modes of the reduced model (and modes the FE damps); the explicit ROM step needs Delta t <= 2/omega_N");
+      e.bind("Static corrections", s.discretisation.n_static_corrections, Integer(0, 40),
+             "m, static corrections the reduced model adds to its N modes: the residual flexibility of unit point loads at m "
+             "positions evenly over the beam (beam scenes only; 0: the modes alone)");
       e.bind("Geometric nonlinearity", s.discretisation.geometric_nonlinearity, "von Karman bending-stretching coupling on/off (ablation)");
       e.leave();
 

@@ -4,6 +4,7 @@
 #include "contact/beam_system.h"
 #include "numerics/stop_request.h"
 #include "fem/fe_beam.h"
+#include "fem/static_corrections.h"
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
@@ -30,7 +31,8 @@ namespace beamslider
     if (family == "fe")
       s << "FE " << n_elements << " el." << (axial_inertia ? "" : " no axial inertia");
     else
-      s << "ROM N=" << n_modes << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
+      s << "ROM N=" << n_modes << (n_static_corrections ? "+" + std::to_string(n_static_corrections) + "sc" : "")
+        << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     if (damped_modes)
       s << " damped " << damped_modes;
     if (family == "fe" && theta != 0.5)
@@ -110,6 +112,8 @@ namespace beamslider
     s.family     = family;
     s.n_modes    = scene.discretisation.n_modes;
     s.n_elements = scene.discretisation.n_elements;
+    if (family == "rom")
+      s.n_static_corrections = scene.discretisation.n_static_corrections;
     // A solid scene's ROM takes its coefficients from the solid by ICE
     // (fem/solid_reduced_model.h): what a user who brings a solid wants.
     if (scene.solid.enabled())
@@ -128,6 +132,10 @@ namespace beamslider
     if (scene.solid.enabled())
       {
         // The solid's beam line and its coefficients: the FE beam is not used.
+        if (setting.n_static_corrections)
+          throw InputError("Parameter 'Discretisation/Static corrections' = " +
+                           std::to_string(setting.n_static_corrections) +
+                           " is not allowed on a solid scene: only 0 (static corrections are built on the FE beam)");
         const auto solid = shared_solid_rom(scene, setting.n_modes, setting.coefficients);
         rom.emplace(solid->basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
         if (!solid->cubic.empty())
@@ -136,8 +144,11 @@ namespace beamslider
     else
       {
         const FEBeam beam(scene);
-        const FEModes modes = compute_bending_modes(beam, setting.n_modes);
-        ModalBasis basis    = make_modal_basis(beam, modes, setting.n_modes);
+        FEModes modes = compute_bending_modes(beam, setting.n_modes);
+        if (setting.n_static_corrections)
+          modes = add_static_corrections(
+            beam, modes, setting.n_modes, static_correction_positions(beam.length(), setting.n_static_corrections));
+        ModalBasis basis = make_modal_basis(beam, modes);
         rom.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
         if (setting.coefficients != "analytic")
           {
@@ -191,6 +202,7 @@ namespace beamslider
   {
     out.put(setting.family);
     out.put(std::uint64_t(setting.n_modes));
+    out.put(std::uint64_t(setting.n_static_corrections));
     out.put(std::uint64_t(setting.n_elements));
     out.put(setting.time_step);
     out.put(setting.coefficients);
@@ -205,6 +217,7 @@ namespace beamslider
     ModelSetting s;
     s.family        = in.get_string();
     s.n_modes       = in.get_uint();
+    s.n_static_corrections = in.get_uint();
     s.n_elements    = in.get_uint();
     s.time_step     = in.get_double();
     s.coefficients  = in.get_string();

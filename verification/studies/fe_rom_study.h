@@ -37,6 +37,9 @@ namespace beamslider
     std::string family = "rom"; // fe | rom
     unsigned int n_elements = 0; // fe: 0 = the scene's
     unsigned int n_modes = 5;    // rom
+    // rom on a beam scene: static corrections added to the N modes
+    // (fem/static_corrections.h), 0 for none.
+    unsigned int n_static_corrections = 0;
     // rom: analytic | step-condensed | ice on a beam scene;
     //      ice | step | exact | analytic on a solid scene (from the solid)
     std::string coefficients = "analytic";

@@ -1,0 +1,112 @@
+// Static corrections of a modal basis, see static_corrections.h.
+#include "fem/static_corrections.h"
+
+#include <deal.II/lac/sparse_matrix.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace beamslider
+{
+  std::vector<double> static_correction_positions(const double length, const unsigned int m)
+  {
+    std::vector<double> x(m);
+    for (unsigned int k = 0; k < m; ++k)
+      x[k] = (k + 0.5) * length / m;
+    return x;
+  }
+
+  FEModes add_static_corrections(const FEBeam &beam, const FEModes &modes, const unsigned int n_modes,
+                                 const std::vector<double> &load_positions)
+  {
+    if (n_modes > modes.shapes.size())
+      throw std::invalid_argument("add_static_corrections: " + std::to_string(n_modes) + " modes requested, " +
+                                  std::to_string(modes.shapes.size()) + " computed");
+    const auto &constraints = beam.bending_constraints();
+    dealii::SparseMatrix<double> K_sparse, M_sparse;
+    beam.assemble_mass_matrix(M_sparse, constraints);
+    beam.assemble_internal_force(dealii::Vector<double>(beam.n_dofs()), nullptr, &K_sparse, constraints);
+    const FreeDofProblem free = restrict_to_free_dofs(K_sparse, M_sparse, constraints);
+    const Eigen::Index n      = free.dofs.size();
+    const Eigen::Index m      = load_positions.size();
+
+    // The kept modes and the unit loads on the free DoFs.
+    Eigen::MatrixXd Phi(n, n_modes), F = Eigen::MatrixXd::Zero(n, m);
+    for (unsigned int j = 0; j < n_modes; ++j)
+      for (Eigen::Index a = 0; a < n; ++a)
+        Phi(a, j) = modes.shapes[j][free.dofs[a]];
+    std::vector<int> free_index(beam.n_dofs(), -1);
+    for (Eigen::Index a = 0; a < n; ++a)
+      free_index[free.dofs[a]] = a;
+    for (Eigen::Index k = 0; k < m; ++k)
+      {
+        const FEPointShape s = beam.point_shape(load_positions[k]);
+        for (unsigned int i = 0; i < 4; ++i)
+          if (free_index[s.w_dofs[i]] >= 0)
+            F(free_index[s.w_dofs[i]], k) += s.w_values[i];
+      }
+
+    // ψ_k = K⁻¹ f_k − Σ φ_n φ_nᵀ f_k / ω_n², then once more M-orthogonal to
+    // the modes, which the subtraction gives only to round-off.
+    Eigen::VectorXd inverse_omega_squared(n_modes);
+    for (unsigned int j = 0; j < n_modes; ++j)
+      inverse_omega_squared[j] = 1. / (modes.omega[j] * modes.omega[j]);
+    Eigen::MatrixXd Psi = free.K.llt().solve(F) - Phi * inverse_omega_squared.asDiagonal() * (Phi.transpose() * F);
+    Psi -= Phi * (Phi.transpose() * free.M * Psi);
+
+    // An M-orthonormal basis of span{ψ}: directions the others nearly span
+    // (loads close together, or a load where the modes already carry it all)
+    // are dropped below 1e-10 of the largest.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(Psi.transpose() * free.M * Psi);
+    const double largest = gram.eigenvalues().size() ? gram.eigenvalues().maxCoeff() : 0.;
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index k = 0; k < m; ++k)
+      if (gram.eigenvalues()[k] > 1e-10 * largest)
+        kept.push_back(k);
+    Eigen::MatrixXd Q(n, kept.size());
+    for (std::size_t c = 0; c < kept.size(); ++c)
+      Q.col(c) = Psi * gram.eigenvectors().col(kept[c]) / std::sqrt(gram.eigenvalues()[kept[c]]);
+
+    // Rayleigh–Ritz on span{ψ}: QᵀKQ y = ω² y (QᵀMQ = I).
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(Q.transpose() * free.K * Q);
+    const Eigen::MatrixXd ritz_vectors = Q * ritz.eigenvectors();
+
+    FEModes enriched;
+    for (unsigned int j = 0; j < n_modes; ++j)
+      {
+        enriched.omega.push_back(modes.omega[j]);
+        enriched.shapes.push_back(modes.shapes[j]);
+      }
+    for (Eigen::Index c = 0; c < ritz_vectors.cols(); ++c)
+      {
+        if (!(ritz.eigenvalues()[c] > 0))
+          throw std::runtime_error("add_static_corrections: a Ritz value " + std::to_string(ritz.eigenvalues()[c]) +
+                                   " is not positive: the beam is not supported against rigid motion");
+        dealii::Vector<double> psi(beam.n_dofs());
+        for (Eigen::Index a = 0; a < n; ++a)
+          psi[free.dofs[a]] = ritz_vectors(a, c);
+        fix_shape_sign(beam, psi);
+        enriched.omega.push_back(std::sqrt(ritz.eigenvalues()[c]));
+        enriched.shapes.push_back(std::move(psi));
+      }
+    // Ritz values of the ψ block lie above ω_N (they are Rayleigh quotients
+    // in the modes' orthogonal complement); sorting keeps that order safe.
+    std::vector<std::size_t> order(enriched.omega.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return enriched.omega[a] < enriched.omega[b]; });
+    FEModes sorted;
+    for (const std::size_t i : order)
+      {
+        sorted.omega.push_back(enriched.omega[i]);
+        sorted.shapes.push_back(enriched.shapes[i]);
+      }
+    return sorted;
+  }
+} // namespace beamslider

@@ -1,0 +1,37 @@
+// A modal basis enriched with static corrections (doc/physics.md §5b): the
+// slider loads the beam with point impulses at its corners, and N modes
+// carry such a load's quasi-static deflection only as far as their own
+// participation reaches (modal truncation misses the rest: the residual
+// flexibility). The classic fix is to add, for unit transverse loads f_k at
+// positions x_k, the part of the static response K⁻¹ f_k the kept modes
+// do not carry:
+//
+//   ψ_k = K⁻¹ f_k − Σ_{n ≤ N} φ_n φ_nᵀ f_k / ω_n² .
+//
+// Every ψ_k is K- and M-orthogonal to the kept modes, so the Rayleigh–Ritz
+// problem on span{φ_1 … φ_N, ψ_1 … ψ_m} splits: the modes stay as they are
+// and the ψ block gives m Ritz vectors, mass-normalised, K-orthogonal, each
+// with its Ritz frequency (above ω_N). The result is again a diagonal
+// "modal" basis, so the reduced model, its cubic force (built from K' and
+// k_ax of the basis) and its explicit step take it unchanged; the explicit
+// step's limit becomes 2/ω of the highest Ritz vector.
+#pragma once
+
+#include "fem/fe_beam.h"
+#include "fem/fe_modes.h"
+
+#include <vector>
+
+namespace beamslider
+{
+  // The first n_modes of `modes` followed by the Ritz vectors of the static
+  // corrections for unit transverse loads at `load_positions` [m], in
+  // ascending ω, sign as compute_bending_modes fixes it. Corrections that
+  // the others (nearly) span are dropped, so the basis may hold fewer than
+  // n_modes + load_positions.size() vectors.
+  FEModes add_static_corrections(const FEBeam &beam, const FEModes &modes, unsigned int n_modes,
+                                 const std::vector<double> &load_positions);
+
+  // m load positions evenly over the beam: x_k = (k − ½) L / m.
+  std::vector<double> static_correction_positions(double length, unsigned int m);
+} // namespace beamslider
