@@ -46,11 +46,15 @@ namespace beamslider::testing
     // its own threads when last seen running (polled every 20 ms).
     double cpu_seconds       = 0;
     double cpu_at_signal     = -1;
+    double own_cpu_at_signal = -1; // of its own threads alone
     double own_cpu_last_seen = 0;
     double own_cpu_at_watched_file = -1; // when CliLimits::watched_file first appeared (-1: never)
     // How long the child computed after the signal: the test of a prompt
     // stop, in CPU time because a loaded machine stretches the wall time.
     double cpu_after_signal() const { return cpu_seconds - cpu_at_signal; }
+    // ... of which its own threads (not the charts it draws of what it
+    // kept), up to when it was last seen running.
+    double own_cpu_after_signal() const { return own_cpu_last_seen - own_cpu_at_signal; }
   };
 
   struct CliLimits
@@ -240,7 +244,8 @@ namespace beamslider::testing
             own_cpu >= limits.signal_after_cpu_seconds)
           {
             // Read before the signal, so that all the child does after it counts.
-            run.cpu_at_signal = process_cpu_seconds(pid, true);
+            run.cpu_at_signal     = process_cpu_seconds(pid, true);
+            run.own_cpu_at_signal = own_cpu;
             kill(limits.signal_process_group ? -pid : pid, limits.send_signal);
             signalled = true;
           }

@@ -6,8 +6,9 @@
 // same command again, or `simulate --resume`). Asserted:
 // - exit 130, stderr's first line (the command's own word on what it kept)
 //   and its last ("interrupted by signal 2");
-// - the stop is prompt: at most 2 s of CPU time after the signal (CPU, not
-//   wall time, which a loaded machine stretches);
+// - the stop is prompt: at most 2 s of the program's own CPU time after the
+//   signal (CPU, not wall time, which a loaded machine stretches; its own,
+//   not the chart processes that draw what it kept, ~1 s of Python each);
 // - the folder: no NUL byte and no cut or foreign row in any CSV file, and
 //   what was kept marked as partial the way the command marks it;
 // - the continued run's result files equal the whole run's, byte for byte
@@ -183,9 +184,17 @@ namespace
   // handlers that turn SIGINT into a stop (~200 shared libraries: deal.II,
   // PETSc, VTK, ...; 0.2 s here). The moments are drawn after it; a signal
   // within it is the test LoadingProgram below.
+  // The least of three loads: a load beside a busy neighbour (ctest -j2)
+  // has measured 0.75 s against 0.45 s, which left the sweep's moment past
+  // its end.
   double loading_cpu_seconds()
   {
-    static const double seconds = run_beamslider({"--help"}).cpu_seconds;
+    static const double seconds = [] {
+      double least = run_beamslider({"--help"}).cpu_seconds;
+      for (int i = 0; i < 2; ++i)
+        least = std::min(least, run_beamslider({"--help"}).cpu_seconds);
+      return least;
+    }();
     return seconds;
   }
 
@@ -205,25 +214,36 @@ namespace
     seeds.insert(seeds.end(), c.name.begin(), c.name.end());
     std::seed_seq case_seed(seeds.begin(), seeds.end());
     std::mt19937 random(case_seed);
-    const double fraction = std::uniform_real_distribution<double>(0.1, 0.8)(random);
-    const double loading  = loading_cpu_seconds();
-    const double moment   = loading + fraction * std::max(0., work_done - loading);
-    // To the program alone (kill -INT): a terminal's Ctrl-C, to the whole
-    // process group, would reach a chart's process too, which the test
-    // below shows.
-    CliLimits limits = CliLimits().timeout(c.cpu_limit).signal_after_cpu(SIGINT, moment);
-    if (!c.signal_after_file.empty())
-      limits.signal_after_file = (dir / "stopped" / c.signal_after_file).string();
-    const CliRun stopped = run_beamslider(with_output(c.args, dir / "stopped"), limits);
-    std::cout << c.name << ": whole run " << whole.own_cpu_last_seen << " s of CPU (" << loading
-              << " s of it loading, its work done at " << work_done << " s); SIGINT at " << fraction
-              << " of the work, at " << stopped.cpu_at_signal
-              << " s; " << stopped.cpu_after_signal() << " s of CPU after it; exit " << stopped.exit_code << std::endl;
+    const double first_fraction = std::uniform_real_distribution<double>(0.1, 0.8)(random);
+    const double loading        = loading_cpu_seconds();
+    // Two runs of one command differ in CPU time by up to ~30 % (threads
+    // that wait, caches): a run that ends before its moment has not been
+    // stopped, and is run again, at half the fraction, up to three times.
+    CliRun stopped;
+    for (double fraction = first_fraction; fraction > first_fraction / 8; fraction /= 2)
+      {
+        const double moment = loading + fraction * std::max(0., work_done - loading);
+        // To the program alone (kill -INT): a terminal's Ctrl-C, to the
+        // whole process group, would reach a chart's process too, which the
+        // test below shows.
+        CliLimits limits = CliLimits().timeout(c.cpu_limit).signal_after_cpu(SIGINT, moment);
+        if (!c.signal_after_file.empty())
+          limits.signal_after_file = (dir / "stopped" / c.signal_after_file).string();
+        fs::remove_all(dir / "stopped");
+        stopped = run_beamslider(with_output(c.args, dir / "stopped"), limits);
+        std::cout << c.name << ": whole run " << whole.own_cpu_last_seen << " s of CPU (" << loading
+                  << " s of it loading, its work done at " << work_done << " s); SIGINT at " << fraction
+                  << " of the work, at " << stopped.cpu_at_signal << " s; " << stopped.own_cpu_after_signal()
+                  << " s of its own CPU after it (" << stopped.cpu_after_signal()
+                  << " s with the charts of what it kept); exit " << stopped.exit_code << std::endl;
+        if (stopped.cpu_at_signal >= 0)
+          break;
+      }
     ASSERT_GE(stopped.cpu_at_signal, 0) << "the run ended before the signal: " << stopped.out;
     EXPECT_EQ(stopped.exit_code, 130) << stopped.err;
     EXPECT_EQ(first_line(stopped.err).rfind(c.first_error, 0), 0u) << stopped.err;
     EXPECT_EQ(last_line(stopped.err), "interrupted by signal 2") << stopped.err;
-    EXPECT_LE(stopped.cpu_after_signal(), max_cpu_after_signal);
+    EXPECT_LE(stopped.own_cpu_after_signal(), max_cpu_after_signal);
     expect_clean_folder(dir / "stopped");
     c.check_partial(dir / "stopped");
 
@@ -279,7 +299,7 @@ namespace
       // their rows to pcs.csv as they finish, in any order (so in a whole
       // run too).
       {"sweep",
-       {"sweep", scene, "--from", "0.2", "--to", "0.3", "--step", "0.01", "--settle-time", "0.3", "--average-time", "0.3",
+       {"sweep", scene, "--from", "0.2", "--to", "0.3", "--step", "0.01", "--settle-time", "1.2", "--average-time", "1.2",
         "--free-time", "3", "--quiet"},
        {{"pcs.csv", true}, {"runs.csv"}, {"free_periods.csv"}, {"resonance.csv"}}, "sweep: a branch stopped early (interrupted)",
        [](const fs::path &dir) {
