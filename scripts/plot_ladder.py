@@ -4,7 +4,10 @@ x_C/L of every member of every rung (dots) with the median (bar); right,
 speed against accuracy: the stated cost of one member against the
 Wasserstein distance W1 of the rung's final positions to the reference, with
 its 90 % bootstrap interval as error bar and the ensembles' own spread as a
-grey mark. Arguments: report folder, scene name."""
+grey mark. With front.csv (`ladder --front`), the rungs that moved at dt/2
+are drawn hollow and the speed-accuracy front (by the stated cost) as a line.
+Arguments: report folder, scene name."""
+import os
 import sys
 from collections import defaultdict
 
@@ -31,6 +34,9 @@ def main(folder, scene):
     ax1.set_title(f"{scene}: end state per member (bar: median; thick: reference)", fontsize=9)
     ax1.grid(alpha=0.3)
 
+    front = {}
+    if os.path.exists(f"{folder}/front.csv"):
+        front = {r["rung"]: r for r in read_rows(f"{folder}/front.csv")}
     for r in rungs:
         if r["reference"] == "1":
             ax2.plot(float(r["cost_units"]), 0, "s", color="k")
@@ -42,10 +48,17 @@ def main(folder, scene):
         cost, w = float(r["cost_units"]), float(r["w1_to_reference"])
         low, high = float(r["w1_low"]), float(r["w1_high"])
         color = "tab:red" if r["family"] == "fe" else "tab:blue"
+        moved = r["rung"] in front and front[r["rung"]]["converged_in_dt"] == "0"
         ax2.errorbar(cost, w, yerr=[[max(w - low, 0)], [max(high - w, 0)]], fmt="s" if r["family"] == "fe" else "o",
-                     color=color, capsize=3)
+                     color=color, capsize=3, mfc="white" if moved else color)
         ax2.plot(cost, float(r["spread"]), "_", color="grey", ms=12)
         ax2.annotate(r["rung"], (cost, w), fontsize=7, xytext=(4, 4), textcoords="offset points")
+    on_front = sorted((float(r["cost_units"]), float(r["w1_to_reference"])) for r in front.values()
+                      if r["on_front"] == "1")
+    if on_front:
+        ax2.plot([c for c, _ in on_front], [w for _, w in on_front], "-", color="tab:green", lw=1.5,
+                 label="front (converged in $\\Delta t$; hollow: moved at $\\Delta t/2$)")
+        ax2.legend(fontsize=7, loc="upper right")
     ax2.set_xscale("log")
     ax2.set_xlabel("cost of one member [units: steps of the published ROM]")
     ax2.set_ylabel("W$_1$ of final $x_C/L$ to the reference")

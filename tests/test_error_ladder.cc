@@ -213,3 +213,103 @@ TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
   EXPECT_EQ(std::count_if(rungs.begin(), rungs.end(), [](const LadderRung &r) { return r.name == "FE Δt/4"; }), 1);
   EXPECT_FALSE(rungs[reference].diagnostic);
 }
+
+// The front's ladder (`ladder --front`) is the full ladder with the
+// candidates added before the reference: more modes and few modes with
+// static corrections, each at the largest step Δt/2^k its explicit scheme
+// takes (read off the model: within 2/ω_max, and twice it is not unless it
+// is the scene's Δt), and every
+// ROM rung is checked at Δt/2, one halving. A candidate's cost counts its
+// coordinates, modes and corrections alike.
+TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep)
+{
+  const Scene scene     = read_scene(mueller);
+  std::size_t reference = 0, full_reference = 0;
+  const std::vector<LadderRung> full  = default_ladder(scene, LadderScope::full, full_reference);
+  const std::vector<LadderRung> front = default_ladder(scene, LadderScope::front, reference);
+  ASSERT_EQ(reference, front.size() - 1);
+  ASSERT_EQ(front.size(), full.size() + 8);
+  for (std::size_t i = 0; i + 1 < full.size(); ++i)
+    EXPECT_EQ(front[i].name, full[i].name);
+  unsigned int n_corrected = 0;
+  for (std::size_t i = full.size() - 1; i < reference; ++i)
+    {
+      const ModelSetting &m = front[i].model;
+      EXPECT_TRUE(front[i].front_candidate) << front[i].name;
+      n_corrected += m.n_static_corrections > 0;
+      ModelSetting probe = m;
+      probe.time_step    = 1e-12;
+      const double limit = make_beam_model(scene, probe)->max_stable_time_step();
+      EXPECT_LE(m.time_step, limit) << front[i].name;
+      if (m.time_step < scene.time_stepping.time_step)
+        EXPECT_GT(2 * m.time_step, limit) << front[i].name;
+    }
+  EXPECT_EQ(n_corrected, 4u);
+
+  const LadderChecks checks = ladder_checks(scene, front, reference);
+  unsigned int n_step_checks = 0;
+  for (std::size_t c = 0; c < checks.plans.size(); ++c)
+    {
+      const LadderRung &r = front[checks.rung[c]];
+      if (checks.plans[c].parameter != "Δt" || checks.rung[c] == reference)
+        continue;
+      ++n_step_checks;
+      ASSERT_EQ(checks.plans[c].models.size(), 2u) << r.name;
+      EXPECT_DOUBLE_EQ(checks.plans[c].models[1].time_step, r.model.time_step / 2) << r.name;
+      EXPECT_EQ(checks.plans[c].models[1].n_static_corrections, r.model.n_static_corrections);
+    }
+  unsigned int n_roms = 0;
+  for (const LadderRung &r : front)
+    n_roms += r.model.family == "rom";
+  EXPECT_EQ(n_step_checks, n_roms);
+
+  ModelSetting corrected = front[reference - 1].model, plain = corrected;
+  plain.n_modes += plain.n_static_corrections;
+  plain.n_static_corrections = 0;
+  EXPECT_DOUBLE_EQ(cost_per_simulated_second(corrected, scene), cost_per_simulated_second(plain, scene));
+  ModelSetting uncorrected         = corrected;
+  uncorrected.n_static_corrections = 0;
+  EXPECT_GT(cost_per_simulated_second(corrected, scene), cost_per_simulated_second(uncorrected, scene));
+}
+
+// The front from a study's numbers: a rung beaten on both cost and W₁ is
+// off it, so is one that moved at Δt/2 however cheap and close it is, and
+// the reference; the rest in ascending cost. A candidate that moved at
+// Δt/2 is a finding: the ladder is still proven; the reference's check is
+// a claim.
+TEST(ErrorLadder, TheFrontKeepsTheUnbeatenRungsConvergedInTheStep)
+{
+  LadderStudy study;
+  const auto add = [&](const double cost, const double w1, const bool checked, const bool converged) {
+    LadderRungResult r;
+    r.rung.name                          = "rung " + std::to_string(study.rungs.size());
+    r.cost_units                         = cost;
+    r.position_to_reference.n_a          = 8;
+    r.position_to_reference.n_b          = 8;
+    r.position_to_reference.wasserstein  = w1;
+    study.rungs.push_back(r);
+    if (checked)
+      {
+        ConvergenceCheck c;
+        c.parameter = "Δt";
+        c.converged = converged;
+        c.decided   = true;
+        study.checks.push_back(c);
+        study.check_rungs.push_back(study.rungs.size() - 1);
+      }
+  };
+  add(1.0, 0.08, true, true);   // 0: cheapest
+  add(2.0, 0.001, true, false); // 1: best, but moved at Δt/2
+  add(2.5, 0.01, true, true);   // 2: on the front
+  add(3.0, 0.02, true, true);   // 3: beaten by 2
+  add(9.0, 0.001, false, true); // 4: unchecked (e.g. the implicit ROM), best W₁
+  add(50, 0, true, true);       // 5: the reference
+  study.reference = 5;
+  EXPECT_EQ(speed_accuracy_front(study), (std::vector<std::size_t>{0, 2, 4}));
+  EXPECT_TRUE(study.proven());
+  study.checks.back().converged = false; // the reference's own check
+  EXPECT_FALSE(study.proven());
+  ASSERT_NE(study.step_check(1), nullptr);
+  EXPECT_FALSE(study.step_check(1)->converged);
+  EXPECT_EQ(study.step_check(4), nullptr);
+}

@@ -326,8 +326,11 @@ CLI::App *declare_ladder(CLI::App &app, const AddCommon &add_common, LadderOptio
   ladder_cmd->add_flag("--diagnostics", ladder.diagnostics,
                        "the rungs of --full and the diagnostic rungs (the midpoint-rule FE in dt, the ROM with all "
                        "modes; 4 members each)");
+  ladder_cmd->add_flag("--front", ladder.front,
+                       "the rungs of --full and the candidates of the speed-accuracy front (more modes, static "
+                       "corrections), every ROM rung also at dt/2; writes front.csv (8 members over 40 s)");
   ladder_cmd->add_option("--rung", ladder.rungs,
-                         "run only this rung of the ladder with diagnostics, by name (repeatable; the reference, the scene's FE model, always runs)");
+                         "run only this rung, by name, of the ladder with diagnostics and front candidates (repeatable; the reference, the scene's FE model, always runs)");
   ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")
     ->check(integer_in(2, 1000));
   ladder_cmd->add_option("--end-time", ladder.end_time, "simulated time per member [s] (default 25, or 40 with --full)")

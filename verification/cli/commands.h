@@ -190,7 +190,8 @@ namespace beamslider
   {
     bool full = false;              // the rungs of `verify --full` (default: those of the quick report)
     bool diagnostics = false;       // and the diagnostic rungs (implies full)
-    std::vector<std::string> rungs; // names of rungs of the ladder with diagnostics; the reference always runs
+    bool front = false;             // the full ladder and the front's candidates (LadderScope::front)
+    std::vector<std::string> rungs; // names of rungs of LadderScope::every; the reference always runs
     std::optional<unsigned int> members; // default 4 (quick) or 8 (full)
     std::optional<double> end_time;      // [s], default 25 (quick) or 40 (full)
   };

@@ -63,17 +63,21 @@ namespace beamslider
       throw std::invalid_argument("more_modes: '" + rom.label() + "' is not a reduced model");
     ModelSetting finer = rom;
     finer.n_modes      = static_cast<unsigned int>(std::ceil(1.5 * rom.n_modes));
-    if (finer.integrator == "explicit")
-      {
-        // The explicit scheme's limit 2/ω_max of the larger basis, read off
-        // the model itself (built at a step it surely takes).
-        ModelSetting probe = finer;
-        probe.time_step    = 1e-12;
-        const double limit = make_beam_model(scene, probe)->max_stable_time_step();
-        while (finer.time_step > limit)
-          finer.time_step /= 2;
-      }
-    return finer;
+    return at_stable_step(scene, finer);
+  }
+
+  ModelSetting at_stable_step(const Scene &scene, ModelSetting model)
+  {
+    if (model.family != "rom" || model.integrator != "explicit")
+      return model;
+    // The explicit scheme's limit 2/ω_max of the basis, read off the model
+    // itself (built at a step it surely takes).
+    ModelSetting probe = model;
+    probe.time_step    = 1e-12;
+    const double limit = make_beam_model(scene, probe)->max_stable_time_step();
+    while (model.time_step > limit)
+      model.time_step /= 2;
+    return model;
   }
 
   RefinementPlan mode_refinements(const std::string &name, const Scene &scene, const ModelSetting &rom)

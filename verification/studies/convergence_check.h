@@ -43,6 +43,11 @@ namespace beamslider
   // Halvings of the model's step: models Δt, Δt/2, …, Δt/2^max_halvings.
   RefinementPlan step_refinements(const std::string &name, const ModelSetting &model, unsigned int max_halvings);
 
+  // The ROM at its own step if its explicit scheme takes it, else at the
+  // largest Δt/2^k within the limit 2/ω_max on `scene` (read off the model;
+  // the implicit ROM and the FE as they are).
+  ModelSetting at_stable_step(const Scene &scene, ModelSetting model);
+
   // The ROM with ⌈1.5 N⌉ modes, at the largest step Δt/2^k (k ≥ 0) within
   // the explicit scheme's limit 2/ω_max on `scene` (the implicit ROM keeps
   // Δt).

@@ -2,6 +2,7 @@
 #include "verification/studies/error_ladder.h"
 
 #include "fem/fe_beam.h"
+#include "verification/studies/convergence_check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,41 @@ namespace beamslider
       s.n_elements = scene.discretisation.n_elements;
       s.time_step  = time_step;
       return s;
+    }
+
+    // "Δt/k" for a step k times smaller than the scene's.
+    std::string step_text(const double scene_dt, const double dt)
+    {
+      const double k = scene_dt / dt;
+      return std::abs(k - 1) < 1e-9 ? std::string("Δt") : "Δt/" + std::to_string(std::lround(k));
+    }
+
+    // The candidates of the speed–accuracy front (LadderScope::front): more
+    // modes between the ladder's 5, 10 and 20, where the end state changes,
+    // and few modes with static corrections (fem/static_corrections.h), each
+    // at its explicit step's limit and checked at Δt/2.
+    void add_front_candidates(const Scene &scene, std::vector<LadderRung> &rungs)
+    {
+      const double dt = scene.time_stepping.time_step;
+      const auto add  = [&](const unsigned int n, const unsigned int m) {
+        ModelSetting model         = at_stable_step(scene, rom(n, dt));
+        model.n_static_corrections = m;
+        model                      = at_stable_step(scene, model);
+        const std::string basis =
+          std::to_string(n) + (m ? "+" + std::to_string(m) + "sc" : std::string());
+        LadderRung rung{"ROM N=" + basis,
+                        "front candidate: " + std::to_string(n) + " modes" +
+                          (m ? " and " + std::to_string(m) + " static corrections" : std::string()) +
+                          " at the explicit step's limit (" + step_text(dt, model.time_step) + ")",
+                        model};
+        rung.checked_in_dt   = true;
+        rung.front_candidate = true;
+        rungs.push_back(rung);
+      };
+      for (const unsigned int n : {6u, 8u, 12u, 15u})
+        add(n, 0);
+      for (const unsigned int n : {5u, 6u, 7u, 8u})
+        add(n, 4);
     }
   } // namespace
 
@@ -77,7 +113,12 @@ namespace beamslider
       fe_step_name(dt, fe_reference.time_step, fe_reference.theta);
     if (scope != LadderScope::quick)
       rungs.push_back({"ROM N=20 implicit", "the FE's integrator (implicit midpoint rule)", rom(20, dt / 4, "implicit")});
-    if (scope == LadderScope::diagnostics)
+    if (scope == LadderScope::front)
+      for (LadderRung &r : rungs)
+        r.checked_in_dt = true;
+    if (scope == LadderScope::front || scope == LadderScope::every)
+      add_front_candidates(scene, rungs);
+    if (scope == LadderScope::diagnostics || scope == LadderScope::every)
       {
         // Diagnostic rungs (half the members): the modal model with every
         // bending mode of the FE mesh at the step where the midpoint-rule FE
@@ -143,12 +184,59 @@ namespace beamslider
           checks.plans.push_back(mode_refinements(rungs[i].name + " in N", scene, rungs[i].model));
           checks.rung.push_back(i);
         }
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      if (rungs[i].checked_in_dt && i != reference)
+        {
+          checks.plans.push_back(step_refinements(rungs[i].name + " in Δt", rungs[i].model, 1));
+          checks.rung.push_back(i);
+        }
     return checks;
   }
 
   bool LadderStudy::proven() const
   {
-    return std::all_of(checks.begin(), checks.end(), [](const ConvergenceCheck &c) { return c.converged; });
+    for (std::size_t c = 0; c < checks.size(); ++c)
+      {
+        const bool finding = c < check_rungs.size() && check_rungs[c] != reference && checks[c].parameter == "Δt";
+        if (!finding && !checks[c].converged)
+          return false;
+      }
+    return true;
+  }
+
+  const ConvergenceCheck *LadderStudy::step_check(const std::size_t i) const
+  {
+    for (std::size_t c = 0; c < checks.size() && c < check_rungs.size(); ++c)
+      if (check_rungs[c] == i && checks[c].parameter == "Δt")
+        return &checks[c];
+    return nullptr;
+  }
+
+  std::vector<std::size_t> speed_accuracy_front(const LadderStudy &study)
+  {
+    std::vector<std::size_t> eligible;
+    for (std::size_t i = 0; i < study.rungs.size(); ++i)
+      {
+        const LadderRungResult &r    = study.rungs[i];
+        const ConvergenceCheck *step = study.step_check(i);
+        if (i != study.reference && r.n_failed == 0 && r.position_to_reference.n_a > 0 && (!step || step->converged))
+          eligible.push_back(i);
+      }
+    // By the stated cost, as the model choice (model_choice.h): a loaded
+    // machine cannot move a rung on or off the front.
+    const auto cost = [&](const std::size_t i) { return study.rungs[i].cost_units; };
+    const auto w1   = [&](const std::size_t i) { return study.rungs[i].position_to_reference.wasserstein; };
+    std::vector<std::size_t> front;
+    for (const std::size_t i : eligible)
+      {
+        const bool beaten = std::any_of(eligible.begin(), eligible.end(), [&](const std::size_t j) {
+          return j != i && cost(j) <= cost(i) && w1(j) <= w1(i) && (cost(j) < cost(i) || w1(j) < w1(i));
+        });
+        if (!beaten)
+          front.push_back(i);
+      }
+    std::sort(front.begin(), front.end(), [&](const std::size_t a, const std::size_t b) { return cost(a) < cost(b); });
+    return front;
   }
 
   std::vector<MemberGroup> ladder_groups_with_checks(const Scene &scene, const std::vector<LadderRung> &rungs,
@@ -212,6 +300,7 @@ namespace beamslider
         }
     LadderStudy study = assemble_ladder(scene, rungs, reference, end_time, std::move(members));
     study.checks      = std::move(checks);
+    study.check_rungs = plans.rung;
     return study;
   }
 

@@ -42,6 +42,12 @@ namespace beamslider
     // The rung claims to be converged in N: the ladder checks it against
     // ⌈1.5 N⌉ modes (convergence_check.h).
     bool converged_in_n = false;
+    // The rung is run at Δt/2 too (one halving, convergence_check.h): a
+    // candidate of the speed–accuracy front (LadderScope::front) is on the
+    // front only if it ends alike there. Not converging is a finding about
+    // the candidate, not a failed claim of the ladder (LadderStudy::proven).
+    bool checked_in_dt = false;
+    bool front_candidate = false; // added by LadderScope::front
   };
 
   // The number of bending modes the scene's FE mesh has: its free w and θ
@@ -83,9 +89,19 @@ namespace beamslider
     // N, in the order of ladder_checks. The reference rung holds the
     // reference check's accepted trial (or, not converged, its finest).
     std::vector<ConvergenceCheck> checks;
-    // Whether every check converged.
+    std::vector<std::size_t> check_rungs; // the rung of each check (empty: every check is a claim)
+    // Whether every claim converged: the reference in Δt, a rung converged
+    // in N. The Δt checks of front candidates are findings, not claims.
     bool proven() const;
+    // The check of rung i in Δt, or null.
+    const ConvergenceCheck *step_check(std::size_t i) const;
   };
+
+  // The speed–accuracy front: the rungs (not the reference) whose members
+  // all ran, whose Δt check, if they have one, converged, and which no such
+  // rung beats on both cost (the stated cost units, fe_rom_study.h) and W₁
+  // to the reference. In ascending cost.
+  std::vector<std::size_t> speed_accuracy_front(const LadderStudy &study);
 
   // The checks of a ladder: the reference rung in Δt (Δt, Δt/2, … up to
   // reference_max_halvings), the rung converged in N (if any) against
@@ -107,6 +123,13 @@ namespace beamslider
   //                doc/findings.md);
   //   full         adds the ROM N = 20 with the FE's implicit midpoint rule
   //                (the verdict of `verify --full`);
+  //   front        adds to the full ladder the candidates of the
+  //                speed–accuracy front (doc/verification.md §6): ROMs of 6,
+  //                8, 12 and 15 modes and 5…8 modes with 4 static
+  //                corrections, each at its explicit step's limit; every ROM
+  //                rung is run at Δt/2 too (checked_in_dt);
+  //   every        every rung of the scopes above, the pool `ladder --rung`
+  //                picks from;
   //   diagnostics  adds, as diagnostic rungs, the implicit ROM with every
   //                bending mode of the FE mesh at Δt/4 and the midpoint-rule
   //                FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt, all damping the
@@ -119,7 +142,9 @@ namespace beamslider
   {
     quick,
     full,
-    diagnostics
+    diagnostics,
+    front,
+    every
   };
 
   // The default ladder for a scene at that scope. The reference is always

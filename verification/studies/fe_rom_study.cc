@@ -267,10 +267,12 @@ namespace beamslider
 
   double cost_per_simulated_second(const ModelSetting &setting, const Scene &scene)
   {
+    // A ROM's step costs by its coordinates: modes and static corrections.
+    const double n_coordinates = setting.n_modes + setting.n_static_corrections;
     const double per_step =
       setting.family == "fe"
         ? 40. * (setting.n_elements ? setting.n_elements : scene.discretisation.n_elements) / 32.
-        : 0.97 + 0.03 * (setting.n_modes / 5.) * (setting.n_modes / 5.);
+        : 0.97 + 0.03 * (n_coordinates / 5.) * (n_coordinates / 5.);
     return per_step / setting.time_step;
   }
 } // namespace beamslider

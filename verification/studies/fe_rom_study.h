@@ -117,7 +117,8 @@ namespace beamslider
   // The cost of simulating one second with a setting, in units of the
   // published ROM's step (N = 5): a stated model, not a clock reading, so
   // that a loaded machine cannot change a choice. Per step, a ROM costs
-  // 0.97 + 0.03 (N/5)² units (the contact part dominates; the cubic force
+  // 0.97 + 0.03 (N/5)² units, N its coordinates (modes and static
+  // corrections) (the contact part dominates; the cubic force
   // grows like N² but stays small: measured 0.72, 0.80 and 1.1 µs per step
   // for N = 5, 10, 20 in the error ladder's ensembles) and the FE
   // 40 × elements/32 units (~28 µs per step on the default mesh); times the
