@@ -126,8 +126,8 @@ namespace beamslider
   //   front        adds to the full ladder the candidates of the
   //                speed–accuracy front (doc/verification.md §6): ROMs of 6,
   //                8, 12 and 15 modes and 5…8 modes with 4 static
-  //                corrections, each at its explicit step's limit; every ROM
-  //                rung is run at Δt/2 too (checked_in_dt);
+  //                corrections, each at its explicit step's limit; every
+  //                explicit ROM rung is run at Δt/2 too (checked_in_dt);
   //   every        every rung of the scopes above, the pool `ladder --rung`
   //                picks from;
   //   diagnostics  adds, as diagnostic rungs, the implicit ROM with every
