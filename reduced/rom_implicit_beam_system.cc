@@ -13,9 +13,14 @@
 namespace beamslider
 {
   RomImplicitBeamSystem::RomImplicitBeamSystem(ReducedOrderModel rom, ThicknessProfile thickness,
-                                               BaseExcitation excitation)
+                                               BaseExcitation excitation, const double theta)
     : RomBeamSystem(std::move(rom), std::move(thickness), excitation)
+    , theta_(theta)
   {
+    if (!(theta >= 0.5 && theta <= 1.))
+      throw std::invalid_argument("implicit reduced model: theta = " + std::to_string(theta) +
+                                  " is outside [0.5, 1] (0.5: the midpoint rule; above it damps the modes the step "
+                                  "cannot resolve)");
     const Eigen::ArrayXd w = model().basis().omega.array();
     c_                     = model().damping_coefficients();
     omega2_                = (w * w).matrix();
@@ -30,7 +35,8 @@ namespace beamslider
 
   // One step as a Newton problem (numerics/newton.h), full Newton on
   // R(u) = (u − u_B) + Δt [C (u_B + u)/2 + Ω² q̄ + f_nl(q̄) − a γ],
-  // q̄ = q_M + Δt/4 (u − u_B), with S = ∂R/∂u factorised every iteration.
+  // q̄ = q_M + Δt/4 (u − u_B), with S = ∂R/∂u factorised every iteration
+  // (θ = ½; the θ-method's terms in the header).
   struct RomImplicitBeamSystem::NewtonStep
   {
     RomImplicitBeamSystem &system;
@@ -40,9 +46,18 @@ namespace beamslider
 
     NewtonState evaluate(bool)
     {
-      q_bar = q_M + 0.25 * dt * (u - u_B);
-      R     = (u - u_B) + dt * (0.5 * system.c_.cwiseProduct(u_B + u) + system.omega2_.cwiseProduct(q_bar) +
-                            system.model().nonlinear_force(q_bar) - a * system.model().basis().gamma);
+      const double theta = system.theta_;
+      if (theta == 0.5)
+        {
+          q_bar = q_M + 0.25 * dt * (u - u_B);
+          R     = (u - u_B) + dt * (0.5 * system.c_.cwiseProduct(u_B + u) + system.omega2_.cwiseProduct(q_bar) +
+                                system.model().nonlinear_force(q_bar) - a * system.model().basis().gamma);
+          return NewtonState::go_on;
+        }
+      q_bar = q_M + (theta * theta * dt) * (u - u_B) + ((2. * theta - 1.) * dt) * u_B;
+      R     = (u - u_B) + dt * (system.c_.cwiseProduct(theta * u + (1. - theta) * u_B) +
+                            system.omega2_.cwiseProduct(q_bar) + system.model().nonlinear_force(q_bar) -
+                            a * system.model().basis().gamma);
       return NewtonState::go_on;
     }
 
@@ -52,10 +67,13 @@ namespace beamslider
       if (system.structured_)
         {
           // S = D + α K' + β v vᵀ in the eigenbasis of D^-½ K' D^-½.
+          // α = θ²Δt² k/2 q̄ᵀK'q̄, β = θ²Δt² k (θ = ½: Δt²k/8 and Δt²k/4).
           const double k          = model.is_nonlinear() ? model.basis().membrane_stiffness : 0.;
+          const double theta      = system.theta_;
           system.Kq_.noalias()    = model.basis().stretch * q_bar;
-          const double alpha      = 0.125 * dt * dt * k * q_bar.dot(system.Kq_);
-          system.beta_            = 0.25 * dt * dt * k;
+          const double alpha      = theta == 0.5 ? 0.125 * dt * dt * k * q_bar.dot(system.Kq_)
+                                                 : 0.5 * theta * theta * dt * dt * k * q_bar.dot(system.Kq_);
+          system.beta_            = theta * theta * dt * dt * k;
           system.z_.noalias()     = system.W_.transpose() * system.Kq_;
           system.e_inv_           = (1. + alpha * system.lambda_.array()).inverse().matrix();
           system.e_inv_z_         = system.e_inv_.cwiseProduct(system.z_);
@@ -64,8 +82,9 @@ namespace beamslider
       else
         {
           const Eigen::Index N = system.n_dofs();
-          Eigen::MatrixXd S    = (0.25 * dt * dt) * model.nonlinear_tangent(q_bar);
-          S.diagonal() += Eigen::VectorXd::Ones(N) + 0.5 * dt * system.c_ + (0.25 * dt * dt) * system.omega2_;
+          const double theta   = system.theta_;
+          Eigen::MatrixXd S    = (theta * theta * dt * dt) * model.nonlinear_tangent(q_bar);
+          S.diagonal() += Eigen::VectorXd::Ones(N) + theta * dt * system.c_ + (theta * theta * dt * dt) * system.omega2_;
           system.lu_.compute(S);
         }
       system.factorised_ = true;
@@ -100,7 +119,9 @@ namespace beamslider
     structured_ = model().has_membrane_form();
     if (structured_ && structured_dt_ != dt)
       prepare_structure(dt);
-    NewtonStep step{*this, q_M, u_B, dt, excitation().acceleration(t_M), u_B, Eigen::VectorXd(n_dofs()), {}, {}};
+    // The smooth forces act at t_B + θΔt = t_M + (2θ − 1)Δt (t_M for θ = ½).
+    const double t_load = theta_ == 0.5 ? t_M : t_M + (2. * theta_ - 1.) * dt;
+    NewtonStep step{*this, q_M, u_B, dt, excitation().acceleration(t_load), u_B, Eigen::VectorXd(n_dofs()), {}, {}};
     NewtonControl control;
     control.max_iterations = 30;
     if (solve_newton(step, control).converged())
@@ -133,7 +154,7 @@ namespace beamslider
 
   void RomImplicitBeamSystem::prepare_structure(const double dt)
   {
-    const Eigen::VectorXd D = Eigen::VectorXd::Ones(n_dofs()) + 0.5 * dt * c_ + (0.25 * dt * dt) * omega2_;
+    const Eigen::VectorXd D = Eigen::VectorXd::Ones(n_dofs()) + theta_ * dt * c_ + (theta_ * theta_ * dt * dt) * omega2_;
     d_inv_sqrt_             = D.cwiseSqrt().cwiseInverse();
     const Eigen::MatrixXd A = d_inv_sqrt_.asDiagonal() * model().basis().stretch * d_inv_sqrt_.asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(A);
@@ -163,8 +184,11 @@ namespace beamslider
         damping_work = excitation_work = 0.;
         return;
       }
+    // The damping impulse Δt C u_θ times ū (θ = ½: u_θ = ū).
     const Eigen::VectorXd u_mean = 0.5 * (last_u_B_ + u_E);
-    damping_work                 = -last_dt_ * u_mean.dot(c_.cwiseProduct(u_mean));
+    damping_work                 = theta_ == 0.5
+                                     ? -last_dt_ * u_mean.dot(c_.cwiseProduct(u_mean))
+                                     : -last_dt_ * u_mean.dot(c_.cwiseProduct((1. - theta_) * last_u_B_ + theta_ * u_E));
     excitation_work              = last_dt_ * last_acceleration_ * model().basis().gamma.dot(u_mean);
   }
 } // namespace beamslider

@@ -648,3 +648,88 @@ TEST(EndStop, RomRunStopsAtTheSupportWithoutNaN)
       ASSERT_TRUE(std::isfinite(v));
   std::cout << result.message << "\n";
 }
+
+// θ > ½ (family (d) of issue 58): on a linear, undamped, unforced mode the
+// implicit ROM is the θ-method of the Moreau–Jean structure, whose step
+// follows here from its two equations solved by hand:
+//   u_E (1 + θ²h²ω²) = u_B (1 − θ(1 − θ)h²ω²) − hω² q_B,
+//   q_E = q_B + h((1 − θ)u_B + θ u_E).
+// At ωΔt = 3 the step damps the mode (spectral radius < 1), where θ = ½
+// keeps its amplitude; far beyond (ωΔt = 1000) the radius tends to
+// (1 − θ)/θ per step.
+TEST(RomImplicitBeamSystem, ThetaAboveOneHalfIsTheThetaMethodAndDampsUnresolvedModes)
+{
+  const Scene scene = linear_free_scene();
+  for (const double theta : {0.51, 0.6, 1.0})
+    for (const double w_dt : {3., 1000.})
+      {
+        ReducedOrderModel model(clamped_clamped_basis(scene.beam, 1), scene.damping_ratio, false);
+        RomImplicitBeamSystem rom(std::move(model), scene.beam.thickness, BaseExcitation::from_scene(scene.excitation),
+                                  theta);
+        EXPECT_EQ(rom.theta(), theta);
+        const double w = rom.model().basis().omega[0], h = w_dt / w;
+        Eigen::VectorXd q = Eigen::VectorXd::Constant(1, 1e-4), u = Eigen::VectorXd::Zero(1);
+        double q_ref = 1e-4, u_ref = 0;
+        const auto energy = [&](const double q_, const double u_) { return 0.5 * (u_ * u_ + w * w * q_ * q_); };
+        const double E0 = energy(q_ref, u_ref);
+        for (unsigned int k = 1; k <= 50; ++k)
+          {
+            free_step(rom, (k - 1) * h, h, q, u);
+            const double u_E = (u_ref * (1. - theta * (1. - theta) * w_dt * w_dt) - h * w * w * q_ref) /
+                               (1. + theta * theta * w_dt * w_dt);
+            q_ref = q_ref + h * ((1. - theta) * u_ref + theta * u_E);
+            u_ref = u_E;
+            ASSERT_NEAR(q[0], q_ref, 1e-4 * 1e-10) << "θ = " << theta << ", ωΔt = " << w_dt << ", step " << k;
+            ASSERT_NEAR(u[0], u_ref, 1e-4 * w * 1e-10) << "θ = " << theta << ", ωΔt = " << w_dt << ", step " << k;
+          }
+        const double ratio = std::sqrt(energy(q[0], u[0]) / E0); // amplitude after 50 steps
+        EXPECT_LT(ratio, 1.) << "θ = " << theta << ", ωΔt = " << w_dt;
+        if (w_dt == 1000.)
+          EXPECT_NEAR(std::pow(ratio, 1. / 50), (1. - theta) / theta, 0.01) << "θ = " << theta;
+      }
+  // θ outside [½, 1] is refused.
+  ReducedOrderModel model(clamped_clamped_basis(scene.beam, 1), scene.damping_ratio, false);
+  EXPECT_THROW(RomImplicitBeamSystem(model, scene.beam.thickness, BaseExcitation::from_scene(scene.excitation), 0.4),
+               std::invalid_argument);
+}
+
+// The θ-method's Newton step and iteration matrix on the nonlinear beam:
+// the residual with q̄ = q_M + θ²Δt(u − u_B) + (2θ − 1)Δt u_B, the damping
+// on θu + (1 − θ)u_B and the load at t_M + (2θ − 1)Δt vanishes at u_free,
+// and the structured solve inverts S = I + θΔt C + θ²Δt²(Ω² + ∂f/∂q).
+TEST(RomImplicitBeamSystem, ThetaStepSolvesItsResidualAndInvertsItsIterationMatrix)
+{
+  const Scene scene    = mueller_scene();
+  const unsigned int N = 6;
+  const double theta   = 0.6;
+  ReducedOrderModel reduced(clamped_clamped_basis(scene.beam, N), scene.damping_ratio, true);
+  RomImplicitBeamSystem rom(std::move(reduced), scene.beam.thickness, BaseExcitation::from_scene(scene.excitation),
+                            theta);
+  const ReducedOrderModel &model = rom.model();
+  const Eigen::ArrayXd w         = model.basis().omega.array();
+  const double dt                = 0.5 / w[0];
+  BeamPointKinematics centre;
+  rom.evaluate(0.5 * scene.beam.length, Eigen::VectorXd::Unit(N, 0), centre);
+  const double q_h = scene.beam.thickness / centre.w;
+  Eigen::VectorXd q_M(N), u_B(N), u_E;
+  for (unsigned int n = 0; n < N; ++n)
+    {
+      q_M[n] = 3. * q_h / (n + 1) * (n % 2 ? -1. : 1.);
+      u_B[n] = 0.1 * q_M[n] * w[n] * (n % 3 ? 1. : -0.5);
+    }
+  const double t_M    = 0.3e-3;
+  const BeamStep step = rom.free_velocity(t_M, q_M, u_B, dt, u_E);
+  const double a      = rom.excitation().acceleration(t_M + (2. * theta - 1.) * dt);
+  const Eigen::VectorXd q = q_M + theta * theta * dt * (u_E - u_B) + (2. * theta - 1.) * dt * u_B;
+  const Eigen::VectorXd c = (2. * scene.damping_ratio * w).matrix();
+  const Eigen::VectorXd R =
+    (u_E - u_B) + dt * (c.cwiseProduct(theta * u_E + (1. - theta) * u_B) + (w * w).matrix().cwiseProduct(q) +
+                        model.nonlinear_force(q) - a * model.basis().gamma);
+  EXPECT_LT(R.norm(), 1e-9 * (u_E.norm() + q.norm() / dt)) << "Newton's u_free does not solve the θ step";
+  Eigen::MatrixXd S = (theta * theta * dt * dt) * model.nonlinear_tangent(q);
+  S.diagonal() += (1. + theta * dt * c.array() + theta * theta * dt * dt * w * w).matrix();
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Identity(N, N);
+  Eigen::MatrixXd X(N, N);
+  step.solve_iteration_matrix(B, X);
+  EXPECT_LT((S * X - B).norm(), 1e-8 * B.norm());
+}

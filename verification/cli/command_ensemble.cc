@@ -119,6 +119,13 @@ namespace beamslider
       if (options.integrator != "explicit" && options.model != "rom")
         throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
       settings.model.integrator = options.integrator;
+      if (options.theta)
+        {
+          if (options.integrator != "implicit")
+            throw InputError("--theta applies to --integrator implicit only (the explicit ROM is the midpoint rule; "
+                             "the FE takes the scene's 'Time stepping/FE theta')");
+          settings.model.theta = *options.theta;
+        }
       if (!options.coefficients.empty())
         {
           if (options.model != "rom")

@@ -253,6 +253,10 @@ CLI::App *declare_ensemble(CLI::App &app, const AddCommon &add_common, EnsembleO
   ensemble_cmd->add_option("--integrator", ensemble.integrator,
                            "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
     ->check(CLI::IsMember({"explicit", "implicit"}));
+  ensemble_cmd->add_option("--theta", ensemble.theta,
+                           "theta of the implicit ROM's Moreau-Jean scheme, 0.5 (midpoint rule, default) to 1: above "
+                           "0.5 it damps the modes the step cannot resolve, as the FE reference does")
+    ->check(finite_in(0.5, 1.));
   ensemble_cmd->add_option("--coefficients", ensemble.coefficients,
                            "ROM cubic coefficients: analytic | step-condensed | ice on a beam scene (default "
                            "analytic); ice | step | exact | analytic from the solid on a solid scene (default ice)");

@@ -174,6 +174,7 @@ namespace beamslider
     std::optional<double> end_time; // [s]
     std::string against;            // another ensemble's folder to compare with
     std::string integrator = "explicit"; // rom: explicit | implicit (the FE's scheme)
+    std::optional<double> theta;         // rom implicit: θ of the Moreau–Jean scheme (default 0.5)
     // rom: the cubic coefficients (ModelSetting::coefficients); empty: the
     // scene's default (analytic on a beam, ICE from the solid on a solid)
     std::string coefficients;

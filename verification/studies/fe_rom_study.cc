@@ -35,7 +35,7 @@ namespace beamslider
         << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     if (damped_modes)
       s << " damped " << damped_modes;
-    if (family == "fe" && theta != 0.5)
+    if (theta != 0.5)
       s << " theta=" << theta;
     s << " dt=" << time_step; // no comma: labels go into CSV cells
     if (slider_offset_over_L != 0)
@@ -176,11 +176,16 @@ namespace beamslider
     if (setting.family != "rom")
       throw InputError("model family '" + setting.family + "' is not one of fe, rom");
     ReducedOrderModel rom = make_reduced_model(scene, setting);
+    if (!(setting.theta >= 0.5 && setting.theta <= 1.))
+      throw InputError("theta = " + std::to_string(setting.theta) + " is outside [0.5, 1]");
     if (setting.integrator == "implicit")
       return std::make_unique<RomImplicitBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
-                                                     BaseExcitation::from_scene(scene.excitation));
+                                                     BaseExcitation::from_scene(scene.excitation), setting.theta);
     if (setting.integrator != "explicit")
       throw InputError("ROM integrator '" + setting.integrator + "' is not one of explicit, implicit");
+    if (setting.theta != 0.5)
+      throw InputError("theta = " + std::to_string(setting.theta) +
+                       " applies to the implicit ROM only (the explicit ROM is the midpoint rule, theta = 0.5)");
     return std::make_unique<RomBeamSystem>(std::move(rom), scene.beam.thickness_profile(),
                                            BaseExcitation::from_scene(scene.excitation));
   }

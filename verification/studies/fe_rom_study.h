@@ -55,8 +55,9 @@ namespace beamslider
     // so that a ROM and the FE beside it damp the same modes.
     unsigned int damped_modes = 0;
     double time_step = 2e-5;     // [s]
-    // fe: θ of the Moreau–Jean scheme (fem/fe_transient.h), 0.5 the
-    // midpoint rule; the scene's FE theta for the scene's own FE model.
+    // fe, and rom implicit: θ of the Moreau–Jean scheme (fem/fe_transient.h,
+    // reduced/rom_implicit_beam_system.h), 0.5 the midpoint rule; the
+    // scene's FE theta for the scene's own FE model.
     double theta = 0.5;
     // Added to the scene's start position x_C/L: a "round-off twin" of a run
     // (e.g. 1e-9) measures how far the rattling alone spreads two runs.
