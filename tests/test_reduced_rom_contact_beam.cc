@@ -211,6 +211,28 @@ TEST(RomImplicitBeamSystem, LinearModeFollowsTheTrapezoidalRuleExactlyBeyondTheE
   EXPECT_NEAR(X(0, 0), 1. / (1. + 0.25 * dt * dt * w1 * w1), 1e-15);
 }
 
+namespace
+{
+  // A state of a few thicknesses of amplitude, where the membrane tangent
+  // couples the modes: mode n at 3h/(n+1) (alternating sign, h of mode 1 at
+  // L/2), velocities a tenth of ω_n times that.
+  void large_state(const RomBeamSystem &rom, const Scene &scene, Eigen::VectorXd &q_M, Eigen::VectorXd &u_B)
+  {
+    const Eigen::Index N     = rom.n_dofs();
+    const Eigen::VectorXd &w = rom.model().basis().omega;
+    BeamPointKinematics centre;
+    rom.evaluate(0.5 * scene.beam.length, Eigen::VectorXd::Unit(N, 0), centre);
+    const double q_h = scene.beam.thickness / centre.w; // mode 1's q for w(L/2) = h
+    q_M.resize(N);
+    u_B.resize(N);
+    for (Eigen::Index n = 0; n < N; ++n)
+      {
+        q_M[n] = 3. * q_h / (n + 1) * (n % 2 ? -1. : 1.);
+        u_B[n] = 0.1 * q_M[n] * w[n] * (n % 3 ? 1. : -0.5);
+      }
+  }
+} // namespace
+
 // The implicit step's iteration matrix S = I + Δt/2 C + Δt²/4 (Ω² + ∂f/∂q)
 // is solved through its structure (an eigenbasis and a rank-one update, see
 // rom_implicit_beam_system.h). Checked against S built here from the
@@ -225,15 +247,8 @@ TEST(RomImplicitBeamSystem, StructuredSolveInvertsTheIterationMatrix)
   const ReducedOrderModel &model = rom.model();
   const Eigen::ArrayXd w         = model.basis().omega.array();
   const double dt                = 0.5 / w[0]; // ω_8 Δt ≈ 16: far beyond the explicit limit 2
-  BeamPointKinematics centre;
-  rom.evaluate(0.5 * scene.beam.length, Eigen::VectorXd::Unit(N, 0), centre);
-  const double q_h = scene.beam.thickness / centre.w; // mode 1's q for w(L/2) = h
-  Eigen::VectorXd q_M(N), u_B(N), u_E;
-  for (unsigned int n = 0; n < N; ++n)
-    {
-      q_M[n] = 3. * q_h / (n + 1) * (n % 2 ? -1. : 1.);
-      u_B[n] = 0.1 * q_M[n] * w[n] * (n % 3 ? 1. : -0.5);
-    }
+  Eigen::VectorXd q_M, u_B, u_E;
+  large_state(rom, scene, q_M, u_B);
   const double t_M = 0.3e-3;
   const BeamStep step = rom.free_velocity(t_M, q_M, u_B, dt, u_E);
 
@@ -685,7 +700,9 @@ TEST(RomImplicitBeamSystem, ThetaAboveOneHalfIsTheThetaMethodAndDampsUnresolvedM
         const double ratio = std::sqrt(energy(q[0], u[0]) / E0); // amplitude after 50 steps
         EXPECT_LT(ratio, 1.) << "θ = " << theta << ", ωΔt = " << w_dt;
         if (w_dt == 1000.)
-          EXPECT_NEAR(std::pow(ratio, 1. / 50), (1. - theta) / theta, 0.01) << "θ = " << theta;
+          {
+            EXPECT_NEAR(std::pow(ratio, 1. / 50), (1. - theta) / theta, 0.01) << "θ = " << theta;
+          }
       }
   // θ outside [½, 1] is refused.
   ReducedOrderModel model(clamped_clamped_basis(scene.beam, 1), scene.damping_ratio, false);
@@ -708,15 +725,8 @@ TEST(RomImplicitBeamSystem, ThetaStepSolvesItsResidualAndInvertsItsIterationMatr
   const ReducedOrderModel &model = rom.model();
   const Eigen::ArrayXd w         = model.basis().omega.array();
   const double dt                = 0.5 / w[0];
-  BeamPointKinematics centre;
-  rom.evaluate(0.5 * scene.beam.length, Eigen::VectorXd::Unit(N, 0), centre);
-  const double q_h = scene.beam.thickness / centre.w;
-  Eigen::VectorXd q_M(N), u_B(N), u_E;
-  for (unsigned int n = 0; n < N; ++n)
-    {
-      q_M[n] = 3. * q_h / (n + 1) * (n % 2 ? -1. : 1.);
-      u_B[n] = 0.1 * q_M[n] * w[n] * (n % 3 ? 1. : -0.5);
-    }
+  Eigen::VectorXd q_M, u_B, u_E;
+  large_state(rom, scene, q_M, u_B);
   const double t_M    = 0.3e-3;
   const BeamStep step = rom.free_velocity(t_M, q_M, u_B, dt, u_E);
   const double a      = rom.excitation().acceleration(t_M + (2. * theta - 1.) * dt);
