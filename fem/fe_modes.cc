@@ -137,7 +137,8 @@ namespace beamslider
   {
     AssertThrow(pins_to_zero(constraints), ExcMessage("restrict_to_free_dofs needs constraints that pin DoFs to zero"));
     FreeDofProblem free;
-    std::vector<int> free_index(K.m(), -1);
+    std::vector<int> &free_index = free.row_of_dof;
+    free_index.assign(K.m(), -1);
     for (unsigned int i = 0; i < K.m(); ++i)
       if (!constraints.is_constrained(i))
         {

@@ -61,7 +61,8 @@ namespace beamslider
   // dofs[a] is the global DoF of row a. The constraints must pin DoFs to zero.
   struct FreeDofProblem
   {
-    std::vector<unsigned int> dofs;
+    std::vector<unsigned int> dofs; // row a → its global DoF
+    std::vector<int> row_of_dof;    // global DoF → its row, −1 for a constrained DoF
     Eigen::MatrixXd K, M;
   };
   FreeDofProblem restrict_to_free_dofs(const dealii::SparseMatrix<double> &K, const dealii::SparseMatrix<double> &M,

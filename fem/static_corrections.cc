@@ -6,9 +6,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -41,15 +39,12 @@ namespace beamslider
     for (unsigned int j = 0; j < n_modes; ++j)
       for (Eigen::Index a = 0; a < n; ++a)
         Phi(a, j) = modes.shapes[j][free.dofs[a]];
-    std::vector<int> free_index(beam.n_dofs(), -1);
-    for (Eigen::Index a = 0; a < n; ++a)
-      free_index[free.dofs[a]] = a;
     for (Eigen::Index k = 0; k < m; ++k)
       {
         const FEPointShape s = beam.point_shape(load_positions[k]);
         for (unsigned int i = 0; i < 4; ++i)
-          if (free_index[s.w_dofs[i]] >= 0)
-            F(free_index[s.w_dofs[i]], k) += s.w_values[i];
+          if (const int row = free.row_of_dof[s.w_dofs[i]]; row >= 0)
+            F(row, k) += s.w_values[i];
       }
 
     // ψ_k = K⁻¹ f_k − Σ φ_n φ_nᵀ f_k / ω_n², then once more M-orthogonal to
@@ -95,18 +90,9 @@ namespace beamslider
         enriched.omega.push_back(std::sqrt(ritz.eigenvalues()[c]));
         enriched.shapes.push_back(std::move(psi));
       }
-    // Ritz values of the ψ block lie above ω_N (they are Rayleigh quotients
-    // in the modes' orthogonal complement); sorting keeps that order safe.
-    std::vector<std::size_t> order(enriched.omega.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return enriched.omega[a] < enriched.omega[b]; });
-    FEModes sorted;
-    for (const std::size_t i : order)
-      {
-        sorted.omega.push_back(enriched.omega[i]);
-        sorted.shapes.push_back(enriched.shapes[i]);
-      }
-    return sorted;
+    // Ascending as a whole: the Ritz values come in ascending order and lie
+    // above ω_N (Rayleigh quotients in the modes' M-orthogonal complement
+    // are at least ω_{N+1}²).
+    return enriched;
   }
 } // namespace beamslider
