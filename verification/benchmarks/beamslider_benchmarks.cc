@@ -12,6 +12,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_transient.h"
+#include "fem/static_corrections.h"
 #include "fem/solid_model.h"
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
@@ -134,7 +135,29 @@ static void RomContact(benchmark::State &state)
   state.counters["dt [us]"] = 1e6 * dt;
   run_contact(state, scene, rom, 10.0, dt);
 }
-BENCHMARK(RomContact)->Arg(5)->Arg(7)->Arg(10)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(RomContact)->Arg(5)->Arg(7)->Arg(10)->Arg(15)->Unit(benchmark::kSecond)->Iterations(1);
+
+// The same with N modes and m static corrections (fem/static_corrections.h;
+// the candidates of the speed–accuracy front, `ladder --front`): the same
+// explicit step on N + m coordinates, at the largest Δt/2^k its stiffest
+// Ritz vector allows.
+static void RomContactCorrected(benchmark::State &state)
+{
+  Scene scene                                = default_scene();
+  scene.discretisation.n_modes               = state.range(0);
+  scene.discretisation.n_static_corrections = state.range(1);
+  const FEBeam fe(scene);
+  const FEModes enriched = add_static_corrections(
+    fe, compute_bending_modes(fe, scene.discretisation.n_modes), scene.discretisation.n_modes,
+    static_correction_positions(fe.length(), scene.discretisation.n_static_corrections));
+  RomBeamSystem rom = RomBeamSystem::from_scene(scene, make_modal_basis(fe, enriched));
+  double dt         = scene.time_stepping.time_step;
+  while (dt > rom.max_stable_time_step())
+    dt /= 2;
+  state.counters["dt [us]"] = 1e6 * dt;
+  run_contact(state, scene, rom, 10.0, dt);
+}
+BENCHMARK(RomContactCorrected)->Args({6, 4})->Args({8, 4})->Unit(benchmark::kSecond)->Iterations(1);
 
 // Process start-up: `beamslider --help` (no PETSc/SLEPc work), started with
 // an argument vector, wall time from fork to exit.
