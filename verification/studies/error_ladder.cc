@@ -49,7 +49,7 @@ namespace beamslider
     {
       const double dt = scene.time_stepping.time_step;
       const auto add  = [&](const unsigned int n, const unsigned int m) {
-        ModelSetting model         = at_stable_step(scene, rom(n, dt));
+        ModelSetting model         = rom(n, dt);
         model.n_static_corrections = m;
         model                      = at_stable_step(scene, model);
         const std::string basis =
