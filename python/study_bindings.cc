@@ -292,9 +292,23 @@ namespace beamslider_python
       py::dict ladder_checks() const
       {
         py::dict d;
-        for (const beamslider::ConvergenceCheck &check : ladder().study.checks)
-          d[py::str(check.name)] = check_dict(check);
+        const beamslider::LadderStudy &study = ladder().study;
+        for (std::size_t c = 0; c < study.checks.size(); ++c)
+          {
+            py::dict check = check_dict(study.checks[c]);
+            check["claim"] = study.is_claim(c);
+            d[py::str(study.checks[c].name)] = check;
+          }
         return d;
+      }
+      // The rungs on the speed–accuracy front, in ascending cost.
+      py::list ladder_front() const
+      {
+        py::list names;
+        const beamslider::LadderStudy &study = ladder().study;
+        for (const std::size_t i : beamslider::speed_accuracy_front(study))
+          names.append(study.rungs[i].rung.name);
+        return names;
       }
 
       // --- sweep ---
@@ -430,6 +444,7 @@ namespace beamslider_python
       .def("ladder_members", &Study::ladder_members)
       .def("ladder_steps", &Study::ladder_steps)
       .def("ladder_checks", &Study::ladder_checks)
+      .def("ladder_front", &Study::ladder_front)
       .def("pcs", &Study::pcs)
       .def("resonance", &Study::resonance)
       .def("free_periods", &Study::free_periods)

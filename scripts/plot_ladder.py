@@ -4,7 +4,7 @@ x_C/L of every member of every rung (dots) with the median (bar); right,
 speed against accuracy: the stated cost of one member against the
 Wasserstein distance W1 of the rung's final positions to the reference, with
 its 90 % bootstrap interval as error bar and the ensembles' own spread as a
-grey mark. With front.csv (`ladder --front`), the rungs that moved at dt/2
+grey mark. With front.csv (every ladder), the rungs that moved when refined (dt/2, or 1.5 N modes)
 are drawn hollow and the speed-accuracy front (by the stated cost) as a line.
 Arguments: report folder, scene name."""
 import os
@@ -48,7 +48,7 @@ def main(folder, scene):
         cost, w = float(r["cost_units"]), float(r["w1_to_reference"])
         low, high = float(r["w1_low"]), float(r["w1_high"])
         color = "tab:red" if r["family"] == "fe" else "tab:blue"
-        moved = r["rung"] in front and front[r["rung"]]["converged_in_dt"] == "0"
+        moved = r["rung"] in front and front[r["rung"]]["refined_alike"] == "0"
         ax2.errorbar(cost, w, yerr=[[max(w - low, 0)], [max(high - w, 0)]], fmt="s" if r["family"] == "fe" else "o",
                      color=color, capsize=3, mfc="white" if moved else color)
         ax2.plot(cost, float(r["spread"]), "_", color="grey", ms=12)
@@ -57,7 +57,7 @@ def main(folder, scene):
                       if r["on_front"] == "1")
     if on_front:
         ax2.plot([c for c, _ in on_front], [w for _, w in on_front], "-", color="tab:green", lw=1.5,
-                 label="front (converged in $\\Delta t$; hollow: moved at $\\Delta t/2$)")
+                 label="front (alike refined; hollow: moved when refined)")
         ax2.legend(fontsize=7, loc="upper right")
     ax2.set_xscale("log")
     # W1 spans 1e-4 (converged models) to 0.1 L (the other basin): logarithmic

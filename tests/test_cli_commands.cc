@@ -2,6 +2,8 @@
 // the default scene (the scene argument may be left out), the CSV columns
 // the README names, and determinism (two runs, the same bytes).
 #include "tests/cli_runner.h"
+#include "meshes/scene.h"
+#include "verification/studies/model_choice.h"
 
 #include <gtest/gtest.h>
 
@@ -522,4 +524,51 @@ TEST(Commands, TheFERunsAtTheScenesFETimeStepAndTheROMAtItsTimeStep)
       EXPECT_NE(run.out.find("(" + steps + " steps)"), std::string::npos) << model << ": " << run.out;
       fs::remove_all(dir);
     }
+}
+
+// ensemble and map --model auto run the model the scene's cached ladder
+// picks (model_choice.h): the cache here puts N = 7, not the scene's N = 5,
+// within the default tolerance (0.005), so the runs must say N = 7. A map
+// axis over the discretisation would change the pick and is refused, and
+// --tolerance without --model auto is an input error.
+TEST(Commands, EnsembleAndMapWithModelAutoRunThePickOfTheCachedLadder)
+{
+  const fs::path dir   = fresh_folder("cmd_model_auto");
+  const fs::path cache = dir / "reports" / "mueller2023" / "model_choice";
+  fs::create_directories(cache);
+  const beamslider::Scene scene = beamslider::read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm");
+  std::ofstream(cache / ("ladder-" + beamslider::scene_content_key(scene) + ".csv"))
+    << "rung,family,n_modes,static_corrections,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
+       "w1,w1_high,refined_alike\n"
+    << "ROM N=5 (published),rom,5,0,0,explicit,2e-05,0,0.5,0,1250000,0.33,0.09,0.1,1\n"
+    << "ROM N=7,rom,7,0,0,explicit,2e-05,0,0.5,0,1750000,0.40,0.002,0.004,1\n"
+    << "FE,fe,0,0,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.001,0.002,1\n";
+  const auto in_dir = CliLimits().in_directory(dir.string());
+
+  CliRun run = run_beamslider({"ensemble", "--model", "auto", "--members", "2", "--end-time", "0.3", "--quiet",
+                               "--output", (dir / "ensemble").string()},
+                              in_dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string ensemble = read_file(dir / "ensemble" / "summary.md");
+  EXPECT_NE(ensemble.find("- Model: ROM N=7"), std::string::npos) << ensemble;
+  EXPECT_NE(ensemble.find("picked ROM N=7"), std::string::npos) << ensemble;
+
+  run = run_beamslider({"map", "--model", "auto", "--frequency", "124", "--acceleration", "14", "--end-time", "0.3",
+                        "--quiet", "--output", (dir / "map").string()},
+                       in_dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string map = read_file(dir / "map" / "summary.md");
+  EXPECT_NE(map.find("by `--model auto` on the scene without the axes: ROM N=7"), std::string::npos) << map;
+
+  run = run_beamslider({"map", "--model", "auto", "--axis", "Discretisation/Number of modes=5:7:1", "--end-time",
+                        "0.3", "--quiet", "--output", (dir / "map-modes").string()},
+                       in_dir);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("'Discretisation/Number of modes'"), std::string::npos) << run.err;
+  run = run_beamslider({"ensemble", "--tolerance", "0.01", "--members", "2", "--end-time", "0.3", "--quiet",
+                        "--output", (dir / "no-auto").string()},
+                       in_dir);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find("--tolerance applies to --model auto only"), std::string::npos) << run.err;
+  fs::remove_all(dir);
 }

@@ -119,30 +119,46 @@ TEST(ModelChoice, SceneKeyChangesWithThePhysicsOnly)
 }
 
 // With a cache for the scene's key in place, the choice reads it and runs
-// nothing: the picked model is the cached rung's, with its time step.
+// nothing: the picked model is the cached rung's, with its time step. A
+// rung that moved when refined is never picked, however cheap and close;
+// without a tolerance the choice grants the reference's own interval, at
+// least choice_tolerance_floor.
 TEST(ModelChoice, ReadsTheCacheOfTheScene)
 {
   const Scene scene     = read_scene(mueller);
   const std::string dir = (std::filesystem::temp_directory_path() / "beamslider_model_choice_test").string();
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
-    << "rung,family,n_modes,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
-       "w1,w1_high\n"
-    << "ROM N=5,rom,5,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1\n"
-    << "ROM N=20,rom,20,0,explicit,5e-06,0,0.5,0,8.5e7,0.40,0.02,0.025\n"
-    << "FE,fe,0,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0,0\n";
+  const auto write_cache = [&](const std::string &reference_w1_high) {
+    std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
+      << "rung,family,n_modes,static_corrections,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
+         "w1,w1_high,refined_alike\n"
+      << "ROM N=5,rom,5,0,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1,1\n"
+      << "ROM N=15,rom,15,0,0,explicit,1e-05,0,0.5,0,7.5e6,0.409,0.0005,0.0008,0\n"
+      << "ROM N=8+4sc,rom,8,4,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.02,0.025,1\n"
+      << "FE,fe,0,0,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002," << reference_w1_high << ",1\n";
+  };
+  write_cache("0.003");
   std::string why;
   const ModelSetting picked = choose_model(scene, 0.03, dir, why);
   EXPECT_EQ(picked.family, "rom");
-  EXPECT_EQ(picked.n_modes, 20u);
-  EXPECT_EQ(picked.time_step, 5e-6);
+  EXPECT_EQ(picked.n_modes, 8u) << "N = 15 is within 0.03 and cheaper, but moved when refined";
+  EXPECT_EQ(picked.n_static_corrections, 4u);
+  EXPECT_EQ(picked.time_step, 1e-5);
   EXPECT_NE(why.find("cached"), std::string::npos) << why;
+  EXPECT_NE(why.find("moves when refined"), std::string::npos) << why;
   const ModelSetting strict = choose_model(scene, 0.001, dir, why);
   EXPECT_EQ(strict.family, "fe");
   EXPECT_EQ(strict.n_elements, 32u);
   EXPECT_EQ(strict.time_step, 1e-5);
   EXPECT_EQ(strict.theta, 0.51); // the FE reference's own scheme, not the midpoint rule
+  // No tolerance: max(0.005, 0.003) leaves 8+4sc (0.025) out; a reference
+  // that knows its end state only to 0.03 lets it in.
+  EXPECT_EQ(choose_model(scene, std::nullopt, dir, why).family, "fe");
+  EXPECT_NE(why.find("tolerance 0.005 "), std::string::npos) << why;
+  write_cache("0.03");
+  EXPECT_EQ(choose_model(scene, std::nullopt, dir, why).n_modes, 8u);
+  EXPECT_NE(why.find("tolerance 0.03 "), std::string::npos) << why;
   std::filesystem::remove_all(dir);
 }
 
@@ -150,8 +166,8 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
 // The ladder with diagnostics runs its diagnostic rungs (the ROM with all
 // modes and the midpoint-rule FE at other time steps) with half the members,
 // and the published ROM, the converged ROMs and the FE reference with all of
-// them; the quick and the full ladder have no diagnostic rung, and the full
-// one is the quick one and the implicit ROM N = 20.
+// them; the quick and the front's ladder have no diagnostic rung, and the
+// front's has the implicit ROM N = 20.
 TEST(ErrorLadder, OnlyTheLadderWithDiagnosticsRunsHalfTheMembersOnItsDiagnosticRungs)
 {
   const Scene scene = read_scene(mueller);
@@ -174,12 +190,12 @@ TEST(ErrorLadder, OnlyTheLadderWithDiagnosticsRunsHalfTheMembersOnItsDiagnosticR
   const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, reference);
   for (const MemberGroup &g : ladder_groups(scene, quick, 25., 4))
     EXPECT_EQ(g.n_members, 4u) << g.name;
-  const std::vector<LadderRung> verdict = default_ladder(scene, LadderScope::full, reference);
-  ASSERT_EQ(verdict.size(), quick.size() + 1);
+  const std::vector<LadderRung> verdict = default_ladder(scene, LadderScope::front, reference);
   for (const MemberGroup &g : ladder_groups(scene, verdict, 40., 8))
     EXPECT_EQ(g.n_members, 8u) << g.name;
-  EXPECT_EQ(verdict[reference - 1].name, "ROM N=20 implicit");
-  EXPECT_EQ(verdict[reference - 1].model.integrator, "implicit");
+  EXPECT_EQ(std::count_if(verdict.begin(), verdict.end(),
+                          [](const LadderRung &r) { return r.name == "ROM N=20 implicit" && r.model.integrator == "implicit"; }),
+            1);
 }
 
 // The reference is the scene's own FE model, its step and θ, on either
@@ -188,7 +204,7 @@ TEST(ErrorLadder, OnlyTheLadderWithDiagnosticsRunsHalfTheMembersOnItsDiagnosticR
 TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
 {
   const Scene scene = read_scene(mueller);
-  for (const LadderScope scope : {LadderScope::quick, LadderScope::full, LadderScope::diagnostics})
+  for (const LadderScope scope : {LadderScope::quick, LadderScope::front, LadderScope::diagnostics})
     {
       std::size_t reference = 0;
       const std::vector<LadderRung> rungs = default_ladder(scene, scope, reference);
@@ -214,46 +230,62 @@ TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
   EXPECT_FALSE(rungs[reference].diagnostic);
 }
 
-// The front's ladder (`ladder --front`) is the full ladder with the
-// candidates added before the reference: more modes and few modes with
+// The front's ladder (`verify --full`) is the quick ladder with the
+// implicit ROM and the other candidates: more modes and few modes with
 // static corrections, each at the largest step Δt/2^k its explicit scheme
 // takes (read off the model: within 2/ω_max, and twice it is not unless it
-// is the scene's Δt), and every explicit ROM rung is checked at Δt/2, one
-// halving. A candidate's cost counts its
-// coordinates, modes and corrections alike.
+// is the scene's Δt). Every explicit ROM rung is checked at Δt/2, one
+// halving, but the one converged in N, whose check is in N. A candidate's
+// cost counts its coordinates, modes and corrections alike.
 TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep)
 {
   const Scene scene     = read_scene(mueller);
-  std::size_t reference = 0, full_reference = 0;
-  const std::vector<LadderRung> full  = default_ladder(scene, LadderScope::full, full_reference);
+  std::size_t reference = 0, quick_reference = 0;
+  const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, quick_reference);
   const std::vector<LadderRung> front = default_ladder(scene, LadderScope::front, reference);
   ASSERT_EQ(reference, front.size() - 1);
-  ASSERT_EQ(front.size(), full.size() + 8);
-  for (std::size_t i = 0; i + 1 < full.size(); ++i)
-    EXPECT_EQ(front[i].name, full[i].name);
-  unsigned int n_corrected = 0;
-  for (std::size_t i = full.size() - 1; i < reference; ++i)
+  ASSERT_EQ(front.size(), quick.size() + 7);
+  for (const LadderRung &q : quick)
+    EXPECT_EQ(std::count_if(front.begin(), front.end(), [&](const LadderRung &r) { return r.name == q.name; }), 1)
+      << q.name;
+  unsigned int n_corrected = 0, n_candidates = 0, n_quick_candidates = 0;
+  for (const LadderRung &q : quick)
+    n_quick_candidates += q.front_candidate;
+  EXPECT_EQ(n_quick_candidates, 2u);
+  for (std::size_t i = 0; i < reference; ++i)
     {
+      if (!front[i].front_candidate)
+        continue;
       const ModelSetting &m = front[i].model;
-      EXPECT_TRUE(front[i].front_candidate) << front[i].name;
+      ++n_candidates;
       n_corrected += m.n_static_corrections > 0;
       ModelSetting probe = m;
       probe.time_step    = 1e-12;
       const double limit = make_beam_model(scene, probe)->max_stable_time_step();
       EXPECT_LE(m.time_step, limit) << front[i].name;
       if (m.time_step < scene.time_stepping.time_step)
-        EXPECT_GT(2 * m.time_step, limit) << front[i].name;
+        {
+          EXPECT_GT(2 * m.time_step, limit) << front[i].name;
+        }
     }
+  EXPECT_EQ(n_candidates, 8u);
   EXPECT_EQ(n_corrected, 4u);
 
   const LadderChecks checks = ladder_checks(scene, front, reference);
-  unsigned int n_step_checks = 0;
+  unsigned int n_step_checks = 0, n_mode_checks = 0;
   for (std::size_t c = 0; c < checks.plans.size(); ++c)
     {
       const LadderRung &r = front[checks.rung[c]];
-      if (checks.plans[c].parameter != "Δt" || checks.rung[c] == reference)
+      if (checks.rung[c] == reference)
         continue;
+      if (checks.plans[c].parameter != "Δt")
+        {
+          EXPECT_TRUE(r.converged_in_n) << r.name;
+          ++n_mode_checks;
+          continue;
+        }
       ++n_step_checks;
+      EXPECT_FALSE(r.converged_in_n) << r.name;
       ASSERT_EQ(checks.plans[c].models.size(), 2u) << r.name;
       EXPECT_DOUBLE_EQ(checks.plans[c].models[1].time_step, r.model.time_step / 2) << r.name;
       EXPECT_EQ(checks.plans[c].models[1].n_static_corrections, r.model.n_static_corrections);
@@ -261,7 +293,8 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
   unsigned int n_roms = 0;
   for (const LadderRung &r : front)
     n_roms += r.model.family == "rom" && r.model.integrator == "explicit";
-  EXPECT_EQ(n_step_checks, n_roms);
+  EXPECT_EQ(n_mode_checks, 1u);
+  EXPECT_EQ(n_step_checks + n_mode_checks, n_roms);
 
   ModelSetting corrected = front[reference - 1].model, plain = corrected;
   plain.n_modes += plain.n_static_corrections;
@@ -273,8 +306,8 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
 }
 
 // The front from a study's numbers: a rung beaten on both cost and W₁ is
-// off it, so is one that moved at Δt/2 however cheap and close it is, and
-// the reference; the rest in ascending cost. A candidate that moved at
+// off it, so is one that moved when refined (at Δt/2, or in N) however
+// cheap and close it is, and the reference; the rest in ascending cost. A candidate that moved at
 // Δt/2 is a finding: the ladder is still proven; the reference's check is
 // a claim.
 TEST(ErrorLadder, TheFrontKeepsTheUnbeatenRungsConvergedInTheStep)
@@ -309,7 +342,21 @@ TEST(ErrorLadder, TheFrontKeepsTheUnbeatenRungsConvergedInTheStep)
   EXPECT_TRUE(study.proven());
   study.checks.back().converged = false; // the reference's own check
   EXPECT_FALSE(study.proven());
-  ASSERT_NE(study.step_check(1), nullptr);
-  EXPECT_FALSE(study.step_check(1)->converged);
-  EXPECT_EQ(study.step_check(4), nullptr);
+  ASSERT_NE(study.refinement_check(1), nullptr);
+  EXPECT_FALSE(study.refinement_check(1)->converged);
+  EXPECT_EQ(study.refinement_check(4), nullptr);
+
+  // A rung whose check is in N (the converged-in-N ROM) is judged by it.
+  study.checks[study.checks.size() - 1].converged = true;
+  add(0.5, 0.0, false, true); // 6: cheapest and closest, but not converged in N
+  ConvergenceCheck in_n;
+  in_n.parameter = "N";
+  in_n.decided   = true;
+  study.checks.push_back(in_n);
+  study.check_rungs.push_back(6);
+  EXPECT_EQ(speed_accuracy_front(study), (std::vector<std::size_t>{0, 2, 4}));
+  EXPECT_FALSE(study.proven()) << "a rung converged in N is a claim";
+  study.checks.back().converged = true;
+  EXPECT_EQ(speed_accuracy_front(study), (std::vector<std::size_t>{6}));
+  EXPECT_TRUE(study.proven());
 }

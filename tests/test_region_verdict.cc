@@ -75,13 +75,15 @@ TEST(RegionVerdict, EachPointGetsItsOwnCheckedReference)
   };
   const RegionStudy study = run_region(scene, points, 40., 4, fabricate);
   ASSERT_EQ(study.ladders.size(), points.size());
-  // One list: 4 rungs and 2 first refinements per point; then Δt/4 at the
-  // first point alone.
-  EXPECT_EQ(round_sizes, (std::vector<std::size_t>{6 * points.size(), 1}));
+  // One list: 6 rungs (published, N = 10, 20, the front's N = 15 and
+  // 8 + 4 corrections, the reference) and 6 first refinements per point
+  // (the reference and four ROMs at half their step, N = 20 against 30);
+  // then Δt/4 at the first point alone.
+  EXPECT_EQ(round_sizes, (std::vector<std::size_t>{12 * points.size(), 1}));
   for (std::size_t p = 0; p < points.size(); ++p)
     {
       const LadderStudy &l = study.ladders[p];
-      ASSERT_EQ(l.checks.size(), 2u);
+      ASSERT_EQ(l.checks.size(), 6u);
       EXPECT_TRUE(l.proven());
       const LadderRungResult &ref = l.rungs[l.reference];
       EXPECT_EQ(ref.rung.model.family, "fe");

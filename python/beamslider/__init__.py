@@ -666,9 +666,11 @@ class Ladder(_Study):
     outcome statistics, W₁ to the reference with its interval),
     ``members`` (ladder_members.csv's), ``steps`` (ladder_steps.csv's: each
     rung against the one before), ``checks`` ({name: {"converged",
-    "verdict", "trials"}}: the reference's convergence in Δt and the
-    converged ROM's in N); ``save(folder)``. A NotConvergedWarning when a
-    check did not converge."""
+    "verdict", "trials", "claim"}}: the reference's convergence in Δt and the
+    converged ROM's in N, the claims; each other ROM at half its step, a
+    finding), ``front`` (the rungs on the speed–accuracy front, in ascending
+    cost); ``save(folder)``. A NotConvergedWarning when a claim did not
+    converge."""
 
     _command = "ladder"
 
@@ -677,7 +679,7 @@ class Ladder(_Study):
         super().__init__(scene, _options(full=full, diagnostics=diagnostics, rung=rung, members=members,
                                          end_time=end_time), progress)
         for name, check in self.checks.items():
-            if not check["converged"]:
+            if check["claim"] and not check["converged"]:
                 warnings.warn(f"ladder: {check['verdict']}", NotConvergedWarning, stacklevel=2)
 
     def _read(self):
@@ -686,6 +688,7 @@ class Ladder(_Study):
         self.members = s.ladder_members()
         self.steps = s.ladder_steps()
         self.checks = s.ladder_checks()
+        self.front = s.ladder_front()
 
 
 class Sweep(_Study):

@@ -138,7 +138,7 @@ static void RomContact(benchmark::State &state)
 BENCHMARK(RomContact)->Arg(5)->Arg(7)->Arg(10)->Arg(15)->Unit(benchmark::kSecond)->Iterations(1);
 
 // The same with N modes and m static corrections (fem/static_corrections.h;
-// the candidates of the speed–accuracy front, `ladder --front`): the same
+// the candidates of the speed–accuracy front, `ladder --full`): the same
 // explicit step on N + m coordinates, at the largest Δt/2^k its stiffest
 // Ritz vector allows.
 static void RomContactCorrected(benchmark::State &state)

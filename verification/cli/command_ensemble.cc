@@ -24,6 +24,7 @@
 #include "fem/solid_reduced_model.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/ladder_cache.h"
 #include "verification/cli/study_results.h"
 #include "numerics/elapsed.h"
 #include "verification/report/member_files.h"
@@ -112,9 +113,30 @@ namespace beamslider
 
     // The model and its settings from the scene and the options, checked
     // before any member runs.
-    EnsembleSettings ensemble_settings(const Scene &scene, const EnsembleOptions &options)
+    EnsembleSettings ensemble_settings(const Scene &scene, const EnsembleOptions &options, const unsigned int n_ranks,
+                                       std::string &why)
     {
       EnsembleSettings settings;
+      settings.n_members    = options.members;
+      settings.perturbation = options.perturbation;
+      if (options.model == "auto")
+        {
+          if (options.integrator != "explicit" || options.theta || !options.coefficients.empty())
+            throw InputError("--model auto picks the model, its integrator and coefficients from the scene's error "
+                             "ladder: --integrator, --theta and --coefficients do not apply");
+          if (scene.solid.enabled())
+            throw InputError("--model auto chooses on the beam's error ladder, which a solid scene does not have: use "
+                             "--model rom or --model fe");
+          // Every rank would run the ladder: it runs once, in one process.
+          if (n_ranks > 1 && !has_cached_choice(scene, choice_cache_dir(scene)))
+            throw InputError("--model auto under mpirun needs the scene's error ladder cached: run this command once "
+                             "without mpirun (or `simulate --model auto`), which computes and caches it in " +
+                             choice_cache_dir(scene));
+          settings.model = choose_model(scene, options.tolerance, choice_cache_dir(scene), why);
+          return settings;
+        }
+      if (options.tolerance)
+        throw InputError("--tolerance applies to --model auto only");
       settings.model = scene_model(scene, options.model);
       if (options.integrator != "explicit" && options.model != "rom")
         throw InputError("--integrator " + options.integrator + " applies to --model rom only (the FE is implicit)");
@@ -139,8 +161,6 @@ namespace beamslider
                                     : "analytic, step-condensed, ice (a beam scene's ROM)"));
           settings.model.coefficients = options.coefficients;
         }
-      settings.n_members    = options.members;
-      settings.perturbation = options.perturbation;
       return settings;
     }
 
@@ -260,8 +280,8 @@ namespace beamslider
     // The scene (and case) with --end-time, checked before any member runs.
     Scene ensemble_scene(const CommonOptions &common, const EnsembleOptions &options)
     {
-      if (options.model != "rom" && options.model != "fe")
-        throw InputError("--model '" + options.model + "' is not one of rom, fe");
+      if (options.model != "rom" && options.model != "fe" && options.model != "auto")
+        throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
       Scene scene = read_command_scene(common, options.case_name);
       if (options.end_time)
         {
@@ -326,6 +346,8 @@ namespace beamslider
          << fixed(trace_thresholds(scene).high_level_over_h, 2)
          << " h, where Eq. 4 lies 5 % above f1); the turn is the period-mean position farthest from the centre when the "
             "end lies 0.02 L back from it; the final state is the mean over the last 1 s.\n\n";
+      if (!e.model_choice.empty())
+        md << "The model by `--model auto`:\n\n```\n" << e.model_choice << "```\n\n";
       return md.str();
     }
 
@@ -350,7 +372,7 @@ namespace beamslider
           md << convergence_section(*e.check);
           write_convergence_csv(e.dir, {*e.check});
         }
-      else if (options.model == "fe")
+      else if (e.settings.model.family == "fe")
         md << "\n**Unchecked** (`--unchecked`): whether the FE has converged in Δt at this step was not tested.\n";
       md << "\nOutcome classes:";
       for (const auto &[name, count] : classes)
@@ -369,7 +391,9 @@ namespace beamslider
     MpiSession mpi(launched_by_mpi_launcher());
     EnsembleRun e;
     e.scene     = ensemble_scene(common, options);
-    e.settings  = ensemble_settings(e.scene, options);
+    e.settings  = ensemble_settings(e.scene, options, mpi.size(), e.model_choice);
+    if (!e.model_choice.empty() && mpi.rank() == 0)
+      console() << e.model_choice << std::endl;
     // Another ensemble to compare with, read before any member runs.
     std::optional<OutcomeSamples> other;
     if (!options.against.empty())
@@ -378,7 +402,7 @@ namespace beamslider
     // halved until two steps agree (convergence_check.h). Unchecked, the
     // same code runs the model alone (a plan without refinements), so that
     // every rank takes part in the same rounds either way.
-    const bool checked = options.model == "fe" && !options.unchecked;
+    const bool checked = e.settings.model.family == "fe" && !options.unchecked;
     const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", e.settings.model,
                                                                 checked ? reference_max_halvings : 0)};
     if (mpi.rank() != 0)

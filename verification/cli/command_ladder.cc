@@ -67,19 +67,17 @@ namespace beamslider
     // Under mpirun every rank runs this; only rank 0 writes and prints.
     MpiSession mpi(launched_by_mpi_launcher());
     const Scene scene = read_command_scene(common, "");
-    // --diagnostics and --front imply the full ladder; rungs picked by name
+    // --diagnostics implies the full ladder; rungs picked by name
     // come from every rung there is.
-    const bool full = options.full || options.diagnostics || options.front || !options.rungs.empty();
-    const LadderScope scope = !options.rungs.empty() ? LadderScope::every
-                              : options.front        ? LadderScope::front
-                                                     : ladder_scope(full, options.diagnostics);
+    const bool full = options.full || options.diagnostics || !options.rungs.empty();
+    const LadderScope scope = !options.rungs.empty() ? LadderScope::every : ladder_scope(full, options.diagnostics);
     std::size_t reference         = 0;
     std::vector<LadderRung> rungs = default_ladder(scene, scope, reference);
     if (!options.rungs.empty())
       rungs = pick_rungs(rungs, reference, options.rungs, reference);
 
     // Rungs picked by name keep the quick length unless --full is given.
-    LadderRunSettings settings = ladder_run_settings(options.full || options.diagnostics || options.front);
+    LadderRunSettings settings = ladder_run_settings(options.full || options.diagnostics);
     settings.members           = options.members.value_or(settings.members);
     settings.end_time          = options.end_time.value_or(settings.end_time);
     settings.quick_ladder      = !full;
@@ -97,7 +95,7 @@ namespace beamslider
 
     std::ostringstream md;
     md << "# Error ladder of scene `" << scene.name << "`\n\n"
-       << "Written by `beamslider ladder`" << (options.diagnostics ? " --diagnostics" : options.front ? " --front" : options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
+       << "Written by `beamslider ladder`" << (options.diagnostics ? " --diagnostics" : options.full ? " --full" : "") << ": " << rungs.size() << " rungs × "
        << settings.members << " members over " << settings.end_time << " s. The same study as report section 5.1–5.2 "
        << "(doc/verification.md §6).\n\n";
     bool proven = true;

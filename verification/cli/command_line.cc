@@ -183,7 +183,7 @@ CLI::App *declare_backbone(CLI::App &app, const AddCommon &add_common, BackboneO
   auto *backbone_cmd = app.add_subcommand("backbone", "backbone curve by harmonic balance (backbone.csv)");
   add_common(backbone_cmd);
   backbone_cmd->add_option("--model", backbone.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
-  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's)")->check(integer_in(1, 10));
+  backbone_cmd->add_option("--modes", backbone.n_modes, "ROM modes N (default: the scene's; at most the scene's limit, 40)")->check(integer_in(1, 40));
   backbone_cmd->add_option("--harmonics", backbone.n_harmonics, "harmonics H")->check(integer_in(1, 40));
   backbone_cmd->add_option("--max-amplitude", backbone.max_amplitude_over_h, "largest w(L/2)/h, in (0.01, 10]")->check(finite_in(0.01, 10., Bound::open, Bound::closed));
   return backbone_cmd;
@@ -197,7 +197,7 @@ CLI::App *declare_simulate(CLI::App &app, const AddCommon &add_common, SimulateO
   simulate_cmd->add_option("--case", simulate.case_name, "a published case or ablation (see doc/scenes.md)");
   simulate_cmd->add_option("--end-time", simulate.end_time, "simulated time [s]")->check(finite_positive());
   simulate_cmd->add_flag("--animate", simulate.animate, "also write a ParaView animation");
-  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval)")->check(finite_positive());
+  simulate_cmd->add_option("--tolerance", simulate.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval; default: the reference's own interval to its refinement, at least 0.005)")->check(finite_positive());
   simulate_cmd->add_option("--checkpoint-every", simulate.checkpoint_every,
                            "write checkpoint.bin every S simulated seconds (resume with --resume DIR)")
     ->check(finite_positive());
@@ -249,7 +249,8 @@ CLI::App *declare_ensemble(CLI::App &app, const AddCommon &add_common, EnsembleO
 {
   auto *ensemble_cmd = app.add_subcommand("ensemble", "K runs differing by a tiny start shift: outcome statistics");
   add_common(ensemble_cmd);
-  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  ensemble_cmd->add_option("--model", ensemble.model, "rom | fe | auto (the cheapest model the scene's error ladder puts within --tolerance of the FE reference, cached per scene)")->check(CLI::IsMember({"rom", "fe", "auto"}));
+  ensemble_cmd->add_option("--tolerance", ensemble.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval; default: the reference's own interval to its refinement, at least 0.005)")->check(finite_positive());
   ensemble_cmd->add_option("--integrator", ensemble.integrator,
                            "ROM time integrator: explicit (published) | implicit (the FE's implicit midpoint rule)")
     ->check(CLI::IsMember({"explicit", "implicit"}));
@@ -281,7 +282,8 @@ CLI::App *declare_map(CLI::App &app, const AddCommon &add_common, MapOptions &ma
   map_cmd->add_option("--acceleration", map.acceleration, "base acceleration amplitude axis [m/s^2]: A:B:STEP or one value");
   map_cmd->add_option("--start", map.start, "start position axis x_C/L: A:B:STEP or one value");
   map_cmd->add_option("--axis", map.axes, "any scene parameter as an axis: \"Section/Name=A:B:STEP\" (repeatable)");
-  map_cmd->add_option("--model", map.model, "rom | fe")->check(CLI::IsMember({"rom", "fe"}));
+  map_cmd->add_option("--model", map.model, "rom | fe | auto (one model for every cell: the one --model auto picks on the scene without the axes)")->check(CLI::IsMember({"rom", "fe", "auto"}));
+  map_cmd->add_option("--tolerance", map.tolerance, "--model auto: the largest distance of the end position x_C/L to the FE reference (W1, upper end of its 90 % interval; default: the reference's own interval to its refinement, at least 0.005)")->check(finite_positive());
   map_cmd->add_option("--members", map.members, "K members per cell (start x_C/L + m x perturbation)")
     ->check(integer_in(1, 1000));
   map_cmd->add_option("--perturbation", map.perturbation, "start shift of x_C/L per member index")
@@ -326,13 +328,10 @@ CLI::App *declare_ladder(CLI::App &app, const AddCommon &add_common, LadderOptio
   auto *ladder_cmd = app.add_subcommand("ladder", "the error ladder alone (report section 5.1-5.2): model settings "
                                                   "as ensembles against the FE reference");
   add_common(ladder_cmd);
-  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full (8 members over 40 s)");
+  ladder_cmd->add_flag("--full", ladder.full, "the rungs of verify --full, the speed-accuracy front's candidates among them, each explicit ROM also at dt/2; writes front.csv (8 members over 40 s)");
   ladder_cmd->add_flag("--diagnostics", ladder.diagnostics,
                        "the rungs of --full and the diagnostic rungs (the midpoint-rule FE in dt, the ROM with all "
                        "modes; 4 members each)");
-  ladder_cmd->add_flag("--front", ladder.front,
-                       "the rungs of --full and the candidates of the speed-accuracy front (more modes, static "
-                       "corrections), every ROM rung also at dt/2; writes front.csv (8 members over 40 s)");
   ladder_cmd->add_option("--rung", ladder.rungs,
                          "run only this rung, by name, of the ladder with diagnostics and front candidates (repeatable; the reference, the scene's FE model, always runs)");
   ladder_cmd->add_option("--members", ladder.members, "members per rung (default 4, or 8 with --full)")

@@ -24,6 +24,7 @@
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
+#include "verification/cli/ladder_cache.h"
 #include "verification/cli/study_results.h"
 #include "verification/report/map_files.h"
 #include "numerics/elapsed.h"
@@ -94,6 +95,7 @@ namespace beamslider
       std::size_t n_skipped = 0, n_done = 0;
       std::map<std::string, unsigned int> class_counts;
       clock::time_point work_start;
+      std::string model_choice; // --model auto: the numbers the model was picked on
       MapCells *kept = nullptr; // computing for a handover: the cells' rows go here, not to files
       bool replaying = false;   // writing a kept map: no progress per cell
     };
@@ -117,6 +119,28 @@ namespace beamslider
       return grid;
     }
 
+    // --model auto: the model picked on the scene without the axes (its
+    // error ladder, cached), the same in every cell. An axis over the
+    // discretisation would change the model it picked, so it is refused.
+    void choose_map_model(MapRun &m)
+    {
+      for (const MapAxis &a : m.grid.axes)
+        if (a.parameter.rfind("Discretisation/", 0) == 0 || a.parameter.rfind("Time stepping/", 0) == 0)
+          throw InputError("--model auto picks one model for every cell; the axis over '" + a.parameter +
+                           "' would change it: use --model rom or fe");
+      if (m.base.solid.enabled())
+        throw InputError("--model auto chooses on the beam's error ladder, which a solid scene does not have");
+      const std::string cache = choice_cache_dir(m.base);
+      if (m.mpi.size() > 1 && !has_cached_choice(m.base, cache))
+        throw InputError("--model auto under mpirun needs the scene's error ladder cached: run `ensemble --model "
+                         "auto` or `simulate --model auto` on the scene once without mpirun, which computes and "
+                         "caches it in " + cache);
+      m.settings.model  = choose_model(m.base, m.options.tolerance, cache, m.model_choice);
+      m.settings.chosen = true;
+      if (m.mpi.rank() == 0)
+        console() << m.model_choice << std::endl;
+    }
+
     // The scene, grid and settings of the map. Every cell's scene is checked
     // before any work: a cell outside the allowed ranges is an input error
     // on every rank alike, not a dead worker.
@@ -129,6 +153,10 @@ namespace beamslider
 
       MapSettings &settings = m.settings;
       settings.model.family = m.options.model;
+      if (m.options.model == "auto")
+        choose_map_model(m);
+      else if (m.options.tolerance)
+        throw InputError("--tolerance applies to --model auto only");
       settings.n_members    = m.options.members;
       settings.perturbation = m.options.perturbation;
       settings.end_time     = m.options.end_time ? *m.options.end_time : m.base.time_stepping.end_time;
@@ -150,6 +178,7 @@ namespace beamslider
     {
       std::ostringstream what;
       what << "scene " << m.base.name << " content " << scene_content_key(m.base) << "\nmodel " << m.options.model
+           << (m.settings.chosen ? " " + m.settings.model.label() : std::string())
            << "\nmembers " << m.settings.n_members << "\nperturbation " << m.settings.perturbation << "\nend time "
            << m.settings.end_time << " s\n";
       for (const std::string &o : m.common.overrides)
@@ -294,6 +323,9 @@ namespace beamslider
               << "| outcome | members (this run) |\n|---|---|\n";
       for (const auto &[name, count] : m.class_counts)
         summary << "| " << name << " | " << count << " |\n";
+      if (m.settings.chosen)
+        summary << "\nThe model in every cell, by `--model auto` on the scene without the axes: "
+                << m.settings.model.label() << ".\n\n```\n" << m.model_choice << "```\n";
       summary << "\nFiles: map.csv (one row per cell and member), timing.csv, published_cases.csv, map_*.png.\n";
       return summary.str();
     }

@@ -359,8 +359,6 @@ namespace beamslider
 
       if (options.model != "rom" && options.model != "fe" && options.model != "auto")
         throw InputError("--model '" + options.model + "' is not one of rom, fe, auto");
-      if (options.model == "auto" && !options.tolerance)
-        throw InputError("--model auto needs --tolerance (the largest acceptable distance of the end position x_C/L to the FE reference's, e.g. 0.03)");
       if (options.end_time && !(*options.end_time > 0.))
         throw InputError("--end-time " + std::to_string(*options.end_time) + " s must be > 0");
     }
@@ -464,8 +462,7 @@ namespace beamslider
                              scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
                              "--model fe (the 1D beam)");
           // The ladder is cached beside the scene's reports, keyed by its content.
-          const std::string cache = (std::filesystem::path("reports") / scene.name / "model_choice").string();
-          setting = choose_model(scene, *r.options.tolerance, cache, r.outcome.why);
+          setting = choose_model(scene, r.options.tolerance, choice_cache_dir(scene), r.outcome.why);
           console() << r.outcome.why << std::endl;
         }
     }

@@ -167,7 +167,8 @@ namespace beamslider
 
   struct EnsembleOptions
   {
-    std::string model = "rom";      // rom | fe
+    std::string model = "rom";      // rom | fe | auto (model_choice.h)
+    std::optional<double> tolerance; // --model auto
     std::string case_name;          // a published case or ablation
     unsigned int members = 8;       // K
     double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
@@ -191,7 +192,6 @@ namespace beamslider
   {
     bool full = false;              // the rungs of `verify --full` (default: those of the quick report)
     bool diagnostics = false;       // and the diagnostic rungs (implies full)
-    bool front = false;             // the full ladder and the front's candidates (LadderScope::front)
     std::vector<std::string> rungs; // names of rungs of LadderScope::every; the reference always runs
     std::optional<unsigned int> members; // default 4 (quick) or 8 (full)
     std::optional<double> end_time;      // [s], default 25 (quick) or 40 (full)
@@ -206,7 +206,8 @@ namespace beamslider
     std::string acceleration;       // [m/s²]
     std::string start;              // x_C/L [-]
     std::vector<std::string> axes;  // "Section/Name=A:B:STEP"
-    std::string model = "rom";      // rom | fe
+    std::string model = "rom";      // rom | fe | auto (model_choice.h, on the scene without the axes)
+    std::optional<double> tolerance; // --model auto
     unsigned int members = 1;       // K per cell
     double perturbation  = 1e-9;    // shift of the start x_C/L per member index [-]
     std::optional<double> end_time; // [s]; default the scene's

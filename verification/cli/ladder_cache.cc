@@ -13,9 +13,9 @@ namespace beamslider
 {
   namespace
   {
-    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "n_elements",
+    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "static_corrections", "n_elements",
                                                     "integrator",  "time_step_s",  "damped_modes", "theta", "reference",
-                                                    "cost_units",  "final_x_median", "w1",         "w1_high"};
+                                                    "cost_units",  "final_x_median", "w1",         "w1_high", "refined_alike"};
 
     // The cache, or an empty vector if there is none or it is not ours.
     std::vector<LadderChoiceRow> read_cache(const std::string &path)
@@ -33,17 +33,19 @@ namespace beamslider
           LadderChoiceRow r;
           r.rung                = c[0];
           r.model.family        = c[1];
-          r.model.n_modes       = std::stoul(c[2]);
-          r.model.n_elements    = std::stoul(c[3]);
-          r.model.integrator    = c[4];
-          r.model.time_step     = std::stod(c[5]);
-          r.model.damped_modes  = std::stoul(c[6]);
-          r.model.theta         = std::stod(c[7]);
-          r.reference           = c[8] == "1";
-          r.cost_units          = std::stod(c[9]);
-          r.final_x_median      = std::stod(c[10]);
-          r.w1                  = std::stod(c[11]);
-          r.w1_high             = std::stod(c[12]);
+          r.model.n_modes              = std::stoul(c[2]);
+          r.model.n_static_corrections = std::stoul(c[3]);
+          r.model.n_elements           = std::stoul(c[4]);
+          r.model.integrator           = c[5];
+          r.model.time_step            = std::stod(c[6]);
+          r.model.damped_modes         = std::stoul(c[7]);
+          r.model.theta                = std::stod(c[8]);
+          r.reference                  = c[9] == "1";
+          r.cost_units                 = std::stod(c[10]);
+          r.final_x_median             = std::stod(c[11]);
+          r.w1                         = std::stod(c[12]);
+          r.w1_high                    = std::stod(c[13]);
+          r.refined_alike              = c[14] == "1";
           rows.push_back(r);
         }
       return rows;
@@ -56,10 +58,11 @@ namespace beamslider
     {
       CsvWriter cache(path, cache_columns);
       for (const auto &r : rows)
-        cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes), CsvWriter::cell(r.model.n_elements),
+        cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes),
+                   CsvWriter::cell(r.model.n_static_corrections), CsvWriter::cell(r.model.n_elements),
                    r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
                    number(r.model.theta), r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
-                   number(r.w1_high)});
+                   number(r.w1_high), r.refined_alike ? "1" : "0"});
       cache.close();
     }
 
@@ -68,7 +71,7 @@ namespace beamslider
     {
       std::size_t reference = 0;
       const auto rungs      = default_ladder(scene, LadderScope::quick, reference);
-      console() << "simulate --model auto: no cached error ladder for this scene; running it (" << rungs.size()
+      console() << "--model auto: no cached error ladder for this scene; running it (" << rungs.size()
                 << " models × " << choice_ladder_members << " members over " << choice_ladder_end_time
                 << " s, a few minutes, the FE most of it) ..." << std::endl;
       return run_choice_ladder(scene, rungs, reference, [](const LadderRung &rung, std::size_t) {
@@ -77,7 +80,18 @@ namespace beamslider
     }
   } // namespace
 
-  ModelSetting choose_model(const Scene &scene, const double tolerance, const std::string &cache_dir, std::string &why)
+  std::string choice_cache_dir(const Scene &scene)
+  {
+    return (std::filesystem::path("reports") / scene.name / "model_choice").string();
+  }
+
+  bool has_cached_choice(const Scene &scene, const std::string &cache_dir)
+  {
+    return !read_cache(cache_dir + "/ladder-" + scene_content_key(scene) + ".csv").empty();
+  }
+
+  ModelSetting choose_model(const Scene &scene, const std::optional<double> tolerance, const std::string &cache_dir,
+                            std::string &why)
   {
     const std::string path = cache_dir + "/ladder-" + scene_content_key(scene) + ".csv";
     std::vector<LadderChoiceRow> rows = read_cache(path);
@@ -94,7 +108,7 @@ namespace beamslider
         for (const std::string &verdict : ladder.check_verdicts)
           log << "  " << verdict << "\n";
       }
-    const ModelChoice choice = choose_from_ladder(scene, rows, tolerance);
+    const ModelChoice choice = tolerance ? choose_from_ladder(scene, rows, *tolerance) : choose_from_ladder(scene, rows);
     why                      = log.str() + choice.why;
     return choice.model;
   }

@@ -1,21 +1,32 @@
-// The error ladder that `simulate --model auto` decides on
+// The error ladder that `--model auto` decides on
 // (verification/studies/model_choice.h), computed on demand and cached in
 //   <cache_dir>/ladder-<key>.csv
 // where <key> is scene_content_key(scene): a changed scene gets a new key,
 // so a stale cache is never read.
-// Columns: rung,family,n_modes,n_elements,integrator,time_step_s,
-//          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high
+// Columns: rung,family,n_modes,static_corrections,n_elements,integrator,time_step_s,
+//          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high,
+//          refined_alike
 #pragma once
 
 #include "meshes/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
+#include <optional>
 #include <string>
 
 namespace beamslider
 {
+  // Where the commands keep the cache: beside the scene's reports,
+  // reports/<scene>/model_choice.
+  std::string choice_cache_dir(const Scene &scene);
+
+  // Whether `cache_dir` holds the ladder of `scene` (the choice runs nothing).
+  bool has_cached_choice(const Scene &scene, const std::string &cache_dir);
+
   // Reads the cached ladder for `scene` from `cache_dir`, or runs the quick
   // ladder (its progress on the console) and writes the cache; then picks
-  // by cheapest_within. The numbers it decided on go to `why`.
-  ModelSetting choose_model(const Scene &scene, double tolerance, const std::string &cache_dir, std::string &why);
+  // by cheapest_within at `tolerance`, or without one at
+  // default_choice_tolerance. The numbers it decided on go to `why`.
+  ModelSetting choose_model(const Scene &scene, std::optional<double> tolerance, const std::string &cache_dir,
+                            std::string &why);
 } // namespace beamslider

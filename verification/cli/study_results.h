@@ -31,6 +31,7 @@ namespace beamslider
     std::optional<OutcomeSamples> against; // --against: the other ensemble's outcomes
     std::size_t n_kept  = 0; // members read back from member_runs.csv
     double wall_seconds = 0;
+    std::string model_choice; // --model auto: the numbers the model was picked on
   };
 
   // One error ladder (command_ladder.cc): its rungs and settings, and what

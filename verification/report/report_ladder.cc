@@ -7,6 +7,7 @@
 #include "verification/report/report_convergence.h"
 #include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
+#include "verification/studies/model_choice.h"
 
 #include <algorithm>
 #include <chrono>
@@ -335,15 +336,53 @@ namespace beamslider
       describe_carrying_steps(md, study);
     }
 
-    // The speed–accuracy front (LadderScope::front), when the ladder has
-    // rungs checked in Δt: every such rung with its cost, its W₁ to the
-    // reference, its end state at Δt/2, and whether it is on the front;
-    // also as front.csv.
+    // What `--model auto` picks on this ladder's rows without a tolerance
+    // (model_choice.h), and why, in a sentence.
+    void describe_model_choice(std::ostream &md, const LadderStudy &study)
+    {
+      const std::vector<LadderChoiceRow> rows = choice_rows(study);
+      const double tolerance                  = default_choice_tolerance(rows);
+      const LadderChoiceRow &chosen           = cheapest_within(rows, tolerance);
+      const std::vector<std::size_t> front    = speed_accuracy_front(study);
+      const std::size_t picked                = static_cast<std::size_t>(&chosen - rows.data());
+      const LadderRungResult &r = study.rungs[picked], &published = study.rungs.front();
+      md << "\n**The model choice on this ladder.** `--model auto` (without `--tolerance`) grants W₁ ≤ "
+         << fixed(tolerance, 4)
+         << " L: the upper end of the reference's own W₁ interval to its refinement, at least "
+         << choice_tolerance_floor << " L. It picks the cheapest model by the stated cost whose W₁ interval to the "
+         << "reference ends within that and which ends alike refined: **" << chosen.rung << "** ("
+         << chosen.model.label() << ")";
+      if (chosen.reference)
+        md << ", the reference itself: no reduced model here met the tolerance.";
+      else
+        md << ", W₁ " << distance(r.position_to_reference) << ", " << fixed(r.cost_units / published.cost_units, 1)
+           << "× the published ROM's stated cost and " << fixed(r.wall_seconds_per_member / published.wall_seconds_per_member, 1)
+           << "× its wall time per member on this machine"
+           << (std::find(front.begin(), front.end(), picked) != front.end()
+                 ? "; it is on the front."
+                 : "; it is off the front only because a cheaper model has the smaller W₁ with the wider interval.");
+      md << " `simulate --model auto` decides on the quick ladder (4 members over 25 s) of the scene it is given.\n\n";
+    }
+
+    // What a refinement check ran: "Δt/2" or "N=30 Δt/8" against the rung.
+    std::string refinement_text(const ModelSetting &rung, const ModelSetting &refined)
+    {
+      std::ostringstream t;
+      if (refined.n_modes != rung.n_modes)
+        t << "N=" << refined.n_modes << " ";
+      t << "Δt/" << std::lround(rung.time_step / refined.time_step);
+      return t.str();
+    }
+
+    // The speed–accuracy front: every rung with a refinement check (in Δt,
+    // or in N) and its cost, its W₁ to the reference, its end state refined,
+    // and whether it is on the front; also as front.csv. Then the model
+    // `--model auto` would pick from these rows (model_choice.h).
     void describe_front(std::ostream &md, const std::string &dir, const LadderStudy &study, const std::string &heading)
     {
       std::vector<std::size_t> checked;
       for (std::size_t i = 0; i < study.rungs.size(); ++i)
-        if (study.step_check(i) && i != study.reference) // the reference's check: the paragraph above
+        if (study.refinement_check(i) && i != study.reference) // the reference's check: the paragraph above
           checked.push_back(i);
       if (checked.empty())
         return;
@@ -351,25 +390,29 @@ namespace beamslider
       const auto on_front = [&](const std::size_t i) { return std::find(front.begin(), front.end(), i) != front.end(); };
       CsvWriter csv(dir + "/front.csv",
                     {"rung", "n_modes", "static_corrections", "time_step_s", "wall_s_per_member", "cost_units",
-                     "final_x_median", "w1_to_reference", "w1_low", "w1_high", "spread", "half_step_final_x_median",
-                     "converged_in_dt", "on_front"});
+                     "final_x_median", "w1_to_reference", "w1_low", "w1_high", "spread", "refinement",
+                     "refined_final_x_median", "refined_alike", "on_front"});
       md << heading
-         << "Every ROM rung also ran at Δt/2 (the same members): a model that lands where the reference lands only at "
-            "one step has not shown it, because the end state is bistable (~0.33 or ~0.41 L on mueller2023) and "
-            "which state a discrete model reaches can change with its step. The front holds the rungs converged in "
-            "Δt that no other such rung beats on both the stated cost and W₁.\n\n"
-         << "| rung | Δt [s] | wall s/member | cost [units] | end x_C/L | W₁ to the reference [90 %] | at Δt/2 | "
+         << "Every explicit ROM rung also ran at Δt/2 with the same members (the one converged in N with ⌈1.5 N⌉ "
+            "modes at their smaller step): a model that lands where the reference lands only at one step has not "
+            "shown it, because the end state can be bistable (~0.33 or ~0.41 L on mueller2023) and which state a "
+            "discrete model reaches can change with its step. The front holds the rungs that end alike refined and "
+            "that no other such rung beats on both the stated cost and W₁.\n\n"
+         << "| rung | Δt [s] | wall s/member | cost [units] | end x_C/L | W₁ to the reference [90 %] | refined | "
             "on the front |\n|---|---|---|---|---|---|---|---|\n";
       for (const std::size_t i : checked)
         {
-          const LadderRungResult &r    = study.rungs[i];
-          const ConvergenceCheck &step = *study.step_check(i);
-          const bool half_ran          = step.trials.size() > 1;
-          const double half_median     = half_ran ? step.trials[1].final_position.median : NAN;
-          const SampleComparison &c    = r.position_to_reference;
+          const LadderRungResult &r     = study.rungs[i];
+          const ConvergenceCheck &check = *study.refinement_check(i);
+          const bool refined_ran        = check.trials.size() > 1;
+          const double refined_median   = refined_ran ? check.trials[1].final_position.median : NAN;
+          const std::string refinement  = refined_ran ? refinement_text(r.rung.model, check.trials[1].model) : "";
+          const SampleComparison &c     = r.position_to_reference;
           md << "| " << r.rung.name << " | " << r.rung.model.time_step << " | " << fixed(r.wall_seconds_per_member, 2)
              << " | " << r.cost_units << " | " << median_range(r.final_position, 3) << " | " << distance(c) << " | "
-             << (half_ran ? fixed(half_median, 3) + (step.converged ? " (alike)" : " (moves)") : std::string("–"))
+             << (refined_ran ? fixed(refined_median, 3) + " at " + refinement +
+                                 (check.converged ? " (alike)" : " (moves)")
+                             : std::string("–"))
              << " | " << (on_front(i) ? "**yes**" : "no") << " |\n";
           csv.row({r.rung.name, CsvWriter::cell(r.rung.model.n_modes),
                    CsvWriter::cell(r.rung.model.n_static_corrections), CsvWriter::cell(r.rung.model.time_step),
@@ -377,11 +420,11 @@ namespace beamslider
                    r.final_position.n ? CsvWriter::cell(r.final_position.median, 6) : "",
                    c.n_a ? CsvWriter::cell(c.wasserstein, 6) : "", c.n_a ? CsvWriter::cell(c.interval_low, 6) : "",
                    c.n_a ? CsvWriter::cell(c.interval_high, 6) : "", c.n_a ? CsvWriter::cell(c.spread, 6) : "",
-                   half_ran ? CsvWriter::cell(half_median, 6) : "", step.converged ? "1" : "0",
+                   refinement, refined_ran ? CsvWriter::cell(refined_median, 6) : "", check.converged ? "1" : "0",
                    on_front(i) ? "1" : "0"});
         }
       csv.close();
-      md << "\n";
+      describe_model_choice(md, study);
     }
   } // namespace
 
@@ -520,7 +563,7 @@ namespace beamslider
 
   LadderScope ladder_scope(const bool full, const bool diagnostics)
   {
-    return !full ? LadderScope::quick : diagnostics ? LadderScope::diagnostics : LadderScope::full;
+    return !full ? LadderScope::quick : diagnostics ? LadderScope::diagnostics : LadderScope::front;
   }
 
   LadderRunSettings ladder_run_settings(const bool full_length)

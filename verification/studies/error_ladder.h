@@ -42,12 +42,12 @@ namespace beamslider
     // The rung claims to be converged in N: the ladder checks it against
     // ⌈1.5 N⌉ modes (convergence_check.h).
     bool converged_in_n = false;
-    // The rung is run at Δt/2 too (one halving, convergence_check.h): a
-    // candidate of the speed–accuracy front (LadderScope::front) is on the
-    // front only if it ends alike there. Not converging is a finding about
-    // the candidate, not a failed claim of the ladder (LadderStudy::proven).
+    // The rung is run at Δt/2 too (one halving, convergence_check.h): it
+    // is on the speed–accuracy front only if it ends alike there. Not
+    // converging is a finding about the model, not a failed claim of the
+    // ladder (LadderStudy::proven).
     bool checked_in_dt = false;
-    bool front_candidate = false; // added by LadderScope::front
+    bool front_candidate = false; // a model tried for the front only (add_front_candidates)
   };
 
   // The number of bending modes the scene's FE mesh has: its free w and θ
@@ -90,15 +90,19 @@ namespace beamslider
     // reference check's accepted trial (or, not converged, its finest).
     std::vector<ConvergenceCheck> checks;
     std::vector<std::size_t> check_rungs; // the rung of each check (empty: every check is a claim)
-    // Whether every claim converged: the reference in Δt, a rung converged
-    // in N. The Δt checks of front candidates are findings, not claims.
+    // Whether check c is a claim of the ladder (the reference in Δt, a rung
+    // converged in N) rather than a finding about a rung (its Δt check).
+    bool is_claim(std::size_t c) const;
+    // Whether every claim converged.
     bool proven() const;
-    // The check of rung i in Δt, or null.
-    const ConvergenceCheck *step_check(std::size_t i) const;
+    // The check that refines rung i: in Δt, or else in N (whose ⌈1.5 N⌉
+    // modes run at a smaller step too); null if it has none.
+    const ConvergenceCheck *refinement_check(std::size_t i) const;
   };
 
   // The speed–accuracy front: the rungs (not the reference) whose members
-  // all ran, whose Δt check, if they have one, converged, and which no such
+  // all ran, whose refinement check (in Δt, or else in N), if they have one,
+  // converged, and which no such
   // rung beats on both cost (the stated cost units, fe_rom_study.h) and W₁
   // to the reference. In ascending cost.
   std::vector<std::size_t> speed_accuracy_front(const LadderStudy &study);
@@ -116,32 +120,32 @@ namespace beamslider
   // Which rungs a ladder has.
   //   quick        the published ROM (N = scene's, Δt = scene's), the
   //                converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
-  //                explicit step's limit 2/ω_N forces the smaller steps) and
-  //                the reference: the scene's own FE model (its FE time step
-  //                and θ; on mueller2023 θ = 0.51 at Δt/2, which ends where
-  //                the midpoint-rule FE converged in Δt ends,
-  //                doc/findings.md);
-  //   full         adds the ROM N = 20 with the FE's implicit midpoint rule
-  //                (the verdict of `verify --full`);
-  //   front        adds to the full ladder the candidates of the
-  //                speed–accuracy front (doc/verification.md §6): ROMs of 6,
-  //                8, 12 and 15 modes and 5…8 modes with 4 static
-  //                corrections, each at its explicit step's limit; every
-  //                explicit ROM rung is run at Δt/2 too (checked_in_dt);
-  //   every        every rung of the scopes above, the pool `ladder --rung`
-  //                picks from;
-  //   diagnostics  adds, as diagnostic rungs, the implicit ROM with every
-  //                bending mode of the FE mesh at Δt/4 and the midpoint-rule
-  //                FE (θ = ½) at Δt/4, Δt/8, Δt/2 and Δt, all damping the
-  //                scene's N: the plateau the undamped high modes put the
-  //                midpoint rule on, shared by the ROM with all modes. They
-  //                explain the choice of the reference and cost as much again
-  //                as the rest of the full ladder, so they run only when asked
-  //                (`verify --full --diagnostics`, `ladder --diagnostics`).
+  //                explicit step's limit 2/ω_N forces the smaller steps),
+  //                two candidates of the speed–accuracy front at their
+  //                explicit step's limit (N = 15, and 8 modes with 4 static
+  //                corrections: doc/verification.md §6) and the reference:
+  //                the scene's own FE model (its FE time step and θ; on
+  //                mueller2023 θ = 0.51 at Δt/2, which ends where the
+  //                midpoint-rule FE converged in Δt ends, doc/findings.md);
+  //   front        the verdict of `verify --full`: adds the ROM N = 20 with
+  //                the FE's implicit midpoint rule and every candidate of the
+  //                front, ROMs of 6, 8, 12 and 15 modes and 5…8 modes with 4
+  //                static corrections;
+  //   diagnostics  adds to the front's ladder, as diagnostic rungs, the
+  //                implicit ROM with every bending mode of the FE mesh at
+  //                Δt/4 and the midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2
+  //                and Δt, all damping the scene's N: the plateau the
+  //                undamped high modes put the midpoint rule on, shared by
+  //                the ROM with all modes. They explain the choice of the
+  //                reference and cost as much again as the rest of the full
+  //                ladder, so they run only when asked (`verify --full
+  //                --diagnostics`, `ladder --diagnostics`);
+  //   every        every rung there is, the pool `ladder --rung` picks from.
+  // On every scope each explicit ROM rung but the one converged in N runs at
+  // Δt/2 too (checked_in_dt).
   enum class LadderScope
   {
     quick,
-    full,
     diagnostics,
     front,
     every

@@ -1,7 +1,9 @@
-// `simulate --model auto`: the cheapest model whose ensemble end state lies
-// within a tolerance of the FE reference's, decided on the error ladder of
-// the scene (error_ladder.h, the quick ladder: 4 members over 25 s), never
-// on a wall-clock time.
+// `--model auto`: the cheapest model whose ensemble end state lies within a
+// tolerance of the FE reference's and that ends alike at half its step,
+// decided on the error ladder of the scene (error_ladder.h, the quick
+// ladder: 4 members over 25 s), never on a wall-clock time. That model is on
+// the ladder's speed–accuracy front unless a cheaper one has the smaller W₁
+// but the wider interval.
 //
 // The ladder is run here and its rows returned; the command line keeps them
 // in a cache keyed by scene_content_key (verification/cli/ladder_cache.h),
@@ -37,11 +39,27 @@ namespace beamslider
     bool reference               = false;
     double cost_units            = 0; // one member over the ladder's window
     double final_x_median        = 0;
-    double w1 = 0, w1_high = 0;       // to the reference; 0 for the reference
+    // To the reference; for the reference, its own: to the refinement its
+    // convergence check ran beside the accepted step (0 if none).
+    double w1 = 0, w1_high = 0;
+    bool refined_alike = true; // its refinement check (Δt/2, or N) ended alike, or it has none
   };
 
-  // The cheapest row (by cost_units) whose W₁ interval to the reference ends
-  // at or below `tolerance` (in x_C/L); the reference always qualifies.
+  // The rows of a ladder's rungs.
+  std::vector<LadderChoiceRow> choice_rows(const LadderStudy &study);
+
+  // The smallest tolerance the choice grants when none is given [x_C/L]:
+  // the bar of a reduced model that lands where the FE lands (the front's,
+  // doc/verification.md §6).
+  constexpr double choice_tolerance_floor = 0.005;
+  // The tolerance when none is given: the upper end of the reference's own
+  // W₁ interval to its refinement (how well the reference knows its end
+  // state), at least choice_tolerance_floor.
+  double default_choice_tolerance(const std::vector<LadderChoiceRow> &rows);
+
+  // The cheapest row (by cost_units) that ended alike refined and whose W₁
+  // interval to the reference ends at or below `tolerance` (in x_C/L); the
+  // reference always qualifies.
   const LadderChoiceRow &cheapest_within(const std::vector<LadderChoiceRow> &rows, double tolerance);
 
   // The quick ladder of `scene` run: a row per rung, and the verdicts of
@@ -63,4 +81,6 @@ namespace beamslider
     std::string why;
   };
   ModelChoice choose_from_ladder(const Scene &scene, const std::vector<LadderChoiceRow> &rows, double tolerance);
+  // The same with the tolerance default_choice_tolerance gives.
+  ModelChoice choose_from_ladder(const Scene &scene, const std::vector<LadderChoiceRow> &rows);
 } // namespace beamslider

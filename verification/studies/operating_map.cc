@@ -164,8 +164,9 @@ namespace beamslider
         RunResult result;
         try
           {
-            ModelSetting model = scene_model(member_scene, settings.model.family);
-            model.integrator   = settings.model.integrator;
+            ModelSetting model = settings.chosen ? settings.model : scene_model(member_scene, settings.model.family);
+            if (!settings.chosen)
+              model.integrator = settings.model.integrator;
             const std::unique_ptr<BeamSystem> beam = make_beam_model(member_scene, model);
             RunOptions options        = RunOptions::from_scene(member_scene, model.time_step); // the FE at its FE time step
             options.progress_interval = 1e300;

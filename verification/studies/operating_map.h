@@ -51,7 +51,8 @@ namespace beamslider
 
   struct MapSettings
   {
-    ModelSetting model;          // family; Δt, modes, elements from each cell's scene
+    ModelSetting model;          // family; Δt, modes, elements from each cell's scene, unless `chosen`
+    bool chosen = false;         // `model` as it is in every cell (--model auto)
     unsigned int n_members = 1;  // K
     double perturbation    = 1e-9; // start x_C/L + m ε
     double end_time        = 60.;  // [s]

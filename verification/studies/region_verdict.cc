@@ -92,8 +92,10 @@ namespace beamslider
 
   std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference)
   {
-    // The quick ladder is exactly these models: published, N = 10, N = 20
-    // (converged in N), the reference.
+    // The quick ladder's models: published, N = 10, N = 20 (converged in
+    // N), the front's N = 15 and 8 + 4 corrections, the reference; every
+    // explicit ROM but N = 20 checked at Δt/2. Where the front's pick holds
+    // is what the region shows.
     return default_ladder(scene, LadderScope::quick, reference);
   }
 
