@@ -21,11 +21,13 @@ namespace beamslider
   }
 
   FEModes add_static_corrections(const FEBeam &beam, const FEModes &modes, const unsigned int n_modes,
-                                 const std::vector<double> &load_positions)
+                                 const std::vector<double> &load_positions, const unsigned int ritz_blocks)
   {
     if (n_modes > modes.shapes.size())
       throw std::invalid_argument("add_static_corrections: " + std::to_string(n_modes) + " modes requested, " +
                                   std::to_string(modes.shapes.size()) + " computed");
+    if (ritz_blocks < 1)
+      throw std::invalid_argument("add_static_corrections: ritz_blocks = 0; 1 is the static corrections alone");
     const auto &constraints = beam.bending_constraints();
     dealii::SparseMatrix<double> K_sparse, M_sparse;
     beam.assemble_mass_matrix(M_sparse, constraints);
@@ -52,8 +54,26 @@ namespace beamslider
     Eigen::VectorXd inverse_omega_squared(n_modes);
     for (unsigned int j = 0; j < n_modes; ++j)
       inverse_omega_squared[j] = 1. / (modes.omega[j] * modes.omega[j]);
-    Eigen::MatrixXd Psi = free.K.llt().solve(F) - Phi * inverse_omega_squared.asDiagonal() * (Phi.transpose() * F);
-    Psi -= Phi * (Phi.transpose() * free.M * Psi);
+    const Eigen::LLT<Eigen::MatrixXd> K_factor(free.K);
+    const auto without_modes = [&](Eigen::MatrixXd X) -> Eigen::MatrixXd {
+      X -= Phi * (Phi.transpose() * free.M * X);
+      // Unit M-norm per column: the blocks shrink by about 1/ω_{N+1}² each,
+      // and the Gram threshold below is relative to the largest.
+      for (Eigen::Index c = 0; c < X.cols(); ++c)
+        if (const double norm = std::sqrt(X.col(c).dot(free.M * X.col(c))); norm > 0)
+          X.col(c) /= norm;
+      return X;
+    };
+    Eigen::MatrixXd block =
+      without_modes(K_factor.solve(F) - Phi * inverse_omega_squared.asDiagonal() * (Phi.transpose() * F));
+    Eigen::MatrixXd Psi(n, m * ritz_blocks);
+    Psi.leftCols(m) = block;
+    // Load-dependent Ritz blocks: K⁻¹ M times the block before.
+    for (unsigned int j = 1; j < ritz_blocks; ++j)
+      {
+        block                    = without_modes(K_factor.solve(free.M * block));
+        Psi.middleCols(j * m, m) = block;
+      }
 
     // An M-orthonormal basis of span{ψ}: directions the others nearly span
     // (loads close together, or a load where the modes already carry it all)
@@ -61,7 +81,7 @@ namespace beamslider
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(Psi.transpose() * free.M * Psi);
     const double largest = gram.eigenvalues().size() ? gram.eigenvalues().maxCoeff() : 0.;
     std::vector<Eigen::Index> kept;
-    for (Eigen::Index k = 0; k < m; ++k)
+    for (Eigen::Index k = 0; k < Psi.cols(); ++k)
       if (gram.eigenvalues()[k] > 1e-10 * largest)
         kept.push_back(k);
     Eigen::MatrixXd Q(n, kept.size());

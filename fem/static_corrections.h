@@ -15,6 +15,16 @@
 // "modal" basis, so the reduced model, its cubic force (built from K' and
 // k_ax of the basis) and its explicit step take it unchanged; the explicit
 // step's limit becomes 2/ω of the highest Ritz vector.
+//
+// Load-dependent Ritz vectors (Wilson, Yuan & Dickens 1982) go one step
+// further: after the static block Ψ₁ = [ψ_k], block j + 1 is K⁻¹ M Ψ_j, the
+// static response to the inertia forces of block j, again without its part
+// along the kept modes. Where the static corrections carry an impact's
+// quasi-static deflection, the next blocks carry the first dynamic
+// corrections to it: the response of the modes above N, ordered by what the
+// corner loads excite rather than by frequency. Each block stays
+// M-orthogonal to the kept modes (K⁻¹ M φ_n = φ_n / ω_n²), so the Ritz
+// step above applies to all blocks together.
 #pragma once
 
 #include "fem/fe_beam.h"
@@ -25,12 +35,13 @@
 namespace beamslider
 {
   // The first n_modes of `modes` followed by the Ritz vectors of the static
-  // corrections for unit transverse loads at `load_positions` [m], in
-  // ascending ω, sign as compute_bending_modes fixes it. Corrections that
-  // the others (nearly) span are dropped, so the basis may hold fewer than
-  // n_modes + load_positions.size() vectors.
+  // corrections for unit transverse loads at `load_positions` [m] and, for
+  // ritz_blocks > 1, of ritz_blocks − 1 further blocks of load-dependent
+  // Ritz vectors, in ascending ω, sign as compute_bending_modes fixes it.
+  // Vectors that the others (nearly) span are dropped, so the basis may hold
+  // fewer than n_modes + ritz_blocks · load_positions.size() vectors.
   FEModes add_static_corrections(const FEBeam &beam, const FEModes &modes, unsigned int n_modes,
-                                 const std::vector<double> &load_positions);
+                                 const std::vector<double> &load_positions, unsigned int ritz_blocks = 1);
 
   // m load positions evenly over the beam: x_k = (k − ½) L / m.
   std::vector<double> static_correction_positions(double length, unsigned int m);

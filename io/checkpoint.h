@@ -19,7 +19,8 @@ namespace beamslider
   // The format of the payload; raise it whenever what is saved changes.
   // 2: simulate's run description carries the whole model setting (θ, integrator, damped set).
   // 3: and the run's identity (command, model, scene) and digests of the files it continues.
-  constexpr std::uint64_t checkpoint_format = 3;
+  // 4: the model setting carries its static corrections and their Ritz blocks.
+  constexpr std::uint64_t checkpoint_format = 4;
 
   // The complete file around a payload, and back (throws CheckpointError).
   std::string checkpoint_file_bytes(const std::string &payload);

@@ -232,6 +232,10 @@ namespace beamslider
     // residual flexibility of unit point loads at m positions evenly over
     // the beam (fem/static_corrections.h); 0: the modes alone.
     unsigned int n_static_corrections = 0;
+    // Blocks of such vectors: 1, the static corrections alone; b > 1 adds
+    // b − 1 blocks of load-dependent Ritz vectors (K⁻¹M times the block
+    // before), m vectors each.
+    unsigned int ritz_blocks = 1;
     bool geometric_nonlinearity = true; // von Kármán bending–stretching coupling
   };
 

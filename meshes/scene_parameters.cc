@@ -326,6 +326,10 @@ namespace beamslider
       e.bind("Static corrections", s.discretisation.n_static_corrections, Integer(0, 40),
              "m, static corrections the reduced model adds to its N modes: the residual flexibility of unit point loads at m "
              "positions evenly over the beam (beam scenes only; 0: the modes alone)");
+      e.bind("Ritz blocks", s.discretisation.ritz_blocks, Integer(1, 8),
+             "b, blocks of m vectors the static corrections grow to: 1 the static corrections alone; b > 1 adds b - 1 "
+             "blocks of load-dependent Ritz vectors (Wilson), K^-1 M times the block before, each without its part "
+             "along the N modes (needs Static corrections >= 1)");
       e.bind("Geometric nonlinearity", s.discretisation.geometric_nonlinearity, "von Karman bending-stretching coupling on/off (ablation)");
       e.leave();
 
@@ -1168,6 +1172,9 @@ namespace beamslider
             "must be at least Number of modes + 1 = " + std::to_string(s.discretisation.n_modes + 1) +
               " so that the mesh carries the reduced model's modes");
     require(s.beam.length > 0, "Beam/Length", s.beam.length, "must be > 0 m");
+    require(s.discretisation.ritz_blocks == 1 || s.discretisation.n_static_corrections > 0, "Discretisation/Ritz blocks",
+            s.discretisation.ritz_blocks,
+            "must be 1 when Discretisation/Static corrections = 0: the Ritz blocks grow from the corrections' loads");
     validate_solid(s);
     validate_beam(s);
     validate_slider_window(s);

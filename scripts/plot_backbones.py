@@ -44,7 +44,7 @@ def command(folder):
 def report(folder):
     fig, axes = plt.subplots(1, 2, figsize=(12, 5))
     styles = {"rom_N1": ("c-", "ROM N = 1"), "rom_N3": ("g-", "ROM N = 3"), "rom_N5": ("b-", "ROM N = 5"),
-              "rom_N7": ("m-", "ROM N = 7"), "fe": ("r:", "FE (full model)"), "eq4": ("k--", "seed Eq. 4")}
+              "rom_N7": ("m-", "ROM N = 7"), "rom_N15": ("y-", "ROM N = 15"), "fe": ("r:", "FE (full model)"), "eq4": ("k--", "seed Eq. 4")}
     for ax, name, title in ((axes[0], "backbone_curves.csv", "scene as given"),
                             (axes[1], "backbone_ideal_curves.csv", "ideal clamp")):
         try:

@@ -131,12 +131,12 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   std::filesystem::create_directories(dir);
   const auto write_cache = [&](const std::string &reference_w1_high) {
     std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
-      << "rung,family,n_modes,static_corrections,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
+      << "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
          "w1,w1_high,refined_alike\n"
-      << "ROM N=5,rom,5,0,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1,1\n"
-      << "ROM N=15,rom,15,0,0,explicit,1e-05,0,0.5,0,7.5e6,0.409,0.0005,0.0008,0\n"
-      << "ROM N=8+4sc,rom,8,4,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.02,0.025,1\n"
-      << "FE,fe,0,0,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002," << reference_w1_high << ",1\n";
+      << "ROM N=5,rom,5,0,1,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1,1\n"
+      << "ROM N=15,rom,15,0,1,0,explicit,1e-05,0,0.5,0,7.5e6,0.409,0.0005,0.0008,0\n"
+      << "ROM N=8+4sc,rom,8,4,1,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.02,0.025,1\n"
+      << "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002," << reference_w1_high << ",1\n";
   };
   write_cache("0.003");
   std::string why;

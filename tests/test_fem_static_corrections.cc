@@ -59,6 +59,35 @@ namespace
       q.add((basis.shapes[n] * f) / (basis.omega[n] * basis.omega[n]), basis.shapes[n]);
     return q;
   }
+  // ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²): the basis is "modal".
+  void expect_modal(const BeamMatrices &m, const FEModes &basis)
+  {
+    Vector<double> Mx(basis.shapes.front().size()), Kx(basis.shapes.front().size());
+    for (unsigned int i = 0; i < basis.shapes.size(); ++i)
+      {
+        m.M.vmult(Mx, basis.shapes[i]);
+        m.K.vmult(Kx, basis.shapes[i]);
+        const double omega2 = basis.omega[i] * basis.omega[i];
+        for (unsigned int j = 0; j < basis.shapes.size(); ++j)
+          {
+            EXPECT_NEAR(basis.shapes[j] * Mx, i == j ? 1. : 0., 1e-10) << i << ' ' << j;
+            EXPECT_NEAR((basis.shapes[j] * Kx) / omega2, i == j ? 1. : 0., 1e-10) << i << ' ' << j;
+          }
+      }
+  }
+
+  // The part of x outside span(basis), by M-orthogonal projection, relative
+  // to x's M-norm.
+  double outside_span(const BeamMatrices &m, const FEModes &basis, const Vector<double> &x)
+  {
+    Vector<double> Mx(x.size()), rest = x;
+    m.M.vmult(Mx, x);
+    for (const Vector<double> &phi : basis.shapes)
+      rest.add(-(phi * Mx), phi);
+    Vector<double> Mrest(x.size());
+    m.M.vmult(Mrest, rest);
+    return std::sqrt((rest * Mrest) / (x * Mx));
+  }
 } // namespace
 
 TEST(StaticCorrections, BasisIsOrthonormalKeepsTheModesAndCarriesEachPointLoadExactly)
@@ -87,19 +116,7 @@ TEST(StaticCorrections, BasisIsOrthonormalKeepsTheModesAndCarriesEachPointLoadEx
   for (unsigned int n = N; n < N + corrections; ++n)
     EXPECT_GT(enriched.omega[n], enriched.omega[n - 1]);
 
-  // ΦᵀMΦ = I and ΦᵀKΦ = diag(ω²).
-  Vector<double> Mx(beam.n_dofs()), Kx(beam.n_dofs());
-  for (unsigned int i = 0; i < enriched.shapes.size(); ++i)
-    {
-      m.M.vmult(Mx, enriched.shapes[i]);
-      m.K.vmult(Kx, enriched.shapes[i]);
-      const double omega2 = enriched.omega[i] * enriched.omega[i];
-      for (unsigned int j = 0; j < enriched.shapes.size(); ++j)
-        {
-          EXPECT_NEAR(enriched.shapes[j] * Mx, i == j ? 1. : 0., 1e-10) << i << ' ' << j;
-          EXPECT_NEAR((enriched.shapes[j] * Kx) / omega2, i == j ? 1. : 0., 1e-10) << i << ' ' << j;
-        }
-    }
+  expect_modal(m, enriched);
 
   // The static deflection under a unit load at each load position: exact in
   // the enriched basis, short of it with the modes alone.
@@ -149,4 +166,74 @@ TEST(StaticCorrections, TheSceneParameterBuildsTheEnrichedReducedModel)
 
   setting.time_step = 1.01 * 2. / enriched.omega.back();
   EXPECT_THROW(require_stable_time_step(setting, *make_beam_model(scene, setting)), InputError);
+}
+
+// Load-dependent Ritz blocks (Wilson, Yuan & Dickens): with b = 2 the basis
+// is still modal with the modes unchanged, and it holds the second Krylov
+// block K⁻¹M ψ_k of every static correction ψ_k (computed here with
+// deal.II's sparse direct solver), which the corrections alone do not; the
+// span grows, so its lowest Ritz frequency comes down toward ω_{N+1} and
+// stays above it (Courant–Fischer).
+TEST(StaticCorrections, RitzBlocksHoldTheNextKrylovBlockAndApproachTheFirstMissingMode)
+{
+  const Scene scene = read_scene(scene_dir + "mueller2023.prm");
+  const FEBeam beam(scene);
+  BeamMatrices m;
+  assemble(beam, m);
+  dealii::SparseDirectUMFPACK K_inverse;
+  K_inverse.initialize(m.K);
+
+  const unsigned int N = 5, corrections = 2;
+  const FEModes modes             = compute_bending_modes(beam, N + 1);
+  const std::vector<double> loads = static_correction_positions(beam.length(), corrections);
+  const FEModes one = add_static_corrections(beam, modes, N, loads, 1);
+  const FEModes two = add_static_corrections(beam, modes, N, loads, 2);
+  ASSERT_EQ(two.shapes.size(), N + 2 * corrections);
+  for (unsigned int n = 0; n < N; ++n)
+    EXPECT_EQ(two.omega[n], modes.omega[n]);
+  expect_modal(m, two);
+
+  for (const double x : loads)
+    {
+      // ψ = K⁻¹f − Σ φ_n φ_nᵀ f / ω_n², then y = K⁻¹Mψ.
+      const Vector<double> f = unit_load(beam, x);
+      Vector<double> psi(beam.n_dofs()), Mpsi(beam.n_dofs()), y(beam.n_dofs());
+      K_inverse.vmult(psi, f);
+      for (unsigned int n = 0; n < N; ++n)
+        psi.add(-(modes.shapes[n] * f) / (modes.omega[n] * modes.omega[n]), modes.shapes[n]);
+      m.M.vmult(Mpsi, psi);
+      K_inverse.vmult(y, Mpsi);
+      EXPECT_LT(outside_span(m, one, psi), 1e-9) << "x = " << x;
+      EXPECT_LT(outside_span(m, two, y), 1e-8) << "x = " << x;
+      EXPECT_GT(outside_span(m, one, y), 1e-4) << "x = " << x;
+    }
+  const double omega_missing = modes.omega[N];
+  EXPECT_GE(one.omega[N], omega_missing * (1 - 1e-12));
+  EXPECT_GE(two.omega[N], omega_missing * (1 - 1e-12));
+  EXPECT_LT(two.omega[N] - omega_missing, one.omega[N] - omega_missing);
+}
+
+// The scene parameter: the reduced model of N modes, m corrections and b
+// blocks has N + b·m coordinates and is labelled so; blocks without
+// corrections are refused, naming the parameter.
+TEST(StaticCorrections, TheRitzBlocksParameterReachesTheReducedModel)
+{
+  Scene scene                               = read_scene(scene_dir + "mueller2023.prm");
+  scene.discretisation.n_static_corrections = 2;
+  scene.discretisation.ritz_blocks          = 3;
+  const ModelSetting setting                = scene_model(scene, "rom");
+  EXPECT_EQ(setting.ritz_blocks, 3u);
+  EXPECT_NE(setting.label().find("N=5+2sc+4ldr"), std::string::npos) << setting.label();
+  EXPECT_EQ(make_reduced_model(scene, setting).n_modes(), 5u + 3u * 2u);
+
+  scene.discretisation.n_static_corrections = 0;
+  try
+    {
+      validate_scene(scene);
+      FAIL() << "Ritz blocks without static corrections accepted";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("Discretisation/Ritz blocks"), std::string::npos) << e.what();
+    }
 }

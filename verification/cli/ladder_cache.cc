@@ -13,7 +13,7 @@ namespace beamslider
 {
   namespace
   {
-    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "static_corrections", "n_elements",
+    const std::vector<std::string> cache_columns = {"rung",        "family",       "n_modes",    "static_corrections", "ritz_blocks", "n_elements",
                                                     "integrator",  "time_step_s",  "damped_modes", "theta", "reference",
                                                     "cost_units",  "final_x_median", "w1",         "w1_high", "refined_alike"};
 
@@ -35,17 +35,18 @@ namespace beamslider
           r.model.family        = c[1];
           r.model.n_modes              = std::stoul(c[2]);
           r.model.n_static_corrections = std::stoul(c[3]);
-          r.model.n_elements           = std::stoul(c[4]);
-          r.model.integrator           = c[5];
-          r.model.time_step            = std::stod(c[6]);
-          r.model.damped_modes         = std::stoul(c[7]);
-          r.model.theta                = std::stod(c[8]);
-          r.reference                  = c[9] == "1";
-          r.cost_units                 = std::stod(c[10]);
-          r.final_x_median             = std::stod(c[11]);
-          r.w1                         = std::stod(c[12]);
-          r.w1_high                    = std::stod(c[13]);
-          r.refined_alike              = c[14] == "1";
+          r.model.ritz_blocks          = std::stoul(c[4]);
+          r.model.n_elements           = std::stoul(c[5]);
+          r.model.integrator           = c[6];
+          r.model.time_step            = std::stod(c[7]);
+          r.model.damped_modes         = std::stoul(c[8]);
+          r.model.theta                = std::stod(c[9]);
+          r.reference                  = c[10] == "1";
+          r.cost_units                 = std::stod(c[11]);
+          r.final_x_median             = std::stod(c[12]);
+          r.w1                         = std::stod(c[13]);
+          r.w1_high                    = std::stod(c[14]);
+          r.refined_alike              = c[15] == "1";
           rows.push_back(r);
         }
       return rows;
@@ -59,7 +60,8 @@ namespace beamslider
       CsvWriter cache(path, cache_columns);
       for (const auto &r : rows)
         cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes),
-                   CsvWriter::cell(r.model.n_static_corrections), CsvWriter::cell(r.model.n_elements),
+                   CsvWriter::cell(r.model.n_static_corrections), CsvWriter::cell(r.model.ritz_blocks),
+                   CsvWriter::cell(r.model.n_elements),
                    r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
                    number(r.model.theta), r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
                    number(r.w1_high), r.refined_alike ? "1" : "0"});

@@ -3,7 +3,7 @@
 //   <cache_dir>/ladder-<key>.csv
 // where <key> is scene_content_key(scene): a changed scene gets a new key,
 // so a stale cache is never read.
-// Columns: rung,family,n_modes,static_corrections,n_elements,integrator,time_step_s,
+// Columns: rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,
 //          damped_modes,theta,reference,cost_units,final_x_median,w1,w1_high,
 //          refined_alike
 #pragma once

@@ -32,6 +32,9 @@ namespace beamslider
       s << "FE " << n_elements << " el." << (axial_inertia ? "" : " no axial inertia");
     else
       s << "ROM N=" << n_modes << (n_static_corrections ? "+" + std::to_string(n_static_corrections) + "sc" : "")
+        << (n_static_corrections && ritz_blocks > 1
+              ? "+" + std::to_string(n_static_corrections * (ritz_blocks - 1)) + "ldr"
+              : "")
         << " " << coefficients << (integrator == "implicit" ? " implicit" : "");
     if (damped_modes)
       s << " damped " << damped_modes;
@@ -113,7 +116,10 @@ namespace beamslider
     s.n_modes    = scene.discretisation.n_modes;
     s.n_elements = scene.discretisation.n_elements;
     if (family == "rom")
-      s.n_static_corrections = scene.discretisation.n_static_corrections;
+      {
+        s.n_static_corrections = scene.discretisation.n_static_corrections;
+        s.ritz_blocks          = scene.discretisation.ritz_blocks;
+      }
     // A solid scene's ROM takes its coefficients from the solid by ICE
     // (fem/solid_reduced_model.h): what a user who brings a solid wants.
     if (scene.solid.enabled())
@@ -147,7 +153,8 @@ namespace beamslider
         FEModes modes = compute_bending_modes(beam, setting.n_modes);
         if (setting.n_static_corrections)
           modes = add_static_corrections(
-            beam, modes, setting.n_modes, static_correction_positions(beam.length(), setting.n_static_corrections));
+            beam, modes, setting.n_modes, static_correction_positions(beam.length(), setting.n_static_corrections),
+            setting.ritz_blocks);
         ModalBasis basis = make_modal_basis(beam, modes);
         rom.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
         if (setting.coefficients != "analytic")
@@ -208,6 +215,7 @@ namespace beamslider
     out.put(setting.family);
     out.put(std::uint64_t(setting.n_modes));
     out.put(std::uint64_t(setting.n_static_corrections));
+    out.put(std::uint64_t(setting.ritz_blocks));
     out.put(std::uint64_t(setting.n_elements));
     out.put(setting.time_step);
     out.put(setting.coefficients);
@@ -223,6 +231,7 @@ namespace beamslider
     s.family        = in.get_string();
     s.n_modes       = in.get_uint();
     s.n_static_corrections = in.get_uint();
+    s.ritz_blocks          = in.get_uint();
     s.n_elements    = in.get_uint();
     s.time_step     = in.get_double();
     s.coefficients  = in.get_string();
@@ -272,8 +281,9 @@ namespace beamslider
 
   double cost_per_simulated_second(const ModelSetting &setting, const Scene &scene)
   {
-    // A ROM's step costs by its coordinates: modes and static corrections.
-    const double n_coordinates = setting.n_modes + setting.n_static_corrections;
+    // A ROM's step costs by its coordinates: modes, static corrections and
+    // their Ritz blocks.
+    const double n_coordinates = setting.n_modes + setting.n_static_corrections * setting.ritz_blocks;
     const double per_step =
       setting.family == "fe"
         ? 40. * (setting.n_elements ? setting.n_elements : scene.discretisation.n_elements) / 32.

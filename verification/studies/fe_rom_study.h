@@ -40,6 +40,9 @@ namespace beamslider
     // rom on a beam scene: static corrections added to the N modes
     // (fem/static_corrections.h), 0 for none.
     unsigned int n_static_corrections = 0;
+    // rom with static corrections: their blocks (1: the corrections alone;
+    // b > 1 adds b − 1 blocks of load-dependent Ritz vectors).
+    unsigned int ritz_blocks = 1;
     // rom: analytic | step-condensed | ice on a beam scene;
     //      ice | step | exact | analytic on a solid scene (from the solid)
     std::string coefficients = "analytic";

@@ -22,7 +22,7 @@ namespace beamslider
       << s.contact.restitution << ' ' << s.contact.gravity << ' ' << s.contact.solver << ' ' << s.damping_ratio << ' '
       << s.excitation.frequency_hz << ' ' << s.excitation.acceleration_amplitude << ' '
       << s.initial.slider_position_over_L << ' ' << s.discretisation.n_elements << ' ' << s.discretisation.axial_degree
-      << ' ' << s.discretisation.n_modes << ' ' << s.discretisation.n_static_corrections << ' '
+      << ' ' << s.discretisation.n_modes << ' ' << s.discretisation.n_static_corrections << ' ' << s.discretisation.ritz_blocks << ' '
       << s.discretisation.geometric_nonlinearity << ' '
       << s.time_stepping.time_step << ' ' << s.solvers.contact_tolerance << ' ' << s.solvers.contact_sweeps << ' '
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
