@@ -236,7 +236,7 @@ TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
 // takes (read off the model: within 2/ω_max, and twice it is not unless it
 // is the scene's Δt). Every explicit ROM rung is checked at Δt/2, one
 // halving, but the one converged in N, whose check is in N. A candidate's
-// cost counts its coordinates, modes and corrections alike.
+// cost counts its coordinates, modes, corrections and Ritz vectors alike.
 TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep)
 {
   const Scene scene     = read_scene(mueller);
@@ -244,7 +244,7 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
   const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, quick_reference);
   const std::vector<LadderRung> front = default_ladder(scene, LadderScope::front, reference);
   ASSERT_EQ(reference, front.size() - 1);
-  ASSERT_EQ(front.size(), quick.size() + 7);
+  ASSERT_EQ(front.size(), quick.size() + 8);
   for (const LadderRung &q : quick)
     EXPECT_EQ(std::count_if(front.begin(), front.end(), [&](const LadderRung &r) { return r.name == q.name; }), 1)
       << q.name;
@@ -268,8 +268,8 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
           EXPECT_GT(2 * m.time_step, limit) << front[i].name;
         }
     }
-  EXPECT_EQ(n_candidates, 8u);
-  EXPECT_EQ(n_corrected, 4u);
+  EXPECT_EQ(n_candidates, 9u);
+  EXPECT_EQ(n_corrected, 5u);
 
   const LadderChecks checks = ladder_checks(scene, front, reference);
   unsigned int n_step_checks = 0, n_mode_checks = 0;
@@ -289,6 +289,7 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
       ASSERT_EQ(checks.plans[c].models.size(), 2u) << r.name;
       EXPECT_DOUBLE_EQ(checks.plans[c].models[1].time_step, r.model.time_step / 2) << r.name;
       EXPECT_EQ(checks.plans[c].models[1].n_static_corrections, r.model.n_static_corrections);
+      EXPECT_EQ(checks.plans[c].models[1].ritz_blocks, r.model.ritz_blocks);
     }
   unsigned int n_roms = 0;
   for (const LadderRung &r : front)
@@ -296,9 +297,12 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
   EXPECT_EQ(n_mode_checks, 1u);
   EXPECT_EQ(n_step_checks + n_mode_checks, n_roms);
 
+  // The last candidate: 6 modes, 4 corrections grown by 4 Ritz vectors.
   ModelSetting corrected = front[reference - 1].model, plain = corrected;
-  plain.n_modes += plain.n_static_corrections;
+  ASSERT_EQ(corrected.ritz_blocks, 2u);
+  plain.n_modes += plain.n_static_corrections * plain.ritz_blocks;
   plain.n_static_corrections = 0;
+  plain.ritz_blocks          = 1;
   EXPECT_DOUBLE_EQ(cost_per_simulated_second(corrected, scene), cost_per_simulated_second(plain, scene));
   ModelSetting uncorrected         = corrected;
   uncorrected.n_static_corrections = 0;

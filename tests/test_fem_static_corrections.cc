@@ -88,16 +88,27 @@ namespace
     m.M.vmult(Mrest, rest);
     return std::sqrt((rest * Mrest) / (x * Mx));
   }
+  // The mueller2023 beam with its K and M and a direct solver for K.
+  struct MuellerBeam
+  {
+    MuellerBeam()
+      : beam(read_scene(scene_dir + "mueller2023.prm"))
+    {
+      assemble(beam, m);
+      K_inverse.initialize(m.K);
+    }
+    const FEBeam beam;
+    BeamMatrices m;
+    dealii::SparseDirectUMFPACK K_inverse;
+  };
 } // namespace
 
 TEST(StaticCorrections, BasisIsOrthonormalKeepsTheModesAndCarriesEachPointLoadExactly)
 {
-  const Scene scene = read_scene(scene_dir + "mueller2023.prm");
-  const FEBeam beam(scene);
-  BeamMatrices m;
-  assemble(beam, m);
-  dealii::SparseDirectUMFPACK K_inverse;
-  K_inverse.initialize(m.K);
+  const MuellerBeam mueller;
+  const FEBeam &beam                         = mueller.beam;
+  const BeamMatrices &m                      = mueller.m;
+  const dealii::SparseDirectUMFPACK &K_inverse = mueller.K_inverse;
 
   const unsigned int N = 5, corrections = 4;
   const FEModes modes              = compute_bending_modes(beam, N);
@@ -176,12 +187,10 @@ TEST(StaticCorrections, TheSceneParameterBuildsTheEnrichedReducedModel)
 // stays above it (Courant–Fischer).
 TEST(StaticCorrections, RitzBlocksHoldTheNextKrylovBlockAndApproachTheFirstMissingMode)
 {
-  const Scene scene = read_scene(scene_dir + "mueller2023.prm");
-  const FEBeam beam(scene);
-  BeamMatrices m;
-  assemble(beam, m);
-  dealii::SparseDirectUMFPACK K_inverse;
-  K_inverse.initialize(m.K);
+  const MuellerBeam mueller;
+  const FEBeam &beam                         = mueller.beam;
+  const BeamMatrices &m                      = mueller.m;
+  const dealii::SparseDirectUMFPACK &K_inverse = mueller.K_inverse;
 
   const unsigned int N = 5, corrections = 2;
   const FEModes modes             = compute_bending_modes(beam, N + 1);

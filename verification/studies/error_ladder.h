@@ -129,8 +129,9 @@ namespace beamslider
   //                midpoint-rule FE converged in Δt ends, doc/findings.md);
   //   front        the verdict of `verify --full`: adds the ROM N = 20 with
   //                the FE's implicit midpoint rule and every candidate of the
-  //                front, ROMs of 6, 8, 12 and 15 modes and 5…8 modes with 4
-  //                static corrections;
+  //                front, ROMs of 6, 8, 12 and 15 modes, 5…8 modes with 4
+  //                static corrections, and 6 + 4 grown by a block of
+  //                load-dependent Ritz vectors;
   //   diagnostics  adds to the front's ladder, as diagnostic rungs, the
   //                implicit ROM with every bending mode of the FE mesh at
   //                Δt/4 and the midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2
