@@ -106,9 +106,7 @@ namespace
 TEST(StaticCorrections, BasisIsOrthonormalKeepsTheModesAndCarriesEachPointLoadExactly)
 {
   const MuellerBeam mueller;
-  const FEBeam &beam                         = mueller.beam;
-  const BeamMatrices &m                      = mueller.m;
-  const dealii::SparseDirectUMFPACK &K_inverse = mueller.K_inverse;
+  const auto &[beam, m, K_inverse] = mueller;
 
   const unsigned int N = 5, corrections = 4;
   const FEModes modes              = compute_bending_modes(beam, N);
@@ -188,9 +186,7 @@ TEST(StaticCorrections, TheSceneParameterBuildsTheEnrichedReducedModel)
 TEST(StaticCorrections, RitzBlocksHoldTheNextKrylovBlockAndApproachTheFirstMissingMode)
 {
   const MuellerBeam mueller;
-  const FEBeam &beam                         = mueller.beam;
-  const BeamMatrices &m                      = mueller.m;
-  const dealii::SparseDirectUMFPACK &K_inverse = mueller.K_inverse;
+  const auto &[beam, m, K_inverse] = mueller;
 
   const unsigned int N = 5, corrections = 2;
   const FEModes modes             = compute_bending_modes(beam, N + 1);
