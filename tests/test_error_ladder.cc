@@ -159,7 +159,24 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   write_cache("0.03");
   EXPECT_EQ(choose_model(scene, std::nullopt, dir, why).n_modes, 8u);
   EXPECT_NE(why.find("tolerance 0.03 "), std::string::npos) << why;
+  // The cache is there: ranks read it. Without it every rank would run the
+  // ladder, so a run on more than one rank is refused and runs nothing.
+  EXPECT_EQ(choose_model(scene, std::nullopt, dir, why, 2).n_modes, 8u);
   std::filesystem::remove_all(dir);
+  try
+    {
+      choose_model(scene, std::nullopt, dir, why, 2);
+      ADD_FAILURE() << "a choice on 2 ranks without the cache ran";
+    }
+  catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find(dir), std::string::npos) << e.what();
+    }
+  EXPECT_FALSE(std::filesystem::exists(dir));
+  // A solid scene has no beam ladder to choose on.
+  Scene solid            = scene;
+  solid.solid.continuum = "plane stress";
+  EXPECT_THROW(choose_model(solid, std::nullopt, dir, why), InputError);
 }
 
 

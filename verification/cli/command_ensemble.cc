@@ -124,15 +124,7 @@ namespace beamslider
           if (options.integrator != "explicit" || options.theta || !options.coefficients.empty())
             throw InputError("--model auto picks the model, its integrator and coefficients from the scene's error "
                              "ladder: --integrator, --theta and --coefficients do not apply");
-          if (scene.solid.enabled())
-            throw InputError("--model auto chooses on the beam's error ladder, which a solid scene does not have: use "
-                             "--model rom or --model fe");
-          // Every rank would run the ladder: it runs once, in one process.
-          if (n_ranks > 1 && !has_cached_choice(scene, choice_cache_dir(scene)))
-            throw InputError("--model auto under mpirun needs the scene's error ladder cached: run this command once "
-                             "without mpirun (or `simulate --model auto`), which computes and caches it in " +
-                             choice_cache_dir(scene));
-          settings.model = choose_model(scene, options.tolerance, choice_cache_dir(scene), why);
+          settings.model = choose_model(scene, options.tolerance, choice_cache_dir(scene), why, n_ranks);
           return settings;
         }
       if (options.tolerance)

@@ -128,14 +128,7 @@ namespace beamslider
         if (a.parameter.rfind("Discretisation/", 0) == 0 || a.parameter.rfind("Time stepping/", 0) == 0)
           throw InputError("--model auto picks one model for every cell; the axis over '" + a.parameter +
                            "' would change it: use --model rom or fe");
-      if (m.base.solid.enabled())
-        throw InputError("--model auto chooses on the beam's error ladder, which a solid scene does not have");
-      const std::string cache = choice_cache_dir(m.base);
-      if (m.mpi.size() > 1 && !has_cached_choice(m.base, cache))
-        throw InputError("--model auto under mpirun needs the scene's error ladder cached: run `ensemble --model "
-                         "auto` or `simulate --model auto` on the scene once without mpirun, which computes and "
-                         "caches it in " + cache);
-      m.settings.model  = choose_model(m.base, m.options.tolerance, cache, m.model_choice);
+      m.settings.model  = choose_model(m.base, m.options.tolerance, choice_cache_dir(m.base), m.model_choice, m.mpi.size());
       m.settings.chosen = true;
       if (m.mpi.rank() == 0)
         console() << m.model_choice << std::endl;

@@ -457,10 +457,6 @@ namespace beamslider
         }
       else if (r.options.model == "auto")
         {
-          if (scene.solid.enabled())
-            throw InputError("--model auto chooses on the beam's error ladder, which a solid scene (Solid/Continuum = '" +
-                             scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
-                             "--model fe (the 1D beam)");
           // The ladder is cached beside the scene's reports, keyed by its content.
           setting = choose_model(scene, r.options.tolerance, choice_cache_dir(scene), r.outcome.why);
           console() << r.outcome.why << std::endl;

@@ -87,19 +87,21 @@ namespace beamslider
     return (std::filesystem::path("reports") / scene.name / "model_choice").string();
   }
 
-  bool has_cached_choice(const Scene &scene, const std::string &cache_dir)
-  {
-    return !read_cache(cache_dir + "/ladder-" + scene_content_key(scene) + ".csv").empty();
-  }
-
   ModelSetting choose_model(const Scene &scene, const std::optional<double> tolerance, const std::string &cache_dir,
-                            std::string &why)
+                            std::string &why, const unsigned int n_ranks)
   {
+    if (scene.solid.enabled())
+      throw InputError("--model auto chooses on the beam's error ladder, which a solid scene (Solid/Continuum = '" +
+                       scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
+                       "--model fe (the 1D beam)");
     const std::string path = cache_dir + "/ladder-" + scene_content_key(scene) + ".csv";
     std::vector<LadderChoiceRow> rows = read_cache(path);
     std::ostringstream log;
     if (!rows.empty())
       log << "model choice from the cached error ladder " << path << ":\n";
+    else if (n_ranks > 1)
+      throw InputError("--model auto under mpirun needs the scene's error ladder cached: run the command once without "
+                       "mpirun (or `simulate --model auto`), which computes it and caches it in " + cache_dir);
     else
       {
         const ChoiceLadder ladder = run_ladder_for_choice(scene);

@@ -20,13 +20,12 @@ namespace beamslider
   // reports/<scene>/model_choice.
   std::string choice_cache_dir(const Scene &scene);
 
-  // Whether `cache_dir` holds the ladder of `scene` (the choice runs nothing).
-  bool has_cached_choice(const Scene &scene, const std::string &cache_dir);
-
   // Reads the cached ladder for `scene` from `cache_dir`, or runs the quick
   // ladder (its progress on the console) and writes the cache; then picks
   // by cheapest_within at `tolerance`, or without one at
   // default_choice_tolerance. The numbers it decided on go to `why`.
+  // Throws InputError for a solid scene (it has no beam ladder) and, on
+  // n_ranks > 1, when the cache is missing: every rank would run the ladder.
   ModelSetting choose_model(const Scene &scene, std::optional<double> tolerance, const std::string &cache_dir,
-                            std::string &why);
+                            std::string &why, unsigned int n_ranks = 1);
 } // namespace beamslider

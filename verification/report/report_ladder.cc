@@ -14,6 +14,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace beamslider
@@ -374,6 +375,53 @@ namespace beamslider
       return t.str();
     }
 
+    // What 3× the published ROM's wall time per member buys on this ladder
+    // (issue 58's budget), and, if no reduced model within it lands within
+    // the choice's tolerance, the cheapest that does and what its step is:
+    // an explicit rung's step halves from the scene's until it is below
+    // 2/ω_max of its basis, so each vector that raises ω_max past a halving
+    // doubles the cost.
+    void describe_budget(std::ostream &md, const LadderStudy &study, const std::vector<std::size_t> &checked)
+    {
+      const std::vector<LadderChoiceRow> rows = choice_rows(study);
+      const double tolerance                  = default_choice_tolerance(rows);
+      const LadderRungResult &published       = study.rungs.front();
+      const double budget                     = 3 * published.wall_seconds_per_member;
+      const auto lands = [&](const std::size_t i) { return rows[i].w1_high <= tolerance && rows[i].refined_alike; };
+      const auto ratio = [&](const std::size_t i) {
+        return fixed(study.rungs[i].wall_seconds_per_member / published.wall_seconds_per_member, 1) + "×";
+      };
+      md << "\n**Within 3× the published ROM's wall time per member** (" << fixed(budget, 2)
+         << " s here), a model lands when its W₁ interval ends within " << fixed(tolerance, 4)
+         << " L (the choice's tolerance below) and it ends alike refined: ";
+      std::optional<std::size_t> cheapest_landing;
+      bool first = true;
+      for (const std::size_t i : checked)
+        {
+          if (lands(i) && (!cheapest_landing || study.rungs[i].wall_seconds_per_member <
+                                                  study.rungs[*cheapest_landing].wall_seconds_per_member))
+            cheapest_landing = i;
+          if (study.rungs[i].wall_seconds_per_member > budget)
+            continue;
+          md << (first ? "" : "; ") << study.rungs[i].rung.name << " (" << ratio(i) << ", Δt "
+             << study.rungs[i].rung.model.time_step << " s) "
+             << (lands(i) ? "lands"
+                          : !rows[i].refined_alike ? "moves when refined"
+                                                   : "W₁ up to " + fixed(rows[i].w1_high, 3) + " L");
+          first = false;
+        }
+      md << (first ? "no checked rung costs that little" : "") << ". ";
+      if (cheapest_landing)
+        md << "The cheapest checked rung that lands is " << study.rungs[*cheapest_landing].rung.name << " at "
+           << ratio(*cheapest_landing) << " (Δt " << study.rungs[*cheapest_landing].rung.model.time_step << " s). ";
+      else
+        md << "No checked rung lands. ";
+      md << "What sets the price: an explicit rung's cost is its coordinates times its steps, and its step is the "
+            "scene's Δt halved until it is below 2/ω_max of its basis. The vectors that carry the slider's corner "
+            "loads (higher modes, static corrections, Ritz vectors) are the stiff ones: each raises ω_max, and one "
+            "that crosses a halving doubles the cost of all the others.\n";
+    }
+
     // The speed–accuracy front: every rung with a refinement check (in Δt,
     // or in N) and its cost, its W₁ to the reference, its end state refined,
     // and whether it is on the front; also as front.csv. Then the model
@@ -424,6 +472,7 @@ namespace beamslider
                    on_front(i) ? "1" : "0"});
         }
       csv.close();
+      describe_budget(md, study, checked);
       describe_model_choice(md, study);
     }
   } // namespace
