@@ -115,4 +115,14 @@ namespace beamslider
     // are at least ω_{N+1}²).
     return enriched;
   }
+
+  FEModes reduced_basis_vectors(const FEBeam &beam, const unsigned int n_modes,
+                                const unsigned int n_static_corrections, const unsigned int ritz_blocks)
+  {
+    FEModes modes = compute_bending_modes(beam, n_modes);
+    if (n_static_corrections == 0)
+      return modes;
+    return add_static_corrections(beam, modes, n_modes, static_correction_positions(beam.length(), n_static_corrections),
+                                  ritz_blocks);
+  }
 } // namespace beamslider

@@ -45,4 +45,11 @@ namespace beamslider
 
   // m load positions evenly over the beam: x_k = (k − ½) L / m.
   std::vector<double> static_correction_positions(double length, unsigned int m);
+
+  // The vectors a beam's reduced model is built on: the n_modes lowest
+  // bending modes, and for n_static_corrections = m > 0 the corrections at
+  // static_correction_positions(L, m) grown to ritz_blocks blocks. The ROM
+  // and the coefficients command share it, so the two mean the same basis.
+  FEModes reduced_basis_vectors(const FEBeam &beam, unsigned int n_modes, unsigned int n_static_corrections,
+                                unsigned int ritz_blocks);
 } // namespace beamslider

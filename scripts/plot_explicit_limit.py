@@ -1,4 +1,4 @@
-"""Chart of report section 5.4: the explicit ROM scheme's stable time step
+"""Chart of report section 5.5: the explicit ROM scheme's stable time step
 2/omega_N against the number of modes N, the seed's rule 2 pi/(5 omega_N) and
 the scene's time step. Arguments: report folder (with
 explicit_time_step_limit.csv), the scene's time step [s]."""

@@ -49,7 +49,7 @@ namespace beamslider
       return run_and_describe_ladder(report.dir, scene, ladder.rungs, ladder.reference, ladder.settings);
     }
 
-    // 5.3: F̄_x(x_C) and the amplitude branches of FE and ROM on the same
+    // 5.4: F̄_x(x_C) and the amplitude branches of FE and ROM on the same
     // positions around the end states, with batch-means intervals.
     std::string slow_manifold_subsection(Report &report, const Scene &scene, const bool full)
     {
@@ -104,7 +104,7 @@ namespace beamslider
       run_plot_script("plot_pcs_compare.py", {rom_dir, fe_dir, "ROM N=" + std::to_string(scene.discretisation.n_modes), "FE"});
 
       std::ostringstream md;
-      md << "### 5.3 The slow manifold: amplitude branches and F̄_x(x_C), FE against ROM\n\n"
+      md << "### 5.4 The slow manifold: amplitude branches and F̄_x(x_C), FE against ROM\n\n"
          << "The slider is held at x_C/L = " << settings.sweep.low_over_L << " … " << settings.sweep.high_over_L << " (step "
          << settings.sweep.step_over_L << ", both directions, " << settings.sweep.settle_time << " s settling and "
          << settings.sweep.average_time
@@ -122,12 +122,12 @@ namespace beamslider
       return md.str();
     }
 
-    // 5.4: where the explicit midpoint scheme of the ROM fails: Δt < 2/ω_N.
+    // 5.5: where the explicit midpoint scheme of the ROM fails: Δt < 2/ω_N.
     std::string explicit_limit_subsection(Report &report, const Scene &scene)
     {
       const double dt = scene.time_stepping.time_step;
       std::ostringstream md;
-      md << "### 5.4 Where the explicit ROM scheme fails\n\n"
+      md << "### 5.5 Where the explicit ROM scheme fails\n\n"
          << "The ROM's smooth forces are integrated by the explicit midpoint rule, stable for Δt < 2/ω_N (ω_N the highest kept "
             "mode). The chart shows that limit against N, the scene's Δt and the seed's rule Δt = 2π/(5ω_N). A run with a "
             "larger step is refused before it starts, with a message; here is what N = 7 at 1.05 × its limit says:\n\n";
@@ -168,7 +168,7 @@ namespace beamslider
        << " at t = 0), the same contact code on every beam model. The rattling slider makes single traces chaotic: runs "
           "that differ in round-off part after a few dozen periods and the jump time moves by seconds, while the end "
           "state is an attractor of the slow dynamics. So models are compared as ensembles (5.1, 5.2) and on the slow "
-          "manifold the adaptation follows (5.3), never one trace against another.\n\n";
+          "manifold the adaptation follows (5.4), never one trace against another.\n\n";
     if (full)
       {
         // The headline of the full report: the verdict at six operating

@@ -150,11 +150,8 @@ namespace beamslider
     else
       {
         const FEBeam beam(scene);
-        FEModes modes = compute_bending_modes(beam, setting.n_modes);
-        if (setting.n_static_corrections)
-          modes = add_static_corrections(
-            beam, modes, setting.n_modes, static_correction_positions(beam.length(), setting.n_static_corrections),
-            setting.ritz_blocks);
+        const FEModes modes =
+          reduced_basis_vectors(beam, setting.n_modes, setting.n_static_corrections, setting.ritz_blocks);
         ModalBasis basis = make_modal_basis(beam, modes);
         rom.emplace(basis, scene.damping_ratio, scene.discretisation.geometric_nonlinearity);
         if (setting.coefficients != "analytic")
