@@ -4,10 +4,12 @@
 // runner that fabricates end states from the group's model and point, so
 // that every number the study returns can be predicted.
 #include "verification/studies/region_verdict.h"
+#include "verification/studies/simulation_cases.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 using namespace beamslider;
 
@@ -76,7 +78,7 @@ TEST(RegionVerdict, EachPointGetsItsOwnCheckedReference)
   const RegionStudy study = run_region(scene, points, 40., 4, fabricate);
   ASSERT_EQ(study.ladders.size(), points.size());
   // One list: 6 rungs (published, N = 10, 20, the front's N = 15 and
-  // 8 + 4 corrections, the reference) and 6 first refinements per point
+  // 6 + 4 corrections, the reference) and 6 first refinements per point
   // (the reference and four ROMs at half their step, N = 20 against 30);
   // then Δt/4 at the first point alone.
   EXPECT_EQ(round_sizes, (std::vector<std::size_t>{12 * points.size(), 1}));
@@ -93,5 +95,69 @@ TEST(RegionVerdict, EachPointGetsItsOwnCheckedReference)
         if (i != l.reference)
           EXPECT_NEAR(l.rungs[i].position_to_reference.wasserstein, 0.40 - rom_end(l.rungs[i].rung.model.n_modes),
                       1e-12);
+    }
+}
+
+// The published cases as sites: the six mueller2023 cases (not the
+// ablations), each the scene `simulate --case` reads, at its own end time;
+// each runs the published ROM, the quick ladder's two front candidates
+// (N = 15 and the full front's pick, 6 + 4 static corrections) and the FE
+// reference last. One list of member runs serves them all, every group at
+// its case's end time, and each case gets its own checked ladder.
+TEST(RegionVerdict, ThePublishedCasesRunAsSitesAtTheirOwnEndTimes)
+{
+  const std::vector<StudySite> sites = published_case_sites(mueller, {});
+  ASSERT_EQ(sites.size(), 6u);
+  std::map<std::string, double> end_of;
+  for (const SimulationCase &c : simulation_cases())
+    end_of[c.name] = c.end_time;
+  for (const StudySite &s : sites)
+    {
+      ASSERT_TRUE(end_of.count(s.label)) << s.label;
+      EXPECT_EQ(s.scene.time_stepping.end_time, end_of[s.label]) << s.label;
+      EXPECT_TRUE(s.label.rfind("signature-move", 0) == 0 || s.label.rfind("trivial-adaption", 0) == 0 ||
+                  s.label == "self-damping" || s.label == "relaxation-oscillation")
+        << s.label << " is an ablation";
+    }
+  EXPECT_EQ(sites.back().label, "signature-move-106");
+  EXPECT_EQ(sites.back().scene.excitation.frequency_hz, 106.);
+  EXPECT_EQ(sites.back().scene.initial.slider_position_over_L, 0.4);
+
+  std::size_t reference = 0;
+  const Scene &scene                  = sites.front().scene;
+  const std::vector<LadderRung> rungs = case_rungs(scene, reference);
+  ASSERT_EQ(rungs.size(), 4u);
+  ASSERT_EQ(reference, 3u);
+  EXPECT_EQ(rungs[0].model.n_modes, scene.discretisation.n_modes);
+  EXPECT_EQ(rungs[0].model.time_step, scene.time_stepping.time_step);
+  EXPECT_TRUE(rungs[1].front_candidate && rungs[2].front_candidate);
+  EXPECT_EQ(rungs[1].model.n_modes, 15u);
+  EXPECT_EQ(rungs[2].model.n_modes, 6u);
+  EXPECT_EQ(rungs[2].model.n_static_corrections, 4u);
+  EXPECT_EQ(rungs[3].model.family, "fe");
+
+  // Two sites of different end times through one list, the FE at 0.40 and
+  // every ROM at 0.35: each ladder its own, every group at its site's end.
+  const std::vector<StudySite> two = {sites[0], sites[2]}; // 60 s and 120 s
+  ASSERT_NE(two[0].scene.time_stepping.end_time, two[1].scene.time_stepping.end_time);
+  unsigned int wrong_end = 0;
+  const auto fabricate   = [&](const std::vector<MemberGroup> &groups) {
+    std::vector<std::vector<EnsembleMember>> out;
+    for (const MemberGroup &g : groups)
+      {
+        const bool second = g.name.rfind(two[1].label, 0) == 0;
+        wrong_end += g.scene.time_stepping.end_time != two[second ? 1 : 0].scene.time_stepping.end_time;
+        out.push_back(ending_at(g.model.family == "fe" ? 0.40 : 0.35, g.n_members));
+      }
+    return out;
+  };
+  const std::vector<LadderStudy> ladders = run_sites(two, case_rungs, 4, fabricate);
+  EXPECT_EQ(wrong_end, 0u);
+  ASSERT_EQ(ladders.size(), 2u);
+  for (const LadderStudy &l : ladders)
+    {
+      EXPECT_TRUE(l.proven());
+      EXPECT_EQ(l.rungs[l.reference].rung.model.family, "fe");
+      EXPECT_NEAR(l.rungs[0].position_to_reference.wasserstein, 0.05, 1e-12);
     }
 }

@@ -160,11 +160,16 @@ namespace beamslider
     };
 
     // The other ranks' share of the report: the ladder's members, in the
-    // order rank 0 runs them: the region (full report), the ladder.
-    void work_on_ladder_members(const Scene &scene, const VerifyOptions &options)
+    // order rank 0 runs them: the region and the published cases (full
+    // report), the ladder.
+    void work_on_ladder_members(const Scene &scene, const CommonOptions &common, const VerifyOptions &options)
     {
       if (options.full)
-        work_on_region_members(scene, RegionRunSettings());
+        {
+          work_on_region_members(scene, RegionRunSettings());
+          work_on_case_members(published_case_sites(resolve_scene_path(common.scene_file), common.overrides),
+                               RegionRunSettings());
+        }
       const ReportLadder ladder = report_ladder(scene, options.full, options.diagnostics);
       work_on_ladder(scene, ladder.rungs, ladder.reference, ladder.settings);
     }
@@ -324,12 +329,12 @@ namespace beamslider
     if (mpi.rank() != 0)
       {
         if (ladder_section)
-          work_on_ladder_members(scene, options);
+          work_on_ladder_members(scene, common, options);
         return 0;
       }
     // If rank 0 ends before the ladder or its checks' rounds (an error, a
     // stop), the other ranks, waiting for its members, are told to stop.
-    const WorkerRelease release(mpi, ladder_section ? (options.full ? 2 : 1) : 0);
+    const WorkerRelease release(mpi, ladder_section ? (options.full ? 3 : 1) : 0); // region, cases, ladder
     VerifyRun v(options);
     Report &report = v.report;
     if (!options.part_file.empty())

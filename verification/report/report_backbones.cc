@@ -158,8 +158,8 @@ namespace beamslider
       auto &md = report.text;
       std::map<unsigned int, Backbone> rom;
       CsvWriter curves(report.dir + "/backbone_curves.csv", {"curve", "amplitude_over_h", "frequency_hz", "segment", "branch"});
-      // N = 15: the model the speed–accuracy front picks for the signature
-      // move (doc/verification.md §6), whose backbone must hold too.
+      // N = 15: a model on the speed–accuracy front that lands on the
+      // signature move (doc/verification.md §6), whose backbone must hold too.
       for (const unsigned int N : {1u, 3u, 5u, 7u, 15u})
         {
           const ReducedOrderModel model(make_modal_basis(beam, modes, N), 0.);
@@ -241,7 +241,7 @@ namespace beamslider
         if (w5 && w7 && wf && w5_1 && wf_1 && w15 && wf_2)
           md << "\nAt ŵ/h = 4 the ROMs with N = 5 and 7 differ by " << sci(*w7 / *w5 - 1, 1) << " from each other and by "
              << sci(*w5 / *wf - 1, 1) << " (N = 5) from the FE backbone (" << sci(*w5_1 / *wf_1 - 1, 1)
-             << " at ŵ/h = 1); N = 15, the front's pick for the signature move, is within "
+             << " at ŵ/h = 1); N = 15, on the front and landing on the signature move, is within "
              << sci(std::abs(*w15 / *wf_2 - 1), 1) << " of it at ŵ/h = 2. What remains is partly the modes above N (the coupling of mode 1 to the higher symmetric "
                 "modes decays slowly), partly what the ROM leaves out of the FE model: the axial inertia, which softens "
                 "the FE backbone (tests/test_fem_backbone.cc, axial mass scaled by 1e-6 on 16 elements: 3e-5 of the "

@@ -177,6 +177,10 @@ namespace beamslider
         region.progress_prefix = "[verify] region: ";
         md << "### 5.0 The verdict across the signature-move region\n\n"
            << run_and_describe_region(report.dir, scene, region);
+        RegionRunSettings cases;
+        cases.progress_prefix = "[verify] published cases: ";
+        md << "#### 5.0.1 The published cases\n\n"
+           << run_and_describe_cases(report.dir, published_case_sites(report.scene_file, report.overrides), cases);
       }
     md << ladder_subsections(report, scene, full);
     md << slow_manifold_subsection(report, scene, full);

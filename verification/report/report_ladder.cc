@@ -339,10 +339,9 @@ namespace beamslider
 
     // What `--model auto` picks on this ladder's rows without a tolerance
     // (model_choice.h), and why, in a sentence.
-    void describe_model_choice(std::ostream &md, const LadderStudy &study)
+    void describe_model_choice(std::ostream &md, const LadderStudy &study, const std::vector<LadderChoiceRow> &rows,
+                               const double tolerance)
     {
-      const std::vector<LadderChoiceRow> rows = choice_rows(study);
-      const double tolerance                  = default_choice_tolerance(rows);
       const LadderChoiceRow &chosen           = cheapest_within(rows, tolerance);
       const std::vector<std::size_t> front    = speed_accuracy_front(study);
       const std::size_t picked                = static_cast<std::size_t>(&chosen - rows.data());
@@ -381,13 +380,12 @@ namespace beamslider
     // an explicit rung's step halves from the scene's until it is below
     // 2/ω_max of its basis, so each vector that raises ω_max past a halving
     // doubles the cost.
-    void describe_budget(std::ostream &md, const LadderStudy &study, const std::vector<std::size_t> &checked)
+    void describe_budget(std::ostream &md, const LadderStudy &study, const std::vector<std::size_t> &checked,
+                         const std::vector<LadderChoiceRow> &rows, const double tolerance)
     {
-      const std::vector<LadderChoiceRow> rows = choice_rows(study);
-      const double tolerance                  = default_choice_tolerance(rows);
-      const LadderRungResult &published       = study.rungs.front();
-      const double budget                     = 3 * published.wall_seconds_per_member;
-      const auto lands = [&](const std::size_t i) { return rows[i].w1_high <= tolerance && rows[i].refined_alike; };
+      const LadderRungResult &published = study.rungs.front();
+      const double budget               = 3 * published.wall_seconds_per_member;
+      const auto lands                  = [&](const std::size_t i) { return lands_within(rows[i], tolerance); };
       const auto ratio = [&](const std::size_t i) {
         return fixed(study.rungs[i].wall_seconds_per_member / published.wall_seconds_per_member, 1) + "×";
       };
@@ -419,7 +417,10 @@ namespace beamslider
       md << "What sets the price: an explicit rung's cost is its coordinates times its steps, and its step is the "
             "scene's Δt halved until it is below 2/ω_max of its basis. The vectors that carry the slider's corner "
             "loads (higher modes, static corrections, Ritz vectors) are the stiff ones: each raises ω_max, and one "
-            "that crosses a halving doubles the cost of all the others.\n";
+            "that crosses a halving doubles the cost of all the others. Modes chosen by their participation instead "
+            "of by frequency are not among the candidates: ranked by their energy over a run they are the lowest "
+            "modes, and ranked by the impulse the impacts feed them they reach the highest mode offered, and its step "
+            "(doc/findings.md, 2026-12-04; `scripts/modal_participation.py`).\n";
     }
 
     // The speed–accuracy front: every rung with a refinement check (in Δt,
@@ -472,8 +473,11 @@ namespace beamslider
                    on_front(i) ? "1" : "0"});
         }
       csv.close();
-      describe_budget(md, study, checked);
-      describe_model_choice(md, study);
+      // The choice's rows and tolerance, once for both paragraphs.
+      const std::vector<LadderChoiceRow> rows = choice_rows(study);
+      const double tolerance                  = default_choice_tolerance(rows);
+      describe_budget(md, study, checked, rows, tolerance);
+      describe_model_choice(md, study, rows, tolerance);
     }
   } // namespace
 

@@ -28,6 +28,7 @@ namespace beamslider
       SampleComparison to_reference; // n_a = 0 for the reference
       std::map<std::string, unsigned int> classes;
       bool moved = false; // its check at Δt/2 did not end alike
+      double wall_ratio = NAN; // wall time per member over the published ROM's at the same point
     };
 
     Column column(const std::string &name, const ModelSetting &model, const std::vector<EnsembleMember> &members,
@@ -58,6 +59,8 @@ namespace beamslider
             columns.push_back(column(l.rungs[i].rung.name, l.rungs[i].rung.model, l.rungs[i].members, &ref_samples));
             const ConvergenceCheck *check = l.refinement_check(i);
             columns.back().moved          = check && check->parameter == "Δt" && !check->converged;
+            if (l.rungs.front().wall_seconds_per_member > 0)
+              columns.back().wall_ratio = l.rungs[i].wall_seconds_per_member / l.rungs.front().wall_seconds_per_member;
           }
       for (const ConvergenceCheck &c : l.checks)
         if (c.parameter == "N" && c.trials.size() > 1)
@@ -161,17 +164,22 @@ namespace beamslider
       for (const std::string &name : order)
         {
           const auto &cs = by_model[name];
-          double lo = INFINITY, hi = 0;
+          double lo = INFINITY, hi = 0, ratio_lo = INFINITY, ratio_hi = 0;
           unsigned int alike = 0, moved = 0;
           for (const Column *c : cs)
             {
               lo = std::min(lo, c->to_reference.wasserstein);
               hi = std::max(hi, c->to_reference.wasserstein);
+              if (std::isfinite(c->wall_ratio))
+                ratio_lo = std::min(ratio_lo, c->wall_ratio), ratio_hi = std::max(ratio_hi, c->wall_ratio);
               alike += ends_alike(c->to_reference);
               moved += c->moved;
             }
           md << " " << name << " " << fixed(lo, 4) << "–" << fixed(hi, 4) << " L (alike at " << alike << " of "
-             << cs.size() << (moved ? "; moves at Δt/2 at " + std::to_string(moved) : std::string()) << ");";
+             << cs.size() << (moved ? "; moves at Δt/2 at " + std::to_string(moved) : std::string())
+             << (ratio_hi > 0 ? "; " + fixed(ratio_lo, 1) + "–" + fixed(ratio_hi, 1) + "× the published ROM's wall time"
+                              : std::string())
+             << ");";
           if (first_everywhere.empty() && alike == cs.size() && moved == 0 && cs.size() == n_points)
             first_everywhere = name;
         }
@@ -180,6 +188,97 @@ namespace beamslider
                : " the first model in this list that meets the reference at every point is " + first_everywhere + ".")
          << "\n\n";
       return md.str();
+    }
+
+    // The class most members of a column took, "split" on a tie.
+    std::string majority(const std::map<std::string, unsigned int> &counts)
+    {
+      std::string best;
+      unsigned int n = 0;
+      bool tie       = false;
+      for (const auto &[name, k] : counts)
+        if (k > n)
+          best = name, n = k, tie = false;
+        else if (k == n)
+          tie = true;
+      return n == 0 ? "–" : tie ? "split" : best;
+    }
+
+    // The published cases' table: a row per case, its checked reference and
+    // each model's classes, end state and W₁; then per model the cases where
+    // its majority class is the reference's.
+    std::string describe_cases(const std::vector<StudySite> &sites, const std::vector<LadderStudy> &ladders)
+    {
+      std::ostringstream md;
+      const std::vector<Column> first = point_columns(ladders.front());
+      md << "| case | FE reference: step, end x_C/L, classes |";
+      for (std::size_t i = 0; i + 1 < first.size(); ++i)
+        md << " " << first[i].name << " |";
+      md << "\n|---|---|";
+      for (std::size_t i = 0; i + 1 < first.size(); ++i)
+        md << "---|";
+      md << "\n";
+      std::map<std::string, std::vector<std::string>> held, missed;
+      for (std::size_t p = 0; p < sites.size(); ++p)
+        {
+          const std::vector<Column> cs = point_columns(ladders[p]);
+          const Column &ref            = cs.back();
+          const ConvergenceCheck *in_t = check_in(ladders[p], "Δt");
+          md << "| `" << sites[p].label << "` | Δt = " << ref.model.time_step << " s"
+             << (in_t && !in_t->converged ? " (**not converged**)" : "") << ": " << end_state(ref) << ", "
+             << classes(ref.classes) << " |";
+          for (std::size_t i = 0; i + 1 < cs.size(); ++i)
+            {
+              const bool same = majority(cs[i].classes) == majority(ref.classes) && !cs[i].moved;
+              (same ? held : missed)[cs[i].name].push_back(sites[p].label);
+              md << " " << classes(cs[i].classes) << "; " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference)
+                 << (cs[i].moved ? " **moves at Δt/2**" : "") << (same ? "" : " **other class**") << " |";
+            }
+          md << "\n";
+        }
+      md << "\nA model takes a case's class when most of its members end in the class most of the reference's "
+            "members end in, and it does not move at Δt/2.";
+      for (std::size_t i = 0; i + 1 < first.size(); ++i)
+        {
+          const std::string &name = first[i].name;
+          md << " " << name << ": " << held[name].size() << " of " << sites.size();
+          if (!missed[name].empty())
+            {
+              md << " (not ";
+              for (std::size_t k = 0; k < missed[name].size(); ++k)
+                md << (k ? ", " : "") << "`" << missed[name][k] << "`";
+              md << ")";
+            }
+          md << ".";
+        }
+      md << "\n\n";
+      return md.str();
+    }
+
+    void write_cases_csv(const std::string &dir, const std::vector<StudySite> &sites,
+                         const std::vector<LadderStudy> &ladders)
+    {
+      CsvWriter csv(dir + "/published_cases.csv",
+                    {"case", "model", "time_step_s", "n_modes", "static_corrections", "members", "final_x_median",
+                     "final_x_min", "final_x_max", "w1", "w1_low", "w1_high", "spread", "classes", "majority_class",
+                     "moves_at_half_step", "reference_convergence"});
+      for (std::size_t p = 0; p < sites.size(); ++p)
+        {
+          const ConvergenceCheck *in_t = check_in(ladders[p], "Δt");
+          for (const Column &c : point_columns(ladders[p]))
+            {
+              const bool compared = c.to_reference.n_a > 0;
+              const auto maybe = [compared](const double x) { return compared ? CsvWriter::cell(x) : std::string(); };
+              csv.row({sites[p].label, c.name, CsvWriter::cell(c.model.time_step), CsvWriter::cell(c.model.n_modes),
+                       CsvWriter::cell(c.model.n_static_corrections), CsvWriter::cell(c.position.n),
+                       CsvWriter::cell(c.position.median), CsvWriter::cell(c.position.min),
+                       CsvWriter::cell(c.position.max), maybe(c.to_reference.wasserstein),
+                       maybe(c.to_reference.interval_low), maybe(c.to_reference.interval_high),
+                       maybe(c.to_reference.spread), classes(c.classes), majority(c.classes), c.moved ? "1" : "0",
+                       !compared && in_t ? (in_t->converged ? "converged" : "not converged") : ""});
+            }
+        }
+      csv.close();
     }
   } // namespace
 
@@ -253,6 +352,45 @@ namespace beamslider
           "member as it finished. This study took "
        << seconds_since(start) << ".\n\n";
     return md.str();
+  }
+
+  std::string run_and_describe_cases(const std::string &dir, const std::vector<StudySite> &sites,
+                                     const RegionRunSettings &settings)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    console() << settings.progress_prefix << "the published cases: " << sites.size()
+              << " cases × (the published ROM, the front's candidates and the FE reference, with their checks) × "
+              << settings.members << " members over each case's end time" << std::endl;
+    const MemberRunsSettings runs =
+      member_files_settings(dir, "cases", MpiSession::active(), settings.progress_prefix, "member_runs.cases.csv");
+    const std::vector<LadderStudy> ladders = run_sites(sites, case_rungs, settings.members, member_runs_runner(runs),
+                                                       check_rounds_runner(runs), round_sharer(runs.mpi));
+    write_cases_csv(dir, sites, ladders);
+    std::vector<ConvergenceCheck> all_checks;
+    for (const LadderStudy &l : ladders)
+      all_checks.insert(all_checks.end(), l.checks.begin(), l.checks.end());
+    write_convergence_csv(dir, all_checks, "published_cases_convergence.csv");
+
+    std::ostringstream md;
+    md << "Does a model that lands on the signature move also take the outcome class the FE takes on the other "
+          "published cases (section 4)? Each case runs as `ensemble --case` runs it, "
+       << settings.members
+       << " members over the case's end time, with the published ROM, the front's candidates of the quick ladder "
+          "(each also at half its step) and the FE reference, which proves itself as in 5.0.\n\n"
+       << describe_cases(sites, ladders) << "The checks' evidence:\n\n"
+       << describe_convergence(all_checks)
+       << "\nFiles: published_cases.csv, published_cases_convergence.csv, member_runs.cases.csv (and its "
+          ".check-k.csv). This study took "
+       << seconds_since(start) << ".\n\n";
+    return md.str();
+  }
+
+  void work_on_case_members(const std::vector<StudySite> &sites, const RegionRunSettings &settings)
+  {
+    const MemberRunsSettings runs = member_files_settings("", "cases", MpiSession::active(), "");
+    work_on_sites(
+      sites, case_rungs, settings.members,
+      [&runs](const std::vector<MemberGroup> &groups) { run_member_groups(groups, runs); }, round_sharer(runs.mpi));
   }
 
   void work_on_region_members(const Scene &scene, const RegionRunSettings &settings)

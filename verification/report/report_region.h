@@ -34,4 +34,17 @@ namespace beamslider
 
   // The other MPI ranks' part.
   void work_on_region_members(const Scene &scene, const RegionRunSettings &settings);
+
+  // The published cases (published_case_sites) with case_rungs, run into
+  // `dir` as the region is (settings.end_time unused: each case's own), and
+  // their Markdown: a row per case with the classes of every model and of
+  // the checked reference, and per model the cases whose class it takes.
+  // Files: published_cases.csv (one row per case and model: step, modes,
+  // corrections, members, final x_C/L median/min/max, W₁ to the reference
+  // with interval and spread, classes, majority class, whether it moved at
+  // Δt/2, the reference's convergence), published_cases_convergence.csv,
+  // member_runs.cases.csv.
+  std::string run_and_describe_cases(const std::string &dir, const std::vector<StudySite> &sites,
+                                     const RegionRunSettings &settings);
+  void work_on_case_members(const std::vector<StudySite> &sites, const RegionRunSettings &settings);
 } // namespace beamslider

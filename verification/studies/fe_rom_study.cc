@@ -281,10 +281,10 @@ namespace beamslider
     // A ROM's step costs by its coordinates: modes, static corrections and
     // their Ritz blocks.
     const double n_coordinates = setting.n_modes + setting.n_static_corrections * setting.ritz_blocks;
-    const double per_step =
-      setting.family == "fe"
-        ? 40. * (setting.n_elements ? setting.n_elements : scene.discretisation.n_elements) / 32.
-        : 0.97 + 0.03 * (n_coordinates / 5.) * (n_coordinates / 5.);
-    return per_step / setting.time_step;
+    if (setting.family == "fe")
+      return 40. * (setting.n_elements ? setting.n_elements : scene.discretisation.n_elements) / 32. /
+             setting.time_step;
+    const double explicit_step = 0.97 + 0.03 * (n_coordinates / 5.) * (n_coordinates / 5.);
+    return (setting.integrator == "implicit" ? implicit_rom_step_factor : 1.) * explicit_step / setting.time_step;
   }
 } // namespace beamslider

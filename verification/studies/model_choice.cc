@@ -28,7 +28,7 @@ namespace beamslider
       << s.solvers.newton_relative_tolerance << ' ' << s.solvers.newton_absolute_tolerance << ' '
       << s.solvers.newton_iterations << ' ' << choice_ladder_members << ' ' << choice_ladder_end_time
       << ' ' << s.time_stepping.fe_time_step << ' ' << s.time_stepping.fe_theta
-      << " ladder-5"; // the ladder's rungs: version 5 adds the front's N = 15 and 8+4sc and each rung's Δt check
+      << " ladder-6"; // the ladder's rungs: version 6 has the front's N = 15 and 6+4sc, each rung its Δt check
     // A mesh beam by its elements and sections (not its file name alone:
     // the file may change), and the point bodies.
     for (const BeamMeshCell &cell : s.beam.mesh_cells)
@@ -84,12 +84,17 @@ namespace beamslider
     return tolerance;
   }
 
+  bool lands_within(const LadderChoiceRow &row, const double tolerance)
+  {
+    return row.refined_alike && std::isfinite(row.w1_high) && row.w1_high <= tolerance;
+  }
+
   const LadderChoiceRow &cheapest_within(const std::vector<LadderChoiceRow> &rows, const double tolerance)
   {
     const LadderChoiceRow *best = nullptr;
     for (const auto &r : rows)
       {
-        const bool within = r.reference || (r.refined_alike && std::isfinite(r.w1_high) && r.w1_high <= tolerance);
+        const bool within = r.reference || lands_within(r, tolerance);
         if (within && (!best || r.cost_units < best->cost_units || (r.cost_units == best->cost_units && r.reference)))
           best = &r;
       }

@@ -57,8 +57,13 @@ namespace beamslider
   // state), at least choice_tolerance_floor.
   double default_choice_tolerance(const std::vector<LadderChoiceRow> &rows);
 
-  // The cheapest row (by cost_units) that ended alike refined and whose W₁
-  // interval to the reference ends at or below `tolerance` (in x_C/L); the
+  // Whether a reduced model's row lands where the reference lands: it ended
+  // alike refined and its W₁ interval to the reference ends at or below
+  // `tolerance` (in x_C/L). The rule of the choice and of the report's
+  // budget paragraph alike.
+  bool lands_within(const LadderChoiceRow &row, double tolerance);
+
+  // The cheapest row (by cost_units) that lands_within `tolerance`; the
   // reference always qualifies.
   const LadderChoiceRow &cheapest_within(const std::vector<LadderChoiceRow> &rows, double tolerance);
 

@@ -1,6 +1,8 @@
 // The verdict across the signature-move region, see region_verdict.h.
 #include "verification/studies/region_verdict.h"
 
+#include "verification/studies/simulation_cases.h"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,11 +11,11 @@ namespace beamslider
 {
   namespace
   {
-    // Every point's scene, rungs, checks and member groups, in the order
+    // Every site's scene, rungs, checks and member groups, in the order
     // rank 0 and the other ranks both build them.
     struct RegionPlan
     {
-      std::vector<Scene> scenes; // per point, end time set
+      std::vector<Scene> scenes; // per site, its end time set
       std::vector<std::vector<LadderRung>> rungs;
       std::size_t reference = 0;
       std::vector<LadderChecks> checks;         // per point
@@ -23,23 +25,22 @@ namespace beamslider
       std::vector<Scene> check_scenes;          // the scene of each
     };
 
-    RegionPlan region_plan(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
-                           const unsigned int members)
+    RegionPlan site_plan(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, const unsigned int members)
     {
       RegionPlan plan;
-      for (const OperatingPoint &p : points)
+      for (const StudySite &site : sites)
         {
-          Scene s                  = at_point(scene, p);
-          s.time_stepping.end_time = end_time;
-          std::vector<LadderRung> rungs = region_rungs(s, plan.reference);
+          const Scene &s                = site.scene;
+          const double end_time         = s.time_stepping.end_time;
+          std::vector<LadderRung> rungs = rungs_of(s, plan.reference);
           LadderChecks checks           = ladder_checks(s, rungs, plan.reference);
           for (RefinementPlan &c : checks.plans)
-            c.name = p.label() + ": " + c.name;
+            c.name = site.label + ": " + c.name;
           plan.first_group.push_back(plan.groups.size());
           for (MemberGroup g : ladder_groups_with_checks(s, rungs, checks, end_time, members))
             {
-              if (g.name.rfind(p.label(), 0) != 0) // the checks' groups carry the point already
-                g.name = p.label() + ": " + g.name;
+              if (g.name.rfind(site.label, 0) != 0) // the checks' groups carry the site already
+                g.name = site.label + ": " + g.name;
               plan.groups.push_back(g);
             }
           for (const RefinementPlan &c : checks.plans)
@@ -52,6 +53,19 @@ namespace beamslider
           plan.checks.push_back(checks);
         }
       return plan;
+    }
+
+    std::vector<StudySite> region_sites(const Scene &scene, const std::vector<OperatingPoint> &points,
+                                        const double end_time)
+    {
+      std::vector<StudySite> sites;
+      for (const OperatingPoint &p : points)
+        {
+          Scene s                  = at_point(scene, p);
+          s.time_stepping.end_time = end_time;
+          sites.push_back({p.label(), s});
+        }
+      return sites;
     }
   } // namespace
 
@@ -93,25 +107,26 @@ namespace beamslider
   std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference)
   {
     // The quick ladder's models: published, N = 10, N = 20 (converged in
-    // N), the front's N = 15 and 8 + 4 corrections, the reference; every
+    // N), the front's N = 15 and 6 + 4 corrections, the reference; every
     // explicit ROM but N = 20 checked at Δt/2. Where the front's pick holds
     // is what the region shows.
     return default_ladder(scene, LadderScope::quick, reference);
   }
 
-  RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
-                         const unsigned int members, const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
-                         const std::function<unsigned long(unsigned long)> &share)
+  std::vector<LadderStudy> run_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of,
+                                     const unsigned int members, const MemberGroupRunner &runner,
+                                     const MemberGroupRunner &rounds,
+                                     const std::function<unsigned long(unsigned long)> &share)
   {
-    if (points.empty())
-      throw std::invalid_argument("run_region: no operating point");
-    const RegionPlan plan = region_plan(scene, points, end_time, members);
+    if (sites.empty())
+      throw std::invalid_argument("run_sites: no site");
+    const RegionPlan plan = site_plan(sites, rungs_of, members);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
 
     // Each check's first trials: its rung's members and the refinement
     // beside them (ladder_groups_with_checks puts it after the rungs).
     std::vector<std::vector<std::vector<EnsembleMember>>> done;
-    for (std::size_t p = 0; p < points.size(); ++p)
+    for (std::size_t p = 0; p < sites.size(); ++p)
       {
         const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
         for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
@@ -121,10 +136,9 @@ namespace beamslider
       run_convergence_checks(plan.check_scenes, plan.check_plans, std::move(done), members,
                              EnsembleSettings().perturbation, rounds ? rounds : runner, share);
 
-    RegionStudy study;
-    study.points = points;
+    std::vector<LadderStudy> ladders;
     std::size_t next_check = 0;
-    for (std::size_t p = 0; p < points.size(); ++p)
+    for (std::size_t p = 0; p < sites.size(); ++p)
       {
         const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
         std::vector<std::vector<EnsembleMember>> members_p(results.begin() + first,
@@ -132,9 +146,33 @@ namespace beamslider
         std::vector<ConvergenceCheck> checks_p(checks.begin() + next_check,
                                                checks.begin() + next_check + plan.checks[p].plans.size());
         next_check += plan.checks[p].plans.size();
-        study.ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.reference, end_time,
-                                                std::move(members_p), std::move(checks_p), plan.checks[p]));
+        ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.reference,
+                                          plan.scenes[p].time_stepping.end_time, std::move(members_p),
+                                          std::move(checks_p), plan.checks[p]));
       }
+    return ladders;
+  }
+
+  void work_on_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, const unsigned int members,
+                     const std::function<void(const std::vector<MemberGroup> &)> &work,
+                     const std::function<unsigned long(unsigned long)> &share)
+  {
+    const RegionPlan plan = site_plan(sites, rungs_of, members);
+    work(plan.groups);
+    work_on_convergence_checks(plan.check_scenes, plan.check_plans,
+                               std::vector<std::size_t>(plan.check_plans.size(), 2), members,
+                               EnsembleSettings().perturbation, work, share);
+  }
+
+  RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
+                         const unsigned int members, const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
+                         const std::function<unsigned long(unsigned long)> &share)
+  {
+    if (points.empty())
+      throw std::invalid_argument("run_region: no operating point");
+    RegionStudy study;
+    study.points  = points;
+    study.ladders = run_sites(region_sites(scene, points, end_time), region_rungs, members, runner, rounds, share);
     return study;
   }
 
@@ -142,10 +180,28 @@ namespace beamslider
                       const unsigned int members, const std::function<void(const std::vector<MemberGroup> &)> &work,
                       const std::function<unsigned long(unsigned long)> &share)
   {
-    const RegionPlan plan = region_plan(scene, points, end_time, members);
-    work(plan.groups);
-    work_on_convergence_checks(plan.check_scenes, plan.check_plans,
-                               std::vector<std::size_t>(plan.check_plans.size(), 2), members,
-                               EnsembleSettings().perturbation, work, share);
+    work_on_sites(region_sites(scene, points, end_time), region_rungs, members, work, share);
+  }
+
+  std::vector<LadderRung> case_rungs(const Scene &scene, std::size_t &reference)
+  {
+    // The quick ladder without N = 10 and N = 20 (its check against N = 30
+    // at Δt/8 would cost more than the rest on 60–120 s cases).
+    std::vector<LadderRung> rungs;
+    std::size_t quick_reference = 0;
+    const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, quick_reference);
+    for (std::size_t i = 0; i < quick.size(); ++i)
+      if (i == 0 || quick[i].front_candidate || i == quick_reference)
+        rungs.push_back(quick[i]);
+    reference = rungs.size() - 1;
+    return rungs;
+  }
+
+  std::vector<StudySite> published_case_sites(const std::string &scene_file, const std::vector<std::string> &overrides)
+  {
+    std::vector<StudySite> sites;
+    for (const SimulationCase &c : published_cases())
+      sites.push_back({c.name, read_case_scene(scene_file, c, overrides)});
+    return sites;
   }
 } // namespace beamslider

@@ -43,15 +43,44 @@ namespace beamslider
   // FE reference last (`reference` is set to its index).
   std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference);
 
+  // A place a study runs its ladder: its name in the tables and the scene
+  // (its end time set).
+  struct StudySite
+  {
+    std::string label;
+    Scene scene;
+  };
+  // The rungs at one site and the index of its reference.
+  using SiteRungs = std::function<std::vector<LadderRung>(const Scene &, std::size_t &)>;
+
+  // Every site's rungs (`rungs_of`) and checks as one list of member runs
+  // (`runner`, or threads), then the checks' rounds (`rounds`, in step over
+  // the ranks by `share`; run_convergence_checks): a checked ladder per site.
+  std::vector<LadderStudy> run_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of,
+                                     unsigned int members, const MemberGroupRunner &runner = {},
+                                     const MemberGroupRunner &rounds = {},
+                                     const std::function<unsigned long(unsigned long)> &share = {});
+  // The other MPI ranks' part of run_sites.
+  void work_on_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, unsigned int members,
+                     const std::function<void(const std::vector<MemberGroup> &)> &work,
+                     const std::function<unsigned long(unsigned long)> &share);
+
+  // The published cases as sites: each as `simulate --case` reads it (the
+  // scene file, the case's overrides, the user's), at its own end time.
+  std::vector<StudySite> published_case_sites(const std::string &scene_file, const std::vector<std::string> &overrides);
+  // The models the published cases run: the published ROM, the quick
+  // ladder's front candidates (N = 15 and the full front's pick, 6 + 4
+  // static corrections, each also at Δt/2) and the FE reference, proving
+  // itself, last.
+  std::vector<LadderRung> case_rungs(const Scene &scene, std::size_t &reference);
+
   struct RegionStudy
   {
     std::vector<OperatingPoint> points;
     std::vector<LadderStudy> ladders; // one per point, with its checks
   };
 
-  // Every point's rungs and checks as one list of member runs (`runner`,
-  // or threads), then the checks' rounds (`rounds`, in step over the ranks
-  // by `share`; run_convergence_checks).
+  // run_sites at the points, each with the region_rungs.
   RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, double end_time,
                          unsigned int members, const MemberGroupRunner &runner = {},
                          const MemberGroupRunner &rounds = {},

@@ -112,6 +112,13 @@ namespace beamslider
     }
   } // namespace
 
+  std::vector<SimulationCase> published_cases()
+  {
+    constexpr std::size_t n_published = 6; // then the ablations of the seed's System 1
+    const std::vector<SimulationCase> &all = simulation_cases();
+    return {all.begin(), all.begin() + n_published};
+  }
+
   const SimulationCase &find_case(const std::string &name)
   {
     for (const SimulationCase &c : simulation_cases())

@@ -47,6 +47,9 @@ namespace beamslider
   // All named cases, mueller2023 cases first, then the ablations.
   const std::vector<SimulationCase> &simulation_cases();
 
+  // The six mueller2023 cases alone (the first of simulation_cases()).
+  std::vector<SimulationCase> published_cases();
+
   // The case of that name; InputError listing the valid names otherwise.
   const SimulationCase &find_case(const std::string &name);
 
