@@ -3,12 +3,18 @@
 // member runs back into a checked ladder per point. The members come from a
 // runner that fabricates end states from the group's model and point, so
 // that every number the study returns can be predicted.
+#include "io/csv_writer.h"
+#include "tests/fresh_folder.h"
+#include "verification/report/report_region.h"
 #include "verification/studies/region_verdict.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 using namespace beamslider;
@@ -160,4 +166,60 @@ TEST(RegionVerdict, ThePublishedCasesRunAsSitesAtTheirOwnEndTimes)
       EXPECT_EQ(l.rungs[l.reference].rung.model.family, "fe");
       EXPECT_NEAR(l.rungs[0].position_to_reference.wasserstein, 0.05, 1e-12);
     }
+}
+
+// The published cases' report, run for real on short runs (0.3 s, 2
+// members): every case has its checked reference and a row per model in
+// published_cases.csv, and the count the Markdown gives per model ("N of
+// 6") is the number of cases in that file whose majority class is the
+// reference's and that did not move at Δt/2.
+TEST(RegionVerdict, ThePublishedCasesCountTheClassesTheirFileHolds)
+{
+  const std::filesystem::path dir = beamslider::testing::fresh_folder("published_cases");
+  const std::vector<StudySite> sites = published_case_sites(mueller, {"Time stepping/End time=0.3"});
+  RegionRunSettings settings;
+  settings.members       = 2;
+  const std::string md   = run_and_describe_cases(dir.string(), sites, settings);
+
+  std::ifstream file(dir / "published_cases.csv");
+  std::string line;
+  std::getline(file, line);
+  const std::vector<std::string> header = CsvWriter::cells(line);
+  const auto column = [&](const std::string &name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t c_case = column("case"), c_model = column("model"), c_majority = column("majority_class"),
+                    c_moved = column("moves_at_half_step"), c_reference = column("reference_convergence");
+  ASSERT_LT(c_reference, header.size());
+  std::map<std::string, std::vector<std::vector<std::string>>> by_case;
+  while (std::getline(file, line))
+    {
+      const std::vector<std::string> cells = CsvWriter::cells(line);
+      ASSERT_EQ(cells.size(), header.size()) << line;
+      by_case[cells[c_case]].push_back(cells);
+    }
+  ASSERT_EQ(by_case.size(), sites.size());
+  std::map<std::string, unsigned int> held;
+  std::vector<std::string> models;
+  for (const auto &[name, rows] : by_case)
+    {
+      // The models (published ROM, N = 15, 6 + 4), then the reference.
+      ASSERT_EQ(rows.size(), 4u) << name;
+      const std::vector<std::string> &reference = rows.back();
+      EXPECT_FALSE(reference[c_reference].empty()) << name;
+      for (std::size_t i = 0; i + 1 < rows.size(); ++i)
+        {
+          EXPECT_TRUE(rows[i][c_reference].empty()) << name;
+          held[rows[i][c_model]] += rows[i][c_majority] == reference[c_majority] && rows[i][c_moved] == "0";
+          if (models.size() < rows.size() - 1)
+            models.push_back(rows[i][c_model]);
+        }
+      EXPECT_NE(md.find("| `" + name + "` |"), std::string::npos) << name;
+    }
+  for (const std::string &m : models)
+    EXPECT_NE(md.find(" " + m + ": " + std::to_string(held[m]) + " of " + std::to_string(sites.size())),
+              std::string::npos)
+      << m << " takes " << held[m] << " cases by the file:\n"
+      << md;
+  std::filesystem::remove_all(dir);
 }

@@ -229,10 +229,10 @@ namespace beamslider
              << classes(ref.classes) << " |";
           for (std::size_t i = 0; i + 1 < cs.size(); ++i)
             {
-              const bool same = majority(cs[i].classes) == majority(ref.classes) && !cs[i].moved;
-              (same ? held : missed)[cs[i].name].push_back(sites[p].label);
+              const bool same_class = majority(cs[i].classes) == majority(ref.classes);
+              (same_class && !cs[i].moved ? held : missed)[cs[i].name].push_back(sites[p].label);
               md << " " << classes(cs[i].classes) << "; " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference)
-                 << (cs[i].moved ? " **moves at Δt/2**" : "") << (same ? "" : " **other class**") << " |";
+                 << (cs[i].moved ? " **moves at Δt/2**" : "") << (same_class ? "" : " **other class**") << " |";
             }
           md << "\n";
         }
