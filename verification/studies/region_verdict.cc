@@ -13,21 +13,21 @@ namespace beamslider
   {
     // Every site's scene, rungs, checks and member groups, in the order
     // rank 0 and the other ranks both build them.
-    struct RegionPlan
+    struct SitePlan
     {
       std::vector<Scene> scenes; // per site, its end time set
       std::vector<std::vector<LadderRung>> rungs;
       std::size_t reference = 0;
-      std::vector<LadderChecks> checks;         // per point
-      std::vector<std::size_t> first_group;     // per point: its first group in `groups`
-      std::vector<MemberGroup> groups;          // every point's rungs and first refinements
-      std::vector<RefinementPlan> check_plans;  // every point's checks, in point order
+      std::vector<LadderChecks> checks;         // per site
+      std::vector<std::size_t> first_group;     // per site: its first group in `groups`
+      std::vector<MemberGroup> groups;          // every site's rungs and first refinements
+      std::vector<RefinementPlan> check_plans;  // every site's checks, in site order
       std::vector<Scene> check_scenes;          // the scene of each
     };
 
-    RegionPlan site_plan(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, const unsigned int members)
+    SitePlan site_plan(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, const unsigned int members)
     {
-      RegionPlan plan;
+      SitePlan plan;
       for (const StudySite &site : sites)
         {
           const Scene &s                = site.scene;
@@ -120,7 +120,7 @@ namespace beamslider
   {
     if (sites.empty())
       throw std::invalid_argument("run_sites: no site");
-    const RegionPlan plan = site_plan(sites, rungs_of, members);
+    const SitePlan plan = site_plan(sites, rungs_of, members);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
 
     // Each check's first trials: its rung's members and the refinement
@@ -157,7 +157,7 @@ namespace beamslider
                      const std::function<void(const std::vector<MemberGroup> &)> &work,
                      const std::function<unsigned long(unsigned long)> &share)
   {
-    const RegionPlan plan = site_plan(sites, rungs_of, members);
+    const SitePlan plan = site_plan(sites, rungs_of, members);
     work(plan.groups);
     work_on_convergence_checks(plan.check_scenes, plan.check_plans,
                                std::vector<std::size_t>(plan.check_plans.size(), 2), members,

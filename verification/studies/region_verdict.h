@@ -3,12 +3,15 @@
 // several operating points (excitation frequency and level) at once, each
 // with a reference that proves its own convergence (convergence_check.h).
 //
-// At every point the same models run as ensembles from the scene's start:
-// the published ROM (the scene's N and Δt), N = 10 (Δt/2), N = 20 (Δt/4,
-// checked in N against N = 30 at the explicit scheme's step, whose members
-// are the N = 30 column) and the scene's FE model (checked in Δt: Δt/2
-// beside it, halved further until two steps end alike). All members of all
-// points run as one list, longest first, then the checks' later rounds.
+// At every point the quick ladder's models run as ensembles from the
+// scene's start: the published ROM (the scene's N and Δt), N = 10 (Δt/2),
+// N = 20 (Δt/4, checked in N against N = 30 at the explicit scheme's step,
+// whose members are the N = 30 column), the front's N = 15 and 6 + 4 static
+// corrections, each explicit ROM also at Δt/2, and the scene's FE model
+// (checked in Δt: Δt/2 beside it, halved further until two steps end
+// alike). All members of all points run as one list, longest first, then
+// the checks' later rounds. The published cases run the same way, each
+// case a site (published_case_sites).
 //
 // This study computes and returns results; it writes no files
 // (verification/report/report_region.h formats them).
@@ -39,8 +42,8 @@ namespace beamslider
   // The scene with its excitation at `point`.
   Scene at_point(const Scene &scene, const OperatingPoint &point);
 
-  // The models of every point: ROM N = 5, 10, 20 (converged_in_n) and the
-  // FE reference last (`reference` is set to its index).
+  // The models of every point: the quick ladder's (default_ladder), the FE
+  // reference last (`reference` is set to its index).
   std::vector<LadderRung> region_rungs(const Scene &scene, std::size_t &reference);
 
   // A place a study runs its ladder: its name in the tables and the scene
