@@ -94,12 +94,11 @@ namespace beamslider
       return s.empty() ? "–" : s;
     }
 
-    const ConvergenceCheck *check_in(const LadderStudy &l, const std::string &parameter)
+    // The reference's own check in Δt (by its rung, not by its place among
+    // the checks, where the ROMs' checks in Δt are too).
+    const ConvergenceCheck *reference_check(const LadderStudy &l)
     {
-      for (const ConvergenceCheck &c : l.checks)
-        if (c.parameter == parameter)
-          return &c;
-      return nullptr;
+      return l.refinement_check(l.reference);
     }
 
     void write_region_csv(const std::string &dir, const RegionStudy &study)
@@ -111,7 +110,7 @@ namespace beamslider
       for (std::size_t p = 0; p < study.points.size(); ++p)
         {
           const LadderStudy &l         = study.ladders[p];
-          const ConvergenceCheck *in_t = check_in(l, "Δt");
+          const ConvergenceCheck *in_t = reference_check(l);
           for (const Column &c : point_columns(l))
             {
               const bool is_reference = c.to_reference.n_a == 0 && c.name == l.rungs[l.reference].rung.name;
@@ -154,7 +153,7 @@ namespace beamslider
             }
       unsigned int converged = 0;
       for (const LadderStudy &l : study.ladders)
-        converged += check_in(l, "Δt") && check_in(l, "Δt")->converged;
+        converged += reference_check(l) && reference_check(l)->converged;
       md << "**Across the region** (" << n_points << " points): the FE reference converged in Δt at " << converged
          << " of " << n_points << " points" << (converged < n_points ? " (**not at every point**: see below)" : "")
          << ". W₁ to the reference, smallest and largest over the points, and where the model ends alike "
@@ -223,7 +222,7 @@ namespace beamslider
         {
           const std::vector<Column> cs = point_columns(ladders[p]);
           const Column &ref            = cs.back();
-          const ConvergenceCheck *in_t = check_in(ladders[p], "Δt");
+          const ConvergenceCheck *in_t = reference_check(ladders[p]);
           md << "| `" << sites[p].label << "` | Δt = " << ref.model.time_step << " s"
              << (in_t && !in_t->converged ? " (**not converged**)" : "") << ": " << end_state(ref) << ", "
              << classes(ref.classes) << " |";
@@ -264,7 +263,7 @@ namespace beamslider
                      "moves_at_half_step", "reference_convergence"});
       for (std::size_t p = 0; p < sites.size(); ++p)
         {
-          const ConvergenceCheck *in_t = check_in(ladders[p], "Δt");
+          const ConvergenceCheck *in_t = reference_check(ladders[p]);
           for (const Column &c : point_columns(ladders[p]))
             {
               const bool compared = c.to_reference.n_a > 0;
@@ -325,7 +324,7 @@ namespace beamslider
         const LadderStudy &l          = study.ladders[p];
         const std::vector<Column> cs  = point_columns(l);
         const Column &ref             = cs.back();
-        const ConvergenceCheck *in_t  = check_in(l, "Δt");
+        const ConvergenceCheck *in_t  = reference_check(l);
         md << "| " << points[p].label() << " | Δt = " << ref.model.time_step << " s: " << end_state(ref) << " | ";
         if (in_t && in_t->trials.size() > 1)
           {
