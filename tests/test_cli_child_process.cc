@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 
 using namespace beamslider;
@@ -86,4 +87,19 @@ TEST(RunChild, WithoutTheMPILaunchTheChildSeesNoneOfItsVariablesButTheRootOptIn)
   EXPECT_FALSE(run_child(check, ChildEnvironment::inherited).succeeded());
   unsetenv("OMPI_COMM_WORLD_RANK");
   unsetenv("PMIX_RANK");
+}
+
+// A chart runs in a process group of its own so that a terminal's Ctrl-C
+// does not end it midway, but the child joins that group only once it runs:
+// a Ctrl-C sent just before reached it (a CI run saw the chart "ended by
+// signal 2"). It therefore starts with SIGINT blocked. The child here sends
+// SIGINT to itself, as that early Ctrl-C does: it must end normally; a child
+// of the shared group, which the run's Ctrl-C is meant to stop, must not.
+TEST(RunChild, ASigintDoesNotEndAChildOfItsOwnGroupButEndsOneOfTheShared)
+{
+  const std::vector<std::string> interrupt_self = {"/bin/sh", "-c", "kill -INT $$; exit 0"};
+  const ChildResult own = run_child(interrupt_self, ChildEnvironment::inherited, ChildGroup::own);
+  EXPECT_TRUE(own.succeeded()) << own.error;
+  const ChildResult shared = run_child(interrupt_self, ChildEnvironment::inherited, ChildGroup::shared);
+  EXPECT_EQ(shared.signal, SIGINT) << shared.error;
 }

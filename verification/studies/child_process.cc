@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
+#include <pthread.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,6 +50,16 @@ namespace beamslider
         {
           flags |= POSIX_SPAWN_SETPGROUP;
           posix_spawnattr_setpgroup(&attributes, 0);
+          // The child joins its own group only once it runs: a Ctrl-C sent
+          // to the terminal's group just before that still reaches it (with
+          // the default action, as the spawn resets handlers) and ends the
+          // chart. Started with SIGINT blocked, it keeps such a signal
+          // pending and never acts on it; the run itself has it too.
+          sigset_t blocked;
+          pthread_sigmask(SIG_BLOCK, nullptr, &blocked);
+          sigaddset(&blocked, SIGINT);
+          posix_spawnattr_setsigmask(&attributes, &blocked);
+          flags |= POSIX_SPAWN_SETSIGMASK;
         }
       posix_spawnattr_setflags(&attributes, flags);
       posix_spawn_file_actions_t actions;

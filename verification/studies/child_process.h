@@ -48,7 +48,8 @@ namespace beamslider
     shared, // yes: a beamslider of its own, which stops as this one does
     own     // no: a chart, which this run lets finish (about a second) and
             // then stops itself; Python would print a KeyboardInterrupt
-            // traceback
+            // traceback. It also starts with SIGINT blocked, for a Ctrl-C
+            // that comes before it has left this process's group.
   };
 
   // Runs argv[0] (an absolute path, or a name looked up in PATH) with the
