@@ -1,5 +1,7 @@
 #include "verification/studies/build_info.h"
 
+#include "build_info_values.h" // generated: version, revision, instruction set
+
 namespace beamslider
 {
   const BuildInfo &build_info()
