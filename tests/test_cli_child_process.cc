@@ -12,6 +12,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <pthread.h>
 
 using namespace beamslider;
 using beamslider::testing::read_file;
@@ -97,6 +98,14 @@ TEST(RunChild, WithoutTheMPILaunchTheChildSeesNoneOfItsVariablesButTheRootOptIn)
 // of the shared group, which the run's Ctrl-C is meant to stop, must not.
 TEST(RunChild, ASigintDoesNotEndAChildOfItsOwnGroupButEndsOneOfTheShared)
 {
+  // SIGINT as a terminal's foreground job has it, whatever this test
+  // inherited (a background job of a non-interactive shell ignores it, and
+  // an ignored signal stays ignored in the child).
+  std::signal(SIGINT, SIG_DFL);
+  sigset_t interrupt;
+  sigemptyset(&interrupt);
+  sigaddset(&interrupt, SIGINT);
+  pthread_sigmask(SIG_UNBLOCK, &interrupt, nullptr);
   const std::vector<std::string> interrupt_self = {"/bin/sh", "-c", "kill -INT $$; exit 0"};
   const ChildResult own = run_child(interrupt_self, ChildEnvironment::inherited, ChildGroup::own);
   EXPECT_TRUE(own.succeeded()) << own.error;
