@@ -416,9 +416,10 @@ INSTANTIATE_TEST_SUITE_P(Commands, Interrupt, ::testing::Range<std::size_t>(0, i
 
 // SIGINT while the program loads, before main() can catch it: the default
 // action ends the process (a shell reports 130 for it all the same), and it
-// has written nothing, not even its folder. Sent after 0.02 s of CPU, when
-// the child has exec'd the program (which takes ~0.2 s to load); a machine
-// fast enough to load by then catches it: then exit 130.
+// has written nothing, not even its folder. Sent once the child has exec'd
+// the program (cli_runner.h waits for that) and used 0.02 s of CPU, while it
+// loads (~0.2 s); a machine fast enough to load by then catches it: then
+// exit 130.
 TEST(LoadingProgram, SigintEndsItBeforeItWritesAnything)
 {
   const fs::path dir = fresh_folder("interrupt_loading") / "out";
