@@ -251,8 +251,9 @@ TEST(ErrorLadder, TheReferenceIsTheScenesFEModelAndRunsOnce)
 // implicit ROM and the other candidates: more modes and few modes with
 // static corrections, each at the largest step Δt/2^k its explicit scheme
 // takes (read off the model: within 2/ω_max, and twice it is not unless it
-// is the scene's Δt). Every explicit ROM rung is checked at Δt/2, one
-// halving, but the one converged in N, whose check is in N. A candidate's
+// is the scene's Δt), and two implicit ones at Δt with the FE's θ. Every
+// explicit ROM rung and every candidate is checked at Δt/2, one halving,
+// but the one converged in N, whose check is in N. A candidate's
 // cost counts its coordinates, modes, corrections and Ritz vectors alike.
 TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep)
 {
@@ -261,11 +262,11 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
   const std::vector<LadderRung> quick = default_ladder(scene, LadderScope::quick, quick_reference);
   const std::vector<LadderRung> front = default_ladder(scene, LadderScope::front, reference);
   ASSERT_EQ(reference, front.size() - 1);
-  ASSERT_EQ(front.size(), quick.size() + 8);
+  ASSERT_EQ(front.size(), quick.size() + 10);
   for (const LadderRung &q : quick)
     EXPECT_EQ(std::count_if(front.begin(), front.end(), [&](const LadderRung &r) { return r.name == q.name; }), 1)
       << q.name;
-  unsigned int n_corrected = 0, n_candidates = 0, n_quick_candidates = 0;
+  unsigned int n_corrected = 0, n_candidates = 0, n_quick_candidates = 0, n_implicit = 0;
   for (const LadderRung &q : quick)
     n_quick_candidates += q.front_candidate;
   EXPECT_EQ(n_quick_candidates, 2u);
@@ -276,6 +277,15 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
       const ModelSetting &m = front[i].model;
       ++n_candidates;
       n_corrected += m.n_static_corrections > 0;
+      if (m.integrator == "implicit")
+        {
+          // Family (d): few modes at the scene's step with the FE's θ.
+          ++n_implicit;
+          EXPECT_EQ(m.time_step, scene.time_stepping.time_step) << front[i].name;
+          EXPECT_EQ(m.theta, scene.time_stepping.fe_theta) << front[i].name;
+          EXPECT_GT(m.theta, 0.5);
+          continue;
+        }
       ModelSetting probe = m;
       probe.time_step    = 1e-12;
       const double limit = make_beam_model(scene, probe)->max_stable_time_step();
@@ -285,8 +295,9 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
           EXPECT_GT(2 * m.time_step, limit) << front[i].name;
         }
     }
-  EXPECT_EQ(n_candidates, 9u);
+  EXPECT_EQ(n_candidates, 11u);
   EXPECT_EQ(n_corrected, 5u);
+  EXPECT_EQ(n_implicit, 2u);
 
   const LadderChecks checks = ladder_checks(scene, front, reference);
   unsigned int n_step_checks = 0, n_mode_checks = 0;
@@ -310,12 +321,14 @@ TEST(ErrorLadder, TheFrontAddsCandidatesAtTheirStepLimitEachCheckedAtHalfTheStep
     }
   unsigned int n_roms = 0;
   for (const LadderRung &r : front)
-    n_roms += r.model.family == "rom" && r.model.integrator == "explicit";
+    n_roms += r.model.family == "rom" && (r.model.integrator == "explicit" || r.front_candidate);
   EXPECT_EQ(n_mode_checks, 1u);
   EXPECT_EQ(n_step_checks + n_mode_checks, n_roms);
 
-  // The last candidate: 6 modes, 4 corrections grown by 4 Ritz vectors.
-  ModelSetting corrected = front[reference - 1].model, plain = corrected;
+  // The candidate with Ritz vectors: 6 modes, 4 corrections grown by 4.
+  const auto grown = std::find_if(front.begin(), front.end(), [](const LadderRung &r) { return r.model.ritz_blocks > 1; });
+  ASSERT_TRUE(grown != front.end());
+  ModelSetting corrected = grown->model, plain = corrected;
   ASSERT_EQ(corrected.ritz_blocks, 2u);
   plain.n_modes += plain.n_static_corrections * plain.ritz_blocks;
   plain.n_static_corrections = 0;

@@ -417,7 +417,10 @@ namespace beamslider
       md << "What sets the price: an explicit rung's cost is its coordinates times its steps, and its step is the "
             "scene's Δt halved until it is below 2/ω_max of its basis. The vectors that carry the slider's corner "
             "loads (higher modes, static corrections, Ritz vectors) are the stiff ones: each raises ω_max, and one "
-            "that crosses a halving doubles the cost of all the others. Modes chosen by their participation instead "
+            "that crosses a halving doubles the cost of all the others. An implicit rung is not bound to that "
+            "limit: it keeps its step and pays a Newton solve a step instead, about "
+         << implicit_rom_step_factor
+         << " explicit steps of its basis (above ½ its θ damps what the step cannot resolve). Modes chosen by their participation instead "
             "of by frequency are not among the candidates: ranked by their energy over a run they are the lowest "
             "modes, and ranked by the impulse the impacts feed them they reach the highest mode offered, and its step "
             "(doc/findings.md, 2026-12-04; `scripts/modal_participation.py`).\n";

@@ -32,6 +32,14 @@ namespace beamslider
   // quotes, the checks' evidence. Throws MemberRunsStopped when stopped.
   std::string run_and_describe_region(const std::string &dir, const Scene &scene, const RegionRunSettings &settings);
 
+  // The region's summary, as the README quotes it: each model's W₁ range
+  // over the points and at how many it ends alike with the reference (and
+  // moves at Δt/2), the first model that meets the reference everywhere if
+  // any, and the points where the ROM converged in N and its check with
+  // more modes both end apart from the reference (there the basis is not
+  // what separates ROM and FE).
+  std::string region_summary(const RegionStudy &study);
+
   // The other MPI ranks' part.
   void work_on_region_members(const Scene &scene, const RegionRunSettings &settings);
 

@@ -122,7 +122,7 @@ namespace beamslider
   //                converged-in-N ROMs (N = 10 at Δt/2, N = 20 at Δt/4: the
   //                explicit step's limit 2/ω_N forces the smaller steps),
   //                two candidates of the speed–accuracy front at their
-  //                explicit step's limit (N = 15, and 8 modes with 4 static
+  //                explicit step's limit (N = 15, and 6 modes with 4 static
   //                corrections: doc/verification.md §6) and the reference:
   //                the scene's own FE model (its FE time step and θ; on
   //                mueller2023 θ = 0.51 at Δt/2, which ends where the
@@ -130,8 +130,9 @@ namespace beamslider
   //   front        the verdict of `verify --full`: adds the ROM N = 20 with
   //                the FE's implicit midpoint rule and every candidate of the
   //                front, ROMs of 6, 8, 12 and 15 modes, 5…8 modes with 4
-  //                static corrections, and 6 + 4 grown by a block of
-  //                load-dependent Ritz vectors;
+  //                static corrections, 6 + 4 grown by a block of
+  //                load-dependent Ritz vectors, and N = 10 and 15 implicit
+  //                at Δt with the FE's θ (when it is above ½);
   //   diagnostics  adds to the front's ladder, as diagnostic rungs, the
   //                implicit ROM with every bending mode of the FE mesh at
   //                Δt/4 and the midpoint-rule FE (θ = ½) at Δt/4, Δt/8, Δt/2
