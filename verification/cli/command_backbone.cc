@@ -13,7 +13,8 @@
 //   summary.md    settings, timing, where and why the continuation stopped;
 //   backbone.png  the curves (scripts/plot_backbones.py).
 //
-// ROM: modal basis from the FE modes of the scene's mesh, analytic cubic
+// ROM: the scene's basis on the FE modes of its mesh (N modes, and its
+// static corrections and Ritz blocks when it has them), analytic cubic
 // coefficients. FE: the full FE model (axial DoFs with their inertia) on the
 // scene's mesh; harmonics 0…H with w odd and u even (see
 // FEConservativeSystem::even_harmonic_dofs). A coarser FE mesh:
@@ -24,6 +25,7 @@
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
+#include "fem/static_corrections.h"
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
@@ -61,9 +63,19 @@ namespace beamslider
     std::string model_text;
     if (options.model == "rom")
       {
-        const ReducedOrderModel rom(make_modal_basis(beam, modes, N), 0.);
+        // The scene's basis as every ROM builds it: N modes and, when the
+        // scene asks for them, its static corrections and Ritz blocks.
+        const unsigned int m = scene.discretisation.n_static_corrections;
+        const ReducedOrderModel rom(
+          m ? make_modal_basis(beam, reduced_basis_vectors(beam, N, m, scene.discretisation.ritz_blocks))
+            : make_modal_basis(beam, modes, N),
+          0.);
         backbone   = compute_rom_backbone(rom, 0.5 * L, settings);
-        model_text = "ROM, N = " + std::to_string(N) + " modes (FE modes of " + std::to_string(beam.n_elements()) +
+        model_text = "ROM, N = " + std::to_string(N) + " modes" +
+                     (m ? " and " + std::to_string(m) + " static corrections (" +
+                            std::to_string(scene.discretisation.ritz_blocks) + " Ritz blocks)"
+                        : std::string()) +
+                     " (FE modes of " + std::to_string(beam.n_elements()) +
                      " elements, analytic coefficients), odd harmonics 1…" + std::to_string(options.n_harmonics);
       }
     else
