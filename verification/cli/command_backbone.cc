@@ -51,7 +51,10 @@ namespace beamslider
     const auto t0 = std::chrono::steady_clock::now();
 
     const FEBeam beam(scene);
-    const FEModes modes = compute_bending_modes(beam, std::max(N, 1u));
+    // The scene's basis as every ROM builds it: N modes and, when the scene
+    // asks for them, its static corrections and Ritz blocks after them.
+    const unsigned int m = scene.discretisation.n_static_corrections, blocks = scene.discretisation.ritz_blocks;
+    const FEModes modes  = reduced_basis_vectors(beam, std::max(N, 1u), m, blocks);
 
     BeamBackboneSettings settings;
     settings.n_harmonics = options.n_harmonics;
@@ -63,18 +66,12 @@ namespace beamslider
     std::string model_text;
     if (options.model == "rom")
       {
-        // The scene's basis as every ROM builds it: N modes and, when the
-        // scene asks for them, its static corrections and Ritz blocks.
-        const unsigned int m = scene.discretisation.n_static_corrections;
-        const ReducedOrderModel rom(
-          m ? make_modal_basis(beam, reduced_basis_vectors(beam, N, m, scene.discretisation.ritz_blocks))
-            : make_modal_basis(beam, modes, N),
-          0.);
+        const ReducedOrderModel rom(make_modal_basis(beam, modes), 0.);
         backbone   = compute_rom_backbone(rom, 0.5 * L, settings);
         model_text = "ROM, N = " + std::to_string(N) + " modes" +
-                     (m ? " and " + std::to_string(m) + " static corrections (" +
-                            std::to_string(scene.discretisation.ritz_blocks) + " Ritz blocks)"
-                        : std::string()) +
+                     (m ? " and " + std::to_string(m) + " static corrections" : std::string()) +
+                     (m && blocks > 1 ? " grown by " + std::to_string(m * (blocks - 1)) + " load-dependent Ritz vectors"
+                                      : std::string()) +
                      " (FE modes of " + std::to_string(beam.n_elements()) +
                      " elements, analytic coefficients), odd harmonics 1…" + std::to_string(options.n_harmonics);
       }
