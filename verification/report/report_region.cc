@@ -46,6 +46,12 @@ namespace beamslider
       return c;
     }
 
+    // The column of an N check's larger basis ("ROM N=30").
+    std::string larger_basis_name(const ConvergenceCheck &n_check)
+    {
+      return "ROM N=" + std::to_string(n_check.trials[1].model.n_modes);
+    }
+
     // The columns of one point: the ROM rungs (each marked if it moved at
     // Δt/2), the N-check's refinement (N = 30), and the reference last.
     std::vector<Column> point_columns(const LadderStudy &l)
@@ -64,7 +70,7 @@ namespace beamslider
           }
       for (const ConvergenceCheck &c : l.checks)
         if (c.parameter == "N" && c.trials.size() > 1)
-          columns.push_back(column("ROM N=" + std::to_string(c.trials[1].model.n_modes), c.trials[1].model,
+          columns.push_back(column(larger_basis_name(c), c.trials[1].model,
                                    c.trials[1].members, &ref_samples));
       columns.push_back(column(ref.rung.name, ref.rung.model, ref.members, nullptr));
       return columns;
@@ -148,7 +154,7 @@ namespace beamslider
           });
           if (rung == l.rungs.end() || check == l.checks.end())
             continue;
-          const std::string more = "ROM N=" + std::to_string(check->trials[1].model.n_modes);
+          const std::string more = larger_basis_name(*check);
           const auto find        = [&](const std::string &name) -> const Column * {
             for (const Column &c : columns[p])
               if (c.name == name && c.to_reference.n_a > 0)
