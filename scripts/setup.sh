@@ -17,7 +17,7 @@ case "${1:-}" in
   *) echo "setup.sh: unknown argument '$1' (allowed: none, or --tests)" >&2; exit 2 ;;
 esac
 
-packages=(cmake g++ make libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
+packages=(cmake g++ make ccache libdeal.ii-dev libeigen3-dev libvtk9-dev libgtest-dev
           libbenchmark-dev libcli11-dev python3-matplotlib python3-numpy python3-dev
           pybind11-dev openmpi-bin python3-scipy python3-nbconvert python3-ipykernel)
 missing=()
@@ -33,6 +33,7 @@ fi
 
 if [ ${#target[@]} -gt 0 ]; then what="build/beamslider"; else what="build/beamslider, the tests, the benchmarks and the Python module"; fi
 echo "== building $what (Release) in ./build"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > build.log 2>&1 || { cat build.log; exit 1; }
+source scripts/compiler_cache.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${compiler_cache[@]}" > build.log 2>&1 || { cat build.log; exit 1; }
 cmake --build build -j "$(nproc)" "${target[@]}" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
 echo "== built $what"
