@@ -52,15 +52,25 @@ TEST(ReferenceCheck, EnsembleOfACoarseFeSaysItDidNotConverge)
   EXPECT_EQ(run.exit_code, 3) << run.err;
   EXPECT_EQ(first_line(run.err).rfind("ensemble: the FE in Δt: NOT CONVERGED in Δt down to Δt = 2.5e-05 s", 0), 0u)
     << run.err;
+  // Coarsest first: the witness 2Δt, then the scene's step and its halvings.
   const auto rows = convergence_rows(dir);
-  ASSERT_EQ(rows.size(), 3u);
-  const double steps[] = {1e-4, 5e-5, 2.5e-5};
-  for (std::size_t k = 0; k < 3; ++k)
+  ASSERT_EQ(rows.size(), 4u);
+  const double steps[] = {2e-4, 1e-4, 5e-5, 2.5e-5};
+  for (std::size_t k = 0; k < 4; ++k)
     {
       EXPECT_DOUBLE_EQ(std::stod(rows[k].at("time_step_s")), steps[k]);
       EXPECT_EQ(rows[k].at("members"), "4");
     }
-  for (std::size_t k = 0; k < 2; ++k)
+  EXPECT_EQ(rows[0].at("status"), "witness");
+  // The observed order at each judged step, from the medians beside it.
+  for (std::size_t k = 1; k < 3; ++k)
+    {
+      const auto median = [&](const std::size_t i) { return std::stod(rows[i].at("final_x_median")); };
+      const double d1 = std::abs(median(k - 1) - median(k)), d2 = std::abs(median(k) - median(k + 1));
+      if (std::max(d1, d2) > 1e-3)
+        EXPECT_NEAR(std::stod(rows[k].at("observed_order")), std::log2(d1 / d2), 1e-6) << "row " << k;
+    }
+  for (std::size_t k = 1; k < 3; ++k)
     {
       // The W₁ of a shift is the shift: the medians' difference, give or
       // take the members' scatter.
@@ -70,7 +80,7 @@ TEST(ReferenceCheck, EnsembleOfACoarseFeSaysItDidNotConverge)
       EXPECT_GT(std::stod(rows[k].at("w1_to_next_low")), std::max(std::stod(rows[k].at("spread")), 1e-3));
       EXPECT_EQ(rows[k].at("distinguishable"), "1");
     }
-  EXPECT_EQ(rows[2].at("status"), "not converged");
+  EXPECT_EQ(rows[3].at("status"), "not converged");
   const std::string summary = read_file(dir / "summary.md");
   EXPECT_NE(summary.find("dt=2.5e-05; 4 members"), std::string::npos) << "the statistics are the finest step's";
   EXPECT_NE(summary.find("NOT CONVERGED"), std::string::npos);
@@ -102,12 +112,14 @@ TEST(ReferenceCheck, LadderWithACoarseReferenceSaysItDidNotConverge)
                                       long_enough);
   EXPECT_EQ(run.exit_code, 3) << run.err;
   EXPECT_NE(run.err.find("the reference in Δt: NOT CONVERGED"), std::string::npos) << run.err;
-  // The reference's three steps; N=10's own check at half its step beside them.
+  // The reference's three steps and the witness; N=10's own check at half
+  // its step beside them.
   std::vector<std::map<std::string, std::string>> rows;
   for (const auto &row : convergence_rows(dir))
     if (row.at("check") == "the reference in Δt")
       rows.push_back(row);
-  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows.front().at("status"), "witness");
   EXPECT_EQ(rows.back().at("status"), "not converged");
   bool reference_found = false;
   const auto ladder    = read_csv_cells(dir / "ladder.csv");

@@ -153,6 +153,126 @@ TEST(ConvergenceCheck, RunsThePairThenOneRefinementPerRound)
   EXPECT_EQ(worker_rounds, groups_per_round);
 }
 
+// The reference's check judges the sequence of steps. End states that drift
+// as x(h) = x* + C h^p, fabricated at 2Δt (the witness), Δt, Δt/2 and Δt/4
+// with every neighbouring pair within the members' spread: at p = 0.3 the
+// drift is far from over (Richardson puts the remaining error at several
+// times the last difference), and no step may be accepted; at p = 1 and
+// p = 2 the scene's own step is.
+namespace
+{
+  ConvergenceCheck judged_drift(const double order, const double last_difference)
+  {
+    const RefinementPlan plan = step_sequence("FE", fe_at(1e-5), 2);
+    // C such that x(Δt/2) − x(Δt/4) = last_difference.
+    const double C = last_difference / (std::pow(0.5, order) - std::pow(0.25, order));
+    std::vector<std::vector<EnsembleMember>> trials;
+    for (const ModelSetting &m : plan.models) // the plan's order: Δt, Δt/2, 2Δt, Δt/4
+      trials.push_back(ending_at(0.40 + C * std::pow(m.time_step / 1e-5, order), 0.003));
+    return judge_convergence(plan, trials);
+  }
+} // namespace
+
+TEST(ConvergenceCheck, SequencePlanRunsTheWitnessAfterThePair)
+{
+  const RefinementPlan plan = step_sequence("FE", fe_at(1e-5), 2);
+  ASSERT_EQ(plan.models.size(), 4u);
+  EXPECT_TRUE(plan.judged_by_order);
+  EXPECT_DOUBLE_EQ(plan.models[0].time_step, 1e-5);
+  EXPECT_DOUBLE_EQ(plan.models[1].time_step, 5e-6);
+  EXPECT_DOUBLE_EQ(plan.models[2].time_step, 2e-5);
+  EXPECT_DOUBLE_EQ(plan.models[3].time_step, 2.5e-6);
+  EXPECT_THROW(step_sequence("FE", fe_at(1e-5), 0), std::invalid_argument);
+}
+
+TEST(ConvergenceCheck, DriftAtOrderPointThreeWithinTheSpreadIsNotAccepted)
+{
+  const ConvergenceCheck c = judged_drift(0.3, 0.0015);
+  ASSERT_EQ(c.trials.size(), 4u);
+  EXPECT_TRUE(c.trials.front().witness);
+  for (std::size_t k = 0; k + 1 < c.trials.size(); ++k)
+    {
+      EXPECT_GT(c.trials[k].model.time_step, c.trials[k + 1].model.time_step) << "sorted coarsest first";
+      EXPECT_TRUE(ends_alike(c.trials[k].position_to_next)) << "pair " << k << " is within the spread, by design";
+    }
+  EXPECT_TRUE(c.decided);
+  EXPECT_FALSE(c.converged) << c.verdict();
+  // Pure shifts: the medians' differences are exact, and so is the order.
+  EXPECT_NEAR(c.trials[1].observed_order, 0.3, 1e-9);
+  EXPECT_NEAR(c.trials[2].observed_order, 0.3, 1e-9);
+  EXPECT_NE(c.verdict().find("NOT CONVERGED"), std::string::npos) << c.verdict();
+  EXPECT_NE(c.verdict().find("observed order 0.30"), std::string::npos) << c.verdict();
+
+  // The same drift judged by pairs alone passes at the scene's step: what
+  // the sequence is for.
+  const RefinementPlan pairs = step_refinements("FE", fe_at(1e-5), 1);
+  EXPECT_TRUE(judge_convergence(pairs, {c.trials[1].members, c.trials[2].members}).converged);
+}
+
+TEST(ConvergenceCheck, ConvergenceAtOrderOneOrTwoIsAcceptedAtTheScenesStep)
+{
+  for (const double order : {1., 2.})
+    {
+      const ConvergenceCheck c = judged_drift(order, 0.0005);
+      ASSERT_TRUE(c.converged) << "order " << order << ": " << c.verdict();
+      EXPECT_DOUBLE_EQ(c.reference().model.time_step, 1e-5);
+      const ConvergenceTrial &t = c.reference();
+      EXPECT_NEAR(t.observed_order, order, 1e-9);
+      // Richardson's remaining error of x(Δt) is exact for a pure power law.
+      const double C = 0.0005 / (std::pow(0.5, order) - std::pow(0.25, order));
+      EXPECT_NEAR(t.remaining_error, C, 1e-12);
+      EXPECT_LE(t.remaining_error, t.tolerance);
+      EXPECT_NE(c.verdict().find("extrapolated remaining error"), std::string::npos) << c.verdict();
+    }
+}
+
+// A witness that failed (no end state) shows no order: the scene's step is
+// not accepted however well the pair agrees; Δt/2 can be, from Δt and Δt/4.
+TEST(ConvergenceCheck, AStepWithoutAnEndStateShowsNoOrder)
+{
+  const RefinementPlan plan = step_sequence("FE", fe_at(1e-5), 2);
+  std::vector<EnsembleMember> failed = ending_at(0.4, 0.003);
+  for (EnsembleMember &m : failed)
+    m.analysis.valid = false;
+  ConvergenceCheck c = judge_convergence(plan, {ending_at(0.4, 0.003), ending_at(0.4, 0.003), failed});
+  EXPECT_FALSE(c.converged);
+  EXPECT_FALSE(c.decided) << "Δt/4 is left";
+  c = judge_convergence(plan, {ending_at(0.4, 0.003), ending_at(0.4, 0.003), failed, ending_at(0.4, 0.003)});
+  ASSERT_TRUE(c.converged) << c.verdict();
+  EXPECT_DOUBLE_EQ(c.reference().model.time_step, 5e-6);
+}
+
+// Run by rounds from nothing (`ensemble --model fe`): the pair and the
+// witness at once, then Δt/4 only if still undecided.
+TEST(ConvergenceCheck, SequenceRoundsThePairAndWitnessThenTheNextHalving)
+{
+  Scene scene                  = read_scene(mueller);
+  scene.time_stepping.end_time = 1;
+  for (const double order : {0.3, 1.})
+    {
+      std::vector<std::size_t> groups_per_round;
+      const MemberGroupRunner fabricate = [&](const std::vector<MemberGroup> &groups) {
+        groups_per_round.push_back(groups.size());
+        std::vector<std::vector<EnsembleMember>> out;
+        for (const MemberGroup &g : groups)
+          out.push_back(ending_at(0.40 + (order < 1 ? 0.02 : 0.002) * std::pow(g.model.time_step / 1e-5, order), 0.003, 4));
+        return out;
+      };
+      const ConvergenceCheck c =
+        run_convergence_checks(scene, {step_sequence("FE", fe_at(1e-5), 2)}, {}, 4, 1e-9, fabricate).front();
+      if (order == 1.)
+        {
+          EXPECT_TRUE(c.converged) << c.verdict();
+          EXPECT_EQ(groups_per_round, (std::vector<std::size_t>{3}));
+        }
+      else
+        {
+          EXPECT_FALSE(c.converged) << c.verdict();
+          EXPECT_EQ(groups_per_round, (std::vector<std::size_t>{3, 1}));
+        }
+    }
+}
+
 // The ROM's check in N: ⌈1.5 N⌉ modes at a step the explicit scheme takes,
 // halved from the rung's own only as far as its limit 2/ω_max asks.
 TEST(ConvergenceCheck, MoreModesAtAStableExplicitStep)
@@ -169,7 +289,9 @@ TEST(ConvergenceCheck, MoreModesAtAStableExplicitStep)
   const double limit = make_beam_model(scene, probe)->max_stable_time_step();
   EXPECT_LE(finer.time_step, limit);
   if (finer.time_step < rom.time_step)
-    EXPECT_GT(2 * finer.time_step, limit) << "halved once more than the limit asks";
+    {
+      EXPECT_GT(2 * finer.time_step, limit) << "halved once more than the limit asks";
+    }
   // The implicit ROM has no limit: its step stays.
   rom.integrator = "implicit";
   EXPECT_EQ(more_modes(scene, rom).time_step, rom.time_step);

@@ -200,11 +200,16 @@ namespace beamslider
     std::string convergence_section(const ConvergenceCheck &check)
     {
       std::ostringstream md;
-      md << "\n## Convergence in Δt\n\nThe same members at the FE's Δt and refined (Δt/2, …, at most "
+      md << "\n## Convergence in Δt\n\nThe same members at the FE's Δt, refined (Δt/2, …, at most "
          << reference_max_halvings
-         << " halvings); a step is accepted when its half ends within the ensembles' own spread (W₁ of the final "
-            "positions, 90 % interval against the spread) or closer than "
-         << convergence_resolution << " L. The statistics above are those of "
+         << " halvings) and at 2Δt (the witness); a step is accepted when its half ends within the ensembles' own "
+            "spread (W₁ of the final positions, 90 % interval against the spread) or closer than "
+         << convergence_resolution
+         << " L, and when the drift of the median end state over the step, its coarser and its finer neighbour "
+            "shows an observed order of at least "
+         << minimum_extrapolation_order
+         << " and a remaining error, extrapolated by Richardson, within the larger of the spread and that "
+            "resolution. The statistics above are those of "
          << (check.converged ? "the accepted step" : "the finest step tried, NOT CONVERGED") << " (convergence.csv).\n\n"
          << describe_convergence({check});
       return md.str();
@@ -395,8 +400,9 @@ namespace beamslider
     // same code runs the model alone (a plan without refinements), so that
     // every rank takes part in the same rounds either way.
     const bool checked = e.settings.model.family == "fe" && !options.unchecked;
-    const std::vector<RefinementPlan> plans = {step_refinements(checked ? "the FE in Δt" : "ensemble", e.settings.model,
-                                                                checked ? reference_max_halvings : 0)};
+    const std::vector<RefinementPlan> plans = {checked ? step_sequence("the FE in Δt", e.settings.model,
+                                                                       reference_max_halvings)
+                                                       : step_refinements("ensemble", e.settings.model, 0)};
     if (mpi.rank() != 0)
       {
         // Computes what rank 0 hands out: the ensemble and the check's rounds.

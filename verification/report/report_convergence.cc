@@ -13,11 +13,19 @@ namespace beamslider
   {
     std::string status(const ConvergenceCheck &c, const std::size_t k)
     {
+      if (c.trials[k].witness)
+        return "witness";
       if (c.converged)
         return k == c.accepted ? "accepted" : k < c.accepted ? "refined" : "check";
       if (c.trials.size() < 2)
         return "unchecked";
       return k + 1 == c.trials.size() ? "not converged" : "refined";
+    }
+
+    // An estimate of a check judged by order, empty where none was made.
+    std::string estimate(const double x)
+    {
+      return std::isnan(x) ? std::string() : std::isinf(x) ? std::string("inf") : CsvWriter::cell(x);
     }
 
     std::string range(const OutcomeStatistics &s, const int digits)
@@ -58,7 +66,8 @@ namespace beamslider
     CsvWriter csv(dir + "/" + name,
                   {"check", "parameter", "trial", "model", "time_step_s", "n_modes", "members", "final_x_median",
                    "final_x_min", "final_x_max", "final_amplitude_median", "w1_to_next", "w1_to_next_low",
-                   "w1_to_next_high", "spread", "distinguishable", "wall_s_per_member", "status"});
+                   "w1_to_next_high", "spread", "distinguishable", "observed_order", "remaining_error",
+                   "tolerance", "wall_s_per_member", "status"});
     for (const ConvergenceCheck &c : checks)
       for (std::size_t k = 0; k < c.trials.size(); ++k)
         {
@@ -71,7 +80,8 @@ namespace beamslider
                    CsvWriter::cell(t.final_position.median), CsvWriter::cell(t.final_position.min),
                    CsvWriter::cell(t.final_position.max), CsvWriter::cell(t.final_amplitude.median),
                    maybe(d.wasserstein), maybe(d.interval_low), maybe(d.interval_high), maybe(d.spread),
-                   next ? (d.distinguishable ? "1" : "0") : "", CsvWriter::cell(t.wall_seconds_per_member, 4),
+                   next ? (d.distinguishable ? "1" : "0") : "", estimate(t.observed_order),
+                   estimate(t.remaining_error), estimate(t.tolerance), CsvWriter::cell(t.wall_seconds_per_member, 4),
                    status(c, k)});
         }
     csv.close();

@@ -6,9 +6,13 @@
 //   check,parameter,trial,model,time_step_s,n_modes,members,
 //   final_x_median,final_x_min,final_x_max,final_amplitude_median,
 //   w1_to_next,w1_to_next_low,w1_to_next_high,spread,distinguishable,
-//   wall_s_per_member,status
-// where the W₁ columns compare the trial with the next refinement (empty for
-// the last) and status is accepted | refined | not converged | unchecked.
+//   observed_order,remaining_error,tolerance,wall_s_per_member,status
+// where the trials are sorted coarsest first, the W₁ columns compare the
+// trial with the next refinement (empty for the last), the order columns
+// are a check judged by order's estimates for that step (empty where none
+// was made; an order of "inf" where the finer pair ended exactly alike) and
+// status is accepted | refined | check | witness | not converged |
+// unchecked.
 #pragma once
 
 #include "verification/studies/convergence_check.h"

@@ -613,7 +613,7 @@ namespace beamslider
     run_member_groups(ladder_groups_with_checks(scene, rungs, checks, settings.end_time, settings.members), runs);
     Scene s                  = scene;
     s.time_stepping.end_time = settings.end_time;
-    work_on_check_rounds(s, checks.plans, std::vector<std::size_t>(checks.plans.size(), 2), settings.members,
+    work_on_check_rounds(s, checks.plans, first_trial_counts(checks), settings.members,
                          EnsembleSettings().perturbation, runs);
   }
 

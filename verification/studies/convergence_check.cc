@@ -37,11 +37,53 @@ namespace beamslider
     }
 
     // The trials each undecided check runs next: up to trial 1 at once (the
-    // pair is the least that decides anything), then one at a time.
+    // pair is the least that decides anything; judged by order, the witness
+    // with it), then one at a time.
     std::pair<std::size_t, std::size_t> next_trials(const RefinementPlan &plan, const std::size_t n_done)
     {
-      const std::size_t last = std::min(std::max<std::size_t>(n_done, 1), plan.models.size() - 1);
+      const std::size_t last = n_done == 0 ? first_round_size(plan) - 1 : std::min(n_done, plan.models.size() - 1);
       return {n_done, last};
+    }
+
+    // Judged by order: trial k (sorted coarsest first, with both neighbours)
+    // gets its observed order, remaining error and tolerance; returns
+    // whether its drift is within the tolerance.
+    bool drift_within_tolerance(std::vector<ConvergenceTrial> &trials, const std::size_t k)
+    {
+      ConvergenceTrial &t = trials[k];
+      const OutcomeStatistics &coarse = trials[k - 1].final_position, &fine = trials[k + 1].final_position;
+      if (coarse.n == 0 || t.final_position.n == 0 || fine.n == 0)
+        return false; // a step with no end state shows no order
+      const double d1 = std::abs(coarse.median - t.final_position.median);
+      const double d2 = std::abs(t.final_position.median - fine.median);
+      t.tolerance     = std::max(convergence_resolution, t.position_to_next.spread);
+      if (d1 <= convergence_resolution && d2 <= convergence_resolution)
+        return true; // no difference above the resolution: no drift to extrapolate
+      if (d2 == 0)
+        {
+          t.observed_order  = INFINITY;
+          t.remaining_error = 0;
+          return true;
+        }
+      t.observed_order = std::log2(d1 / d2);
+      if (t.observed_order < minimum_extrapolation_order)
+        return false; // too slow (or growing) to extrapolate
+      const double r    = std::exp2(t.observed_order);
+      t.remaining_error = d2 * r / (r - 1);
+      return t.remaining_error <= t.tolerance;
+    }
+
+    std::string order_text(const ConvergenceTrial &t)
+    {
+      if (std::isnan(t.tolerance))
+        return "";
+      if (std::isnan(t.observed_order))
+        return "; every difference below the resolution " + fixed(convergence_resolution, 3) + " L";
+      std::string s = "; observed order " + (std::isinf(t.observed_order) ? std::string("∞") : fixed(t.observed_order, 2));
+      if (std::isnan(t.remaining_error))
+        return s + ", below " + fixed(minimum_extrapolation_order, 1) + ": too slow to extrapolate";
+      return s + ", extrapolated remaining error " + fixed(t.remaining_error, 4) + " against the tolerance " +
+             fixed(t.tolerance, 4);
     }
   } // namespace
 
@@ -54,6 +96,18 @@ namespace beamslider
         finer.time_step /= 2;
         plan.models.push_back(finer);
       }
+    return plan;
+  }
+
+  RefinementPlan step_sequence(const std::string &name, const ModelSetting &model, const unsigned int max_halvings)
+  {
+    if (max_halvings < 1)
+      throw std::invalid_argument("step_sequence: a sequence needs at least one halving");
+    RefinementPlan plan = step_refinements(name, model, max_halvings);
+    ModelSetting witness = model;
+    witness.time_step *= 2;
+    plan.models.insert(plan.models.begin() + 2, witness);
+    plan.judged_by_order = true;
     return plan;
   }
 
@@ -113,11 +167,13 @@ namespace beamslider
           << fixed(b.final_position.median, 4) << "; W₁ " << w1(a.position_to_next) << " against the spread "
           << fixed(a.position_to_next.spread, 4)
           << (a.position_to_next.distinguishable ? ", within the resolution " + fixed(convergence_resolution, 3) + " L"
-                                                  : ", indistinguishable at this ensemble size");
-        if (accepted > 0)
-          s << " (the coarser " << setting_text(parameter, trials.front().model) << " was not: W₁ "
-            << w1(trials.front().position_to_next) << ", spread " << fixed(trials.front().position_to_next.spread, 4)
-            << ")";
+                                                  : ", indistinguishable at this ensemble size")
+          << order_text(a);
+        const std::size_t own = trials.front().witness ? 1 : 0; // the model under test
+        if (accepted > own)
+          s << " (the coarser " << setting_text(parameter, trials[own].model) << " was not: W₁ "
+            << w1(trials[own].position_to_next) << ", spread " << fixed(trials[own].position_to_next.spread, 4)
+            << order_text(trials[own]) << ")";
         return s.str();
       }
     s << name << ": NOT CONVERGED in " << parameter << " down to " << setting_text(parameter, trials.back().model)
@@ -128,6 +184,9 @@ namespace beamslider
     for (std::size_t k = 0; k + 1 < trials.size(); ++k)
       s << (k ? ", " : " ") << w1(trials[k].position_to_next) << " (spread "
         << fixed(trials[k].position_to_next.spread, 4) << ")";
+    for (const ConvergenceTrial &t : trials)
+      if (!std::isnan(t.tolerance))
+        s << "; at " << setting_text(parameter, t.model) << order_text(t);
     s << ". The finest is used, unproven";
     return s.str();
   }
@@ -139,34 +198,52 @@ namespace beamslider
     ConvergenceCheck check;
     check.name      = plan.name;
     check.parameter = plan.parameter;
-    std::vector<OutcomeSamples> samples;
     for (std::size_t k = 0; k < trial_members.size(); ++k)
       {
         ConvergenceTrial t;
         t.model   = plan.models[k];
+        t.witness = plan.judged_by_order && k == 2;
         t.members = std::move(trial_members[k]);
-        samples.push_back(outcome_samples(t.members));
-        t.final_position  = statistics("final x_C/L", samples.back().final_position);
-        t.final_amplitude = statistics("final amplitude [h]", samples.back().final_amplitude);
+        const OutcomeSamples samples = outcome_samples(t.members);
+        t.final_position  = statistics("final x_C/L", samples.final_position);
+        t.final_amplitude = statistics("final amplitude [h]", samples.final_amplitude);
         for (const EnsembleMember &m : t.members)
           t.wall_seconds_per_member += m.wall_seconds / t.members.size();
         check.trials.push_back(std::move(t));
       }
+    // Coarsest first: the witness 2Δt runs after the pair but leads the sequence.
+    if (plan.judged_by_order)
+      std::stable_sort(check.trials.begin(), check.trials.end(), [](const ConvergenceTrial &a, const ConvergenceTrial &b) {
+        return a.model.time_step > b.model.time_step;
+      });
     for (std::size_t k = 0; k + 1 < check.trials.size(); ++k)
       {
         ConvergenceTrial &t = check.trials[k];
-        if (samples[k].final_position.empty() || samples[k + 1].final_position.empty())
+        const OutcomeSamples a = outcome_samples(t.members), b = outcome_samples(check.trials[k + 1].members);
+        if (a.final_position.empty() || b.final_position.empty())
           continue; // no end state to compare (every member failed): not accepted
-        t.position_to_next  = compare_samples(samples[k].final_position, samples[k + 1].final_position);
-        t.amplitude_to_next = compare_samples(samples[k].final_amplitude, samples[k + 1].final_amplitude);
-        if (ends_alike(t.position_to_next) && !check.converged)
-          {
-            check.converged = true;
-            check.accepted  = k;
-          }
+        t.position_to_next  = compare_samples(a.final_position, b.final_position);
+        t.amplitude_to_next = compare_samples(a.final_amplitude, b.final_amplitude);
       }
+    // Judged by order, every step with both neighbours gets its estimates
+    // (the evidence, whether or not its pair ends alike).
+    std::vector<bool> drift_ok(check.trials.size(), !plan.judged_by_order);
+    if (plan.judged_by_order)
+      for (std::size_t k = 1; k + 1 < check.trials.size(); ++k)
+        drift_ok[k] = !check.trials[k].witness && drift_within_tolerance(check.trials, k);
+    for (std::size_t k = 0; k + 1 < check.trials.size() && !check.converged; ++k)
+      if (!check.trials[k].witness && drift_ok[k] && ends_alike(check.trials[k].position_to_next))
+        {
+          check.converged = true;
+          check.accepted  = k;
+        }
     check.decided = check.converged || (!check.trials.empty() && check.trials.size() == plan.models.size());
     return check;
+  }
+
+  std::size_t first_round_size(const RefinementPlan &plan)
+  {
+    return std::min<std::size_t>(plan.judged_by_order ? 3 : 2, plan.models.size());
   }
 
   std::vector<MemberGroup> trial_groups(const Scene &scene, const RefinementPlan &plan, const std::size_t first,

@@ -15,6 +15,31 @@
 // A check that runs out of refinements is "not converged", with the
 // numbers; it never passes silently.
 //
+// The reference's check in Δt judges the sequence of steps, not one pair:
+// an FE contact step converges so slowly in Δt (observed order ~0.3 at one
+// region point) that two neighbouring steps can end within the members'
+// spread while the end state still drifts by several times that spread.
+// So the plan runs one coarser step beside the pair (2Δt, the "witness",
+// half the cost of Δt), and a step is accepted only when, from its coarser
+// and its finer neighbour,
+//   - the pair with its finer neighbour ends alike (as above), and
+//   - the observed order p = log₂(|x(2h) − x(h)| / |x(h) − x(h/2)|) of the
+//     members' median end state is at least minimum_extrapolation_order,
+//     and Richardson's estimate of the step's remaining error,
+//     |x(h) − x(h/2)| · 2^p / (2^p − 1), is within the tolerance: the
+//     larger of the pair's spread and convergence_resolution.
+// Differences all below convergence_resolution are no drift at all. The
+// witness is never accepted: it is only evidence.
+//
+// Members: the medians' differences carry the members' scatter, about
+// 1.8 s/√n for n members of standard deviation s (the median's standard
+// error 1.25 s/√n, twice); with 8 members that is 0.6 s, so a drift
+// shows as an order only where each difference is above roughly the
+// spread, and noise makes the ratio of two small differences anything.
+// A noisy ratio that falls below the minimum order refuses a step that was
+// perhaps converged (one more halving is run, never a wrong acceptance);
+// one that rises above it underestimates the error by at most the noise.
+//
 // Every trial is an ensemble of the same members (start x_C/L + m·ε), so a
 // trial's members are reused: the model's own ensemble is trial 0, and the
 // commands run trial 1 beside it, in the same list of member runs.
@@ -24,6 +49,7 @@
 #include "verification/studies/ensemble.h"
 #include "verification/studies/fe_rom_study.h"
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -35,13 +61,25 @@ namespace beamslider
   {
     std::string name;      // e.g. "FE reference in Δt"
     std::string parameter; // "Δt" | "N"
-    // models[0] is the model under test, models[k] its k-th refinement; the
-    // number of refinements tried at most is models.size() − 1.
+    // The models in the order they run: models[0] is the model under test,
+    // then its refinements (and, judged by order, the witness 2Δt third).
     std::vector<ModelSetting> models;
+    // Judged by the sequence of steps (observed order and extrapolated
+    // remaining error, above) instead of by one pair.
+    bool judged_by_order = false;
   };
 
-  // Halvings of the model's step: models Δt, Δt/2, …, Δt/2^max_halvings.
+  // Halvings of the model's step: models Δt, Δt/2, …, Δt/2^max_halvings,
+  // judged by pairs (the front's check of a rung at Δt/2).
   RefinementPlan step_refinements(const std::string &name, const ModelSetting &model, unsigned int max_halvings);
+
+  // The reference's plan, judged by order: Δt, Δt/2, then the witness 2Δt,
+  // then Δt/4, …, Δt/2^max_halvings (max_halvings ≥ 1).
+  RefinementPlan step_sequence(const std::string &name, const ModelSetting &model, unsigned int max_halvings);
+
+  // Below this observed order in Δt the extrapolated error is not trusted
+  // (2^p/(2^p − 1) > 3.4 times the last difference): "not converged".
+  constexpr double minimum_extrapolation_order = 0.5;
 
   // The ROM at its own step if its explicit scheme takes it, else at the
   // largest Δt/2^k within the limit 2/ω_max on `scene` (read off the model;
@@ -62,7 +100,8 @@ namespace beamslider
   constexpr double convergence_resolution = 1e-3;
 
   // The halvings of the FE step a reference check tries at most: the FE
-  // at Δt, Δt/2 and Δt/4 (a member at Δt/4 costs four at Δt).
+  // at Δt, Δt/2 and Δt/4 (a member at Δt/4 costs four at Δt), with the
+  // witness 2Δt beside them.
   constexpr unsigned int reference_max_halvings = 2;
 
   struct ConvergenceTrial
@@ -73,6 +112,11 @@ namespace beamslider
     double wall_seconds_per_member = 0;
     // This trial against the next refinement (n_a = 0 for the last trial).
     SampleComparison position_to_next, amplitude_to_next;
+    bool witness = false; // the coarser step of a plan judged by order
+    // Judged by order, from its coarser and finer neighbours (NaN where not
+    // estimated): the observed order in Δt, Richardson's remaining error of
+    // this trial's median end state and the tolerance it is held to [x_C/L].
+    double observed_order = std::nan(""), remaining_error = std::nan(""), tolerance = std::nan("");
   };
 
   struct ConvergenceCheck
@@ -92,10 +136,18 @@ namespace beamslider
   // starts at or below the spread, or ends below convergence_resolution.
   bool ends_alike(const SampleComparison &c);
 
-  // Judges the trials run so far (each with its members) against `plan`:
-  // trial k is accepted when trial k+1 ends alike (ends_alike); with no pair accepted and no refinement left the check
-  // is decided, not converged.
+  // Judges the trials run so far (each with its members, in the plan's
+  // order) against `plan`: trial k is accepted when trial k+1 ends alike
+  // (ends_alike) and, judged by order, its drift estimate is within the
+  // tolerance (above); with none accepted and no refinement left the check
+  // is decided, not converged. The check's trials are sorted coarsest first.
   ConvergenceCheck judge_convergence(const RefinementPlan &plan, std::vector<std::vector<EnsembleMember>> trial_members);
+
+  // How many trials of `plan` its first round runs: the model and its
+  // first refinement, and the witness of a plan judged by order. A study
+  // that runs the model itself runs trials 1 … first_round_size − 1 beside
+  // it (ladder_groups_with_checks), so that no round waits for the witness.
+  std::size_t first_round_size(const RefinementPlan &plan);
 
   // The member groups of the trials `first` … `last` of a plan, as the
   // ensemble of `n_members` members over `scene`'s end time would run them;

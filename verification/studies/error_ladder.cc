@@ -214,7 +214,7 @@ namespace beamslider
   LadderChecks ladder_checks(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference)
   {
     LadderChecks checks;
-    checks.plans.push_back(step_refinements("the reference in Δt", rungs.at(reference).model, reference_max_halvings));
+    checks.plans.push_back(step_sequence("the reference in Δt", rungs.at(reference).model, reference_max_halvings));
     checks.rung.push_back(reference);
     for (std::size_t i = 0; i < rungs.size(); ++i)
       if (rungs[i].converged_in_n && rungs[i].model.family == "rom")
@@ -286,11 +286,36 @@ namespace beamslider
   {
     std::vector<MemberGroup> groups = ladder_groups(scene, rungs, end_time, members);
     for (std::size_t c = 0; c < checks.plans.size(); ++c)
-      for (const MemberGroup &g : trial_groups(groups.front().scene, checks.plans[c], 1, 1,
+      for (const MemberGroup &g : trial_groups(groups.front().scene, checks.plans[c], 1,
+                                               first_round_size(checks.plans[c]) - 1,
                                                rung_members(rungs[checks.rung[c]], members),
                                                EnsembleSettings().perturbation))
         groups.push_back(g);
     return groups;
+  }
+
+  std::vector<std::vector<std::vector<EnsembleMember>>>
+  first_check_trials(std::vector<std::vector<EnsembleMember>> &results, const std::size_t n_rungs,
+                     const LadderChecks &checks)
+  {
+    std::vector<std::vector<std::vector<EnsembleMember>>> done(checks.plans.size());
+    std::size_t next = n_rungs;
+    for (std::size_t c = 0; c < checks.plans.size(); ++c)
+      {
+        done[c].push_back(results.at(checks.rung[c]));
+        for (std::size_t k = 1; k < first_round_size(checks.plans[c]); ++k)
+          done[c].push_back(std::move(results.at(next++)));
+      }
+    results.resize(n_rungs);
+    return done;
+  }
+
+  std::vector<std::size_t> first_trial_counts(const LadderChecks &checks)
+  {
+    std::vector<std::size_t> n;
+    for (const RefinementPlan &plan : checks.plans)
+      n.push_back(first_round_size(plan));
+    return n;
   }
 
   LadderStudy run_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,
@@ -309,12 +334,9 @@ namespace beamslider
         before_rung(rungs[i], i);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(groups) : run_groups_in_threads(groups);
 
-    // Each check's trials so far: its rung's ensemble and the refinement
-    // that ran beside it; then the rounds that decide it.
-    std::vector<std::vector<std::vector<EnsembleMember>>> done(checks.plans.size());
-    for (std::size_t c = 0; c < checks.plans.size(); ++c)
-      done[c] = {results[checks.rung[c]], std::move(results[rungs.size() + c])};
-    results.resize(rungs.size());
+    // Each check's trials so far: its rung's ensemble and the trials that
+    // ran beside it; then the rounds that decide it.
+    std::vector<std::vector<std::vector<EnsembleMember>>> done = first_check_trials(results, rungs.size(), checks);
     std::vector<ConvergenceCheck> checked =
       run_convergence_checks(groups.front().scene, checks.plans, std::move(done), members,
                              EnsembleSettings().perturbation, rounds ? rounds : runner, share);

@@ -161,10 +161,18 @@ namespace beamslider
   // is group i, `members` members over [0, end_time], ε = 1e-9.
   std::vector<MemberGroup> ladder_groups(const Scene &scene, const std::vector<LadderRung> &rungs, double end_time,
                                          unsigned int members);
-  // The ladder's groups and, after them, trial 1 of every check (the
-  // refinement runs beside the rungs, in the same list).
+  // The ladder's groups and, after them, trials 1 … first_round_size − 1
+  // of every check in check order (the first refinement, and a witness, run
+  // beside the rungs, in the same list).
   std::vector<MemberGroup> ladder_groups_with_checks(const Scene &scene, const std::vector<LadderRung> &rungs,
                                                      const LadderChecks &checks, double end_time, unsigned int members);
+  // The checks' first trials out of the results of those groups: per
+  // check, its rung's members and the trials that ran beside the rungs;
+  // `results` keeps the rungs' groups only.
+  std::vector<std::vector<std::vector<EnsembleMember>>>
+  first_check_trials(std::vector<std::vector<EnsembleMember>> &results, std::size_t n_rungs, const LadderChecks &checks);
+  // How many trials of each check the first list ran (for the other ranks).
+  std::vector<std::size_t> first_trial_counts(const LadderChecks &checks);
 
   // Runs every rung as an ensemble of `members` members over [0, end_time]:
   // all members of all rungs, with the first refinement of every check, as

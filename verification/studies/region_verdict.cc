@@ -123,14 +123,19 @@ namespace beamslider
     const SitePlan plan = site_plan(sites, rungs_of, members);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
 
-    // Each check's first trials: its rung's members and the refinement
-    // beside them (ladder_groups_with_checks puts it after the rungs).
+    // Each check's first trials: its rung's members and the trials beside
+    // them (ladder_groups_with_checks puts them after the rungs).
     std::vector<std::vector<std::vector<EnsembleMember>>> done;
     for (std::size_t p = 0; p < sites.size(); ++p)
       {
         const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
+        std::size_t next        = first + n_rungs;
         for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
-          done.push_back({results[first + plan.checks[p].rung[c]], results[first + n_rungs + c]});
+          {
+            done.push_back({results[first + plan.checks[p].rung[c]]});
+            for (std::size_t k = 1; k < first_round_size(plan.checks[p].plans[c]); ++k)
+              done.back().push_back(results[next++]);
+          }
       }
     std::vector<ConvergenceCheck> checks =
       run_convergence_checks(plan.check_scenes, plan.check_plans, std::move(done), members,
@@ -159,8 +164,10 @@ namespace beamslider
   {
     const SitePlan plan = site_plan(sites, rungs_of, members);
     work(plan.groups);
-    work_on_convergence_checks(plan.check_scenes, plan.check_plans,
-                               std::vector<std::size_t>(plan.check_plans.size(), 2), members,
+    std::vector<std::size_t> n_first;
+    for (const RefinementPlan &c : plan.check_plans)
+      n_first.push_back(first_round_size(c));
+    work_on_convergence_checks(plan.check_scenes, plan.check_plans, n_first, members,
                                EnsembleSettings().perturbation, work, share);
   }
 
