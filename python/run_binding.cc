@@ -89,8 +89,7 @@ namespace beamslider_python
               throw py::error_already_set();
           }
         const beamslider::RunResult &r = simulation_->last_result();
-        if (r.status != beamslider::RunStatus::completed && r.status != beamslider::RunStatus::slider_at_support &&
-            r.status != beamslider::RunStatus::interrupted)
+        if (!beamslider::ends_in_a_result(r.status) && r.status != beamslider::RunStatus::interrupted)
           throw std::runtime_error(beamslider::to_string(r.status) + ": " + r.message);
         return beamslider::to_string(r.status);
       }

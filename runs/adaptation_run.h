@@ -93,6 +93,14 @@ namespace beamslider
     interrupted          // SIGINT/SIGTERM arrived (interruption.h); the last step was finished
   };
   std::string to_string(RunStatus status);
+  // Whether a run's end is a result of the scene: it completed, or the
+  // slider reached a support (the run stops there by design). A failing
+  // solver, a non-finite or unphysical state is not, and neither is an
+  // interrupted run (partial).
+  inline bool ends_in_a_result(const RunStatus status)
+  {
+    return status == RunStatus::completed || status == RunStatus::slider_at_support;
+  }
 
   struct RunResult
   {

@@ -296,3 +296,46 @@ TEST(ConvergenceCheck, MoreModesAtAStableExplicitStep)
   rom.integrator = "implicit";
   EXPECT_EQ(more_modes(scene, rom).time_step, rom.time_step);
 }
+
+// A failure is never a result: members that diverged keep their last
+// position, but it is no end state. A step whose members all failed cannot
+// be accepted however close their last positions lie, and the verdict says
+// how many failed instead of printing a W₁ of nothing.
+TEST(ConvergenceCheck, FailedMembersAreNoEndStates)
+{
+  const RefinementPlan plan = step_sequence("FE", fe_at(1e-5), 2);
+  const auto diverged       = [](std::vector<EnsembleMember> members) {
+    for (EnsembleMember &m : members)
+      {
+        m.result.status    = RunStatus::unphysical_state;
+        m.analysis.outcome = AdaptationClass::failed;
+      }
+    return members;
+  };
+  // Every step's members diverged at the same place.
+  std::vector<std::vector<EnsembleMember>> trials;
+  for (std::size_t k = 0; k < plan.models.size(); ++k)
+    trials.push_back(diverged(ending_at(0.4, 0.001)));
+  const ConvergenceCheck c = judge_convergence(plan, trials);
+  EXPECT_TRUE(c.decided);
+  EXPECT_FALSE(c.converged) << c.verdict();
+  EXPECT_EQ(c.trials[1].position_to_next.n_a, 0u);
+  EXPECT_NE(c.verdict().find("8 of 8 members without an end state"), std::string::npos) << c.verdict();
+  EXPECT_EQ(c.verdict().find("0.0000 [0.0000, 0.0000]"), std::string::npos) << c.verdict();
+
+  // Half the members failed at every step: still enough to decide.
+  for (auto &t : trials)
+    for (std::size_t m = 0; m < t.size(); m += 2)
+      {
+        t[m].result.status    = RunStatus::completed;
+        t[m].analysis.outcome = AdaptationClass::no_adaptation;
+      }
+  EXPECT_TRUE(judge_convergence(plan, trials).converged);
+  // Fewer than half: not.
+  for (auto &t : trials)
+    {
+      t[0].result.status    = RunStatus::unphysical_state;
+      t[0].analysis.outcome = AdaptationClass::failed;
+    }
+  EXPECT_FALSE(judge_convergence(plan, trials).converged);
+}

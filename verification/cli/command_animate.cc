@@ -100,6 +100,6 @@ namespace beamslider
     if (last.status == RunStatus::interrupted)
       return interruption_exit_code();
     run_plot_script("plot_frames.py", {dir + "/frames.csv", dir + "/frames.png"});
-    return last.status == RunStatus::completed || last.status == RunStatus::slider_at_support ? 0 : 1;
+    return ends_in_a_result(last.status) ? 0 : 1;
   }
 } // namespace beamslider

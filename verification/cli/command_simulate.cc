@@ -738,7 +738,7 @@ namespace beamslider
     r.outcome.verdict = case_verdict(r.outcome.periods, result, trace_thresholds(scene));
     const std::string summary = summary_text(r);
     write_text_file(dir + "/summary.md", summary);
-    if (result.status != RunStatus::completed && result.status != RunStatus::slider_at_support)
+    if (!ends_in_a_result(result.status))
       std::cerr << "simulate: " << to_string(result.status) << ": " << result.message << std::endl;
     draw_trace_chart(chart, r);
     if (verbose)
@@ -755,6 +755,6 @@ namespace beamslider
     // not; an interrupted run exits as the signal says (130, 143).
     if (result.status == RunStatus::interrupted)
       return interruption_exit_code();
-    return result.status == RunStatus::completed || result.status == RunStatus::slider_at_support ? 0 : 1;
+    return ends_in_a_result(result.status) ? 0 : 1;
   }
 } // namespace beamslider

@@ -45,6 +45,13 @@ namespace beamslider
       return {n_done, last};
     }
 
+    // A trial decides nothing on too few end states: at least two, and at
+    // least half its members (the others failed: outcome_samples).
+    bool enough_end_states(const ConvergenceTrial &t)
+    {
+      return t.final_position.n >= std::max<std::size_t>(2, (t.members.size() + 1) / 2);
+    }
+
     // Judged by order: trial k (sorted coarsest first, with both neighbours)
     // gets its observed order, remaining error and tolerance; returns
     // whether its drift is within the tolerance.
@@ -52,8 +59,8 @@ namespace beamslider
     {
       ConvergenceTrial &t = trials[k];
       const OutcomeStatistics &coarse = trials[k - 1].final_position, &fine = trials[k + 1].final_position;
-      if (coarse.n == 0 || t.final_position.n == 0 || fine.n == 0)
-        return false; // a step with no end state shows no order
+      if (!enough_end_states(trials[k - 1]) || !enough_end_states(t) || !enough_end_states(trials[k + 1]))
+        return false; // a step without end states shows no order
       const double d1 = std::abs(coarse.median - t.final_position.median);
       const double d2 = std::abs(t.final_position.median - fine.median);
       t.tolerance     = std::max(convergence_resolution, t.position_to_next.spread);
@@ -179,11 +186,21 @@ namespace beamslider
     s << name << ": NOT CONVERGED in " << parameter << " down to " << setting_text(parameter, trials.back().model)
       << ": the end states";
     for (std::size_t k = 0; k < trials.size(); ++k)
-      s << (k ? ", " : " ") << fixed(trials[k].final_position.median, 4);
+      {
+        const ConvergenceTrial &t = trials[k];
+        s << (k ? ", " : " ") << (t.final_position.n > 0 ? fixed(t.final_position.median, 4) : std::string("none"));
+        if (t.final_position.n < t.members.size())
+          s << " (" << t.members.size() - t.final_position.n << " of " << t.members.size()
+            << " members without an end state: failed or too short)";
+      }
     s << "; W₁ between neighbours";
     for (std::size_t k = 0; k + 1 < trials.size(); ++k)
-      s << (k ? ", " : " ") << w1(trials[k].position_to_next) << " (spread "
-        << fixed(trials[k].position_to_next.spread, 4) << ")";
+      {
+        const SampleComparison &c = trials[k].position_to_next;
+        s << (k ? ", " : " ")
+          << (c.n_a == 0 ? std::string("none (too few end states)")
+                         : w1(c) + " (spread " + fixed(c.spread, 4) + ")");
+      }
     for (const ConvergenceTrial &t : trials)
       if (!std::isnan(t.tolerance))
         s << "; at " << setting_text(parameter, t.model) << order_text(t);
@@ -219,9 +236,9 @@ namespace beamslider
     for (std::size_t k = 0; k + 1 < check.trials.size(); ++k)
       {
         ConvergenceTrial &t = check.trials[k];
+        if (!enough_end_states(t) || !enough_end_states(check.trials[k + 1]))
+          continue; // too few end states to compare (members failed): not accepted
         const OutcomeSamples a = outcome_samples(t.members), b = outcome_samples(check.trials[k + 1].members);
-        if (a.final_position.empty() || b.final_position.empty())
-          continue; // no end state to compare (every member failed): not accepted
         t.position_to_next  = compare_samples(a.final_position, b.final_position);
         t.amplitude_to_next = compare_samples(a.final_amplitude, b.final_amplitude);
       }

@@ -290,7 +290,7 @@ namespace beamslider
     for (const auto &m : members)
       {
         const TraceAnalysis &a = m.analysis;
-        if (!a.valid)
+        if (!a.valid || a.outcome == AdaptationClass::failed)
           continue;
         if (a.jumped)
           s.jump_time.push_back(a.jump_time);

@@ -114,7 +114,9 @@ namespace beamslider
 
   // The outcomes of the members as samples: jump time [s] (members that
   // jumped), turn position x_C/L (members that turned), final x_C/L and
-  // amplitude [h] (all).
+  // amplitude [h] (all). A member that failed (diverged, its solver failed:
+  // no result, ends_in_a_result) or has too few periods to analyse gives
+  // none: where a run broke down is not an end state.
   struct OutcomeSamples
   {
     std::vector<double> jump_time, turn_position, final_position, final_amplitude;

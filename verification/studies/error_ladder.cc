@@ -395,7 +395,7 @@ namespace beamslider
         for (const auto &m : r.members)
           {
             r.wall_seconds_per_member += m.wall_seconds / r.members.size();
-            if (m.result.status != RunStatus::completed && m.result.status != RunStatus::slider_at_support)
+            if (!ends_in_a_result(m.result.status))
               ++r.n_failed;
             if (m.analysis.valid)
               ++r.outcome_classes[to_string(m.analysis.outcome)];
