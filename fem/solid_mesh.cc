@@ -1,5 +1,6 @@
 #include "fem/solid_mesh.h"
 
+#include "meshes/beam_mesh.h"
 #include "meshes/deal_ii_message.h"
 #include "meshes/number_with_digits.h"
 #include "meshes/printable.h"
@@ -37,7 +38,7 @@ namespace beamslider
   std::map<std::string, std::pair<int, unsigned int>> gmsh_physical_names(const std::string &path)
   {
     std::map<std::string, std::pair<int, unsigned int>> names;
-    std::ifstream in(path);
+    std::istringstream in(read_mesh_text(path, "Solid mesh '" + path + "'"));
     std::string line;
     while (std::getline(in, line))
       if (line.rfind("$PhysicalNames", 0) == 0)
@@ -201,9 +202,7 @@ namespace beamslider
                            const std::string &kind, Triangulation<dim> &tria)
     {
       // GridIn reads into a serial triangulation; the caller distributes it.
-      std::ifstream in(path);
-      if (!in)
-        throw InputError(where + " cannot be opened (unreadable)");
+      std::istringstream in(read_mesh_text(path, where));
       // deal.II's Abaqus reader prints the exception of its inner UCD step,
       // stack trace and all, to std::cerr before it throws a generic one:
       // kept here, and its "Additional information" goes into the one line.

@@ -1,6 +1,7 @@
 // Checkpoint files, see checkpoint.h.
 #include "io/checkpoint.h"
 
+#include "io/input_file.h"
 #include "io/output_file.h"
 
 #include <cstring>
@@ -32,7 +33,7 @@ namespace beamslider
     std::string bytes;
     try
       {
-        bytes = read_text_file(path);
+        bytes = read_text_file(path, InputLimits::checkpoint);
       }
     catch (const FileReadError &e)
       {

@@ -20,7 +20,8 @@ namespace beamslider
   // 2: simulate's run description carries the whole model setting (θ, integrator, damped set).
   // 3: and the run's identity (command, model, scene) and digests of the files it continues.
   // 4: the model setting carries its static corrections and their Ritz blocks.
-  constexpr std::uint64_t checkpoint_format = 4;
+  // 5: a Python Run's checkpoint carries its last result (status, message, time).
+  constexpr std::uint64_t checkpoint_format = 5;
 
   // The complete file around a payload, and back (throws CheckpointError).
   std::string checkpoint_file_bytes(const std::string &payload);

@@ -201,44 +201,6 @@ namespace beamslider
       }
   }
 
-  std::string read_text_file(const std::string &path)
-  {
-    // POSIX calls rather than a stream: a stream reads a folder or a failing
-    // disk as a short file and says nothing.
-    errno        = 0;
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-      throw FileReadError("file '" + path + "' cannot be opened for reading: " + reason());
-    std::string text;
-    char buffer[1 << 16];
-    while (true)
-      {
-        const ssize_t n = ::read(fd, buffer, sizeof buffer);
-        if (n < 0 && errno == EINTR)
-          continue;
-        if (n < 0)
-          {
-            const std::string why = reason(); // EISDIR for a folder
-            ::close(fd);
-            throw FileReadError("file '" + path + "' could not be read: " + why);
-          }
-        if (n == 0)
-          break;
-        text.append(buffer, static_cast<std::size_t>(n));
-      }
-    ::close(fd);
-    return text;
-  }
-
-  std::string read_text_file_if_present(const std::string &path)
-  {
-    std::error_code error;
-    const auto status = std::filesystem::symlink_status(path, error);
-    if (status.type() == std::filesystem::file_type::not_found)
-      return std::string();
-    return read_text_file(path);
-  }
-
   namespace
   {
     // The folders this process holds: the folder as given, made absolute and

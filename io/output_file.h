@@ -16,10 +16,7 @@
 // The process ignores SIGXFSZ (see interruption.h), so that a file-size limit
 // makes the write fail with EFBIG instead of killing the process.
 //
-// Reading back what a run wrote (a resumed map's settings, a checkpoint, a
-// part of the report written by a second process) is checked the same way:
-// read_text_file throws a FileReadError that names the file and the system's
-// reason, rather than returning the part it got as if it were the whole.
+// Reading back what a run wrote goes through io/input_file.h.
 #pragma once
 
 #include <fstream>
@@ -43,15 +40,6 @@ namespace beamslider
   {
   public:
     using OutputError::OutputError;
-  };
-
-  // A file could not be read (not there, a folder, no permission, an I/O
-  // error). Callers rethrow it as their own kind where the file was the
-  // user's input (a scene file, a checkpoint to resume).
-  class FileReadError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
   };
 
   enum class FileMode
@@ -121,11 +109,4 @@ namespace beamslider
   // The lock file's name, for tests that hold a folder themselves.
   inline const char *output_folder_lock_name() { return ".beamslider.lock"; }
 
-  // The whole of `path`, byte for byte. Throws FileReadError if it cannot be
-  // opened or a read fails.
-  std::string read_text_file(const std::string &path);
-
-  // The same, or "" if nothing is at `path` (a folder a run is about to
-  // start in); a file that is there but cannot be read still throws.
-  std::string read_text_file_if_present(const std::string &path);
 } // namespace beamslider

@@ -3,6 +3,7 @@
 // the checks below turn what a beam mesh must be into clear errors.
 #include "meshes/beam_mesh.h"
 
+#include "io/input_file.h"
 #include "meshes/number_with_digits.h"
 #include "meshes/printable.h"
 
@@ -50,6 +51,18 @@ namespace beamslider
     }
   } // namespace
 
+  std::string read_mesh_text(const std::string &path, const std::string &where)
+  {
+    try
+      {
+        return read_text_file(path, InputLimits::mesh);
+      }
+    catch (const FileReadError &e)
+      {
+        throw InputError(where + " cannot be read: " + e.what());
+      }
+  }
+
   std::vector<BeamMeshCell> read_beam_mesh(const std::string &path)
   {
     namespace fs = std::filesystem;
@@ -58,9 +71,7 @@ namespace beamslider
     if (!fs::is_regular_file(path, ec))
       throw InputError(where + (fs::exists(path, ec) ? " is not a regular file" : " does not exist") +
                        " (Beam/Mesh file, a path relative to the scene file)");
-    std::ifstream in(path);
-    if (!in)
-      throw InputError(where + " cannot be opened (unreadable)");
+    std::istringstream in(read_mesh_text(path, where));
 
     dealii::Triangulation<1, 3> mesh;
     try

@@ -10,6 +10,11 @@
 
 namespace beamslider
 {
+  // The text of a mesh file (beam or solid) through the guarded reader
+  // (io/input_file.h: a regular file of at most InputLimits::mesh bytes);
+  // InputError "<where> cannot be read: …" otherwise.
+  std::string read_mesh_text(const std::string &path, const std::string &where);
+
   // The elements of the mesh in `path`, ordered from x = 0 to x = L.
   // Throws InputError naming the file and the defect when the file is
   // missing or unreadable, has elements other than lines (a 2D mesh), a node

@@ -6,6 +6,7 @@
 // inequalities, relations between parameters) are checked in validate_scene().
 #include "scene.h"
 
+#include "io/input_file.h"
 #include "meshes/beam_mesh.h"
 #include "meshes/deal_ii_message.h"
 #include "meshes/printable.h"
@@ -475,7 +476,7 @@ namespace beamslider
     // this size: a device (/dev/zero) would be read without end, a FIFO would
     // block. The scene with its includes expanded is bounded alike (a file
     // included many times over).
-    constexpr std::uintmax_t max_scene_bytes = 1u << 20;
+    constexpr std::size_t max_scene_bytes = InputLimits::scene;
     // Includes nest at most this deep (a chain of distinct files).
     constexpr unsigned int max_include_depth = 16;
 
@@ -537,28 +538,17 @@ namespace beamslider
       if (static_cast<std::uintmax_t>(info.st_size) > max_scene_bytes)
         throw InputError(what + " has " + std::to_string(info.st_size) +
                          " bytes; a scene file has at most 1 MB (1048576 bytes)");
-      // O_NONBLOCK: should the file have been replaced by a FIFO since
-      // stat(), open() does not wait for a writer; fstat() then refuses it.
-      const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-      if (fd < 0)
-        throw InputError(what + " cannot be opened (unreadable)");
+      // The read itself is the guarded one (io/input_file.h): should the
+      // file have been replaced by a FIFO or have grown since, it says so.
       std::string text;
-      bool regular = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
-      std::array<char, 65536> buffer;
-      while (regular && text.size() <= max_scene_bytes)
+      try
         {
-          const ssize_t n = ::read(fd, buffer.data(), buffer.size());
-          if (n < 0 && errno == EINTR)
-            continue;
-          if (n <= 0)
-            break;
-          text.append(buffer.data(), n);
+          text = read_text_file(path, max_scene_bytes);
         }
-      ::close(fd);
-      if (!regular)
-        throw InputError(what + " is not a regular file (a FIFO, device or socket); give a .prm file");
-      if (text.size() > max_scene_bytes)
-        throw InputError(what + " has more than 1 MB; a scene file has at most 1 MB (1048576 bytes)");
+      catch (const FileReadError &e)
+        {
+          throw InputError(what + " cannot be read: " + e.what() + "; give a .prm file of at most 1 MB");
+        }
       return text;
     }
 

@@ -105,14 +105,17 @@ TEST(Architecture, EveryIncludeLooksDown)
       cli_includes_studies = cli_includes_studies || (i.file.rfind("verification/cli/", 0) == 0 && to == studies_rank);
       EXPECT_LE(to, from) << i.file << ":" << i.line << " includes \"" << i.target
                           << "\", a layer above its own (doc/architecture.md)";
+      // io/input_file.h, the one guarded way to read a file, is open to
+      // every layer: it reads, it writes nothing.
+      const bool writes = i.target.rfind("io/", 0) == 0 && i.target != "io/input_file.h";
       if (i.file.rfind("verification/studies/", 0) == 0)
-        EXPECT_NE(i.target.rfind("io/", 0), 0u)
+        EXPECT_FALSE(writes)
           << i.file << ":" << i.line << " includes \"" << i.target << "\": a study writes and prints nothing";
       if (is_model(i.file))
         {
           ++model_includes;
-          EXPECT_NE(i.target.rfind("io/", 0), 0u)
-            << i.file << ":" << i.line << " includes \"" << i.target << "\": a model writes no file";
+          EXPECT_FALSE(writes) << i.file << ":" << i.line << " includes \"" << i.target
+                               << "\": a model writes no file";
         }
     }
   EXPECT_GT(model_includes, 100u);

@@ -3,6 +3,7 @@
 // the README names, and determinism (two runs, the same bytes).
 #include "tests/cli_runner.h"
 #include "meshes/scene.h"
+#include "verification/cli/ladder_cache.h"
 #include "verification/studies/model_choice.h"
 
 #include <gtest/gtest.h>
@@ -605,11 +606,12 @@ TEST(Commands, EnsembleAndMapWithModelAutoRunThePickOfTheCachedLadder)
   fs::create_directories(cache);
   const beamslider::Scene scene = beamslider::read_scene(BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm");
   std::ofstream(cache / ("ladder-" + beamslider::scene_content_key(scene) + ".csv"))
-    << "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
-       "w1,w1_high,refined_alike\n"
-    << "ROM N=5 (published),rom,5,0,1,0,explicit,2e-05,0,0.5,0,1250000,0.33,0.09,0.1,1\n"
-    << "ROM N=7,rom,7,0,1,0,explicit,2e-05,0,0.5,0,1750000,0.40,0.002,0.004,1\n"
-    << "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.001,0.002,1\n";
+    << beamslider::choice_cache_file_text(
+         "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,"
+         "reference,cost_units,final_x_median,w1,w1_high,refined_alike\n"
+         "ROM N=5 (published),rom,5,0,1,0,explicit,2e-05,0,0.5,0,1250000,0.33,0.09,0.1,1\n"
+         "ROM N=7,rom,7,0,1,0,explicit,2e-05,0,0.5,0,1750000,0.40,0.002,0.004,1\n"
+         "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.001,0.002,1\n");
   const auto in_dir = CliLimits().in_directory(dir.string());
 
   CliRun run = run_beamslider({"ensemble", "--model", "auto", "--members", "2", "--end-time", "0.3", "--quiet",

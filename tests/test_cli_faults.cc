@@ -16,6 +16,8 @@
 
 #include <cstring>
 #include <fcntl.h>
+#include <functional>
+#include <sys/stat.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -305,5 +307,87 @@ TEST(FaultsCheckpoint, ARecordedCountBeyondTheFileIsRefusedNamingTheFile)
                 0u)
         << run.err;
     }
+  fs::remove_all(dir);
+}
+
+// Every file the program reads goes through one guarded reader
+// (io/input_file.h): a FIFO or a device in a file's place is refused by its
+// type before it is opened (no read that waits for a writer or never ends),
+// and a file of random bytes by its format. Each reader, each bad file:
+// exit 2 and a message that names the file. A run that waited on the FIFO
+// would use no CPU time and be ended by the wall-clock limit (timed_out).
+TEST(FaultsReaders, EveryReaderRefusesAFifoADeviceAndRandomBytesNamingTheFile)
+{
+  const fs::path dir = fresh_folder("faults_readers");
+  const std::string scene = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
+  // A finished run's parameters.prm, for the resume folders.
+  CliRun run = run_beamslider({"simulate", "--end-time", "0.01", "--quiet", "--output", (dir / "done").string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::string random_bytes(4096, '\0');
+  unsigned int state = 12345;
+  for (char &c : random_bytes)
+    c = static_cast<char>((state = state * 1103515245u + 12345u) >> 16);
+
+  struct Reader
+  {
+    std::string name;      // the file's name in its folder
+    bool input_format;     // random bytes are refused by its format (a store is recomputed instead)
+    std::function<std::vector<std::string>(const fs::path &folder)> command;
+  };
+  const std::vector<Reader> readers = {
+    {"scene.prm", true, [&](const fs::path &f) {
+       return std::vector<std::string>{"simulate", (f / "scene.prm").string(), "--quiet", "--output", (f / "out").string()};
+     }},
+    {"uniform.msh", true, [&](const fs::path &f) {
+       fs::copy_file(BEAMSLIDER_SOURCE_DIR "/meshes/uniform.prm", f / "uniform.prm");
+       return std::vector<std::string>{"simulate", (f / "uniform.prm").string(), "--end-time", "0.01", "--quiet",
+                                       "--output", (f / "out").string()};
+     }},
+    {"members.csv", true, [&](const fs::path &f) {
+       return std::vector<std::string>{"ensemble", "--members", "2", "--end-time", "0.01", "--against", f.string(),
+                                       "--quiet", "--output", (f / "out").string()};
+     }},
+    {"pcs.csv", true, [&](const fs::path &f) {
+       return std::vector<std::string>{"sweep", "--from", "0.3", "--to", "0.31", "--free-time", "0", "--against",
+                                       f.string(), "--quiet", "--output", (f / "out").string()};
+     }},
+    {"checkpoint.bin", true, [&](const fs::path &f) {
+       fs::copy_file(dir / "done" / "parameters.prm", f / "parameters.prm");
+       return std::vector<std::string>{"simulate", "--resume", f.string(), "--quiet"};
+     }},
+    {"map_settings.txt", true, [&](const fs::path &f) {
+       return std::vector<std::string>{"map", "--frequency", "124", "--acceleration", "14", "--start", "0.3",
+                                       "--end-time", "0.01", "--members", "1", "--quiet", "--output", f.string()};
+     }},
+    {"member_runs.csv", false, [&](const fs::path &f) {
+       return std::vector<std::string>{"ensemble", "--members", "2", "--end-time", "0.01", "--quiet", "--output",
+                                       f.string()};
+     }}};
+
+  unsigned int n = 0;
+  for (const Reader &reader : readers)
+    for (const std::string bad : {"fifo", "device", "random"})
+      {
+        if (bad == "random" && !reader.input_format)
+          continue;
+        const fs::path folder = dir / (std::to_string(n++) + "-" + bad);
+        fs::create_directories(folder);
+        const std::vector<std::string> args = reader.command(folder);
+        const fs::path file                 = folder / reader.name;
+        if (bad == "fifo")
+          ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+        else if (bad == "device")
+          fs::create_symlink("/dev/zero", file);
+        else
+          std::ofstream(file, std::ios::binary) << random_bytes;
+        run = run_beamslider(args, CliLimits().timeout(10));
+        const std::string what = reader.name + " as " + bad;
+        EXPECT_FALSE(run.timed_out) << what << ": hangs";
+        EXPECT_EQ(run.exit_code, 2) << what << ": " << run.err;
+        EXPECT_NE(run.err.find(reader.name), std::string::npos) << what << ": " << run.err;
+        if (bad != "random")
+          EXPECT_NE(run.err.find("not a regular file"), std::string::npos) << what << ": " << run.err;
+      }
+  EXPECT_EQ(n, 20u);
   fs::remove_all(dir);
 }

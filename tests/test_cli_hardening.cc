@@ -155,6 +155,20 @@ TEST(StepCount, TraceLargerThanTheStatedLimitNeedsAnExplicitOption)
   EXPECT_NE(run.err.find("--allow-large-output"), std::string::npos) << run.err;
 }
 
+// An ensemble's member_periods.csv has a row per member and excitation
+// period: 8 members over 1e6 s would be ~1e9 rows. Refused before any
+// member runs, naming --end-time and the longest it allows (1e7 rows).
+TEST(StepCount, AnEnsembleLongerThanItsRowLimitIsRefused)
+{
+  const fs::path dir = fresh_folder("ensemble_rows");
+  CliRun run = run_beamslider({"ensemble", scene, "--end-time", "1e6", "--output", dir.string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("--end-time 1000000"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("at most 10080.6"), std::string::npos) << run.err; // 1e7 / (8 × 124 Hz)
+  EXPECT_FALSE(fs::exists(dir / "member_periods.csv"));
+  fs::remove_all(dir);
+}
+
 // --- 4. Divergence is a failure, not physics ----------------------------------
 
 TEST(Divergence, AbsurdGravityIsAnUnphysicalStateWithExitOne)

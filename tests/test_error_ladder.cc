@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -131,12 +133,14 @@ TEST(ModelChoice, ReadsTheCacheOfTheScene)
   std::filesystem::create_directories(dir);
   const auto write_cache = [&](const std::string &reference_w1_high) {
     std::ofstream(dir + "/ladder-" + scene_content_key(scene) + ".csv")
-      << "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,reference,cost_units,final_x_median,"
-         "w1,w1_high,refined_alike\n"
-      << "ROM N=5,rom,5,0,1,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1,1\n"
-      << "ROM N=15,rom,15,0,1,0,explicit,1e-05,0,0.5,0,7.5e6,0.409,0.0005,0.0008,0\n"
-      << "ROM N=8+4sc,rom,8,4,1,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.02,0.025,1\n"
-      << "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002," << reference_w1_high << ",1\n";
+      << choice_cache_file_text(
+           "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,"
+           "reference,cost_units,final_x_median,w1,w1_high,refined_alike\n"
+           "ROM N=5,rom,5,0,1,0,explicit,2e-05,0,0.5,0,2500000,0.33,0.09,0.1,1\n"
+           "ROM N=15,rom,15,0,1,0,explicit,1e-05,0,0.5,0,7.5e6,0.409,0.0005,0.0008,0\n"
+           "ROM N=8+4sc,rom,8,4,1,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.02,0.025,1\n"
+           "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002," +
+           reference_w1_high + ",1\n");
   };
   write_cache("0.003");
   std::string why;
@@ -407,4 +411,61 @@ TEST(ErrorLadder, TheFrontKeepsTheUnbeatenRungsConvergedInTheStep)
   study.checks.back().converged = true;
   EXPECT_EQ(speed_accuracy_front(study), (std::vector<std::size_t>{6}));
   EXPECT_TRUE(study.proven());
+}
+
+// The cache proves itself (ladder_cache.h): one changed byte, another
+// build's seal, a cell that is not a number, a second reference row, a cut
+// file or a FIFO in its place, and it is not used. On two ranks an unused
+// cache is refused with its reason (one rank would compute the ladder
+// again, minutes); the sound cache beside each is read.
+TEST(ModelChoice, UsesOnlyACacheThatProvesItself)
+{
+  const Scene scene     = read_scene(mueller);
+  const std::string dir = (std::filesystem::temp_directory_path() / "beamslider_model_choice_seal").string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/ladder-" + scene_content_key(scene) + ".csv";
+  const std::string header =
+    "rung,family,n_modes,static_corrections,ritz_blocks,n_elements,integrator,time_step_s,damped_modes,theta,"
+    "reference,cost_units,final_x_median,w1,w1_high,refined_alike\n";
+  const std::string rom = "ROM N=8,rom,8,0,1,0,explicit,1e-05,0,0.5,0,8.5e6,0.40,0.002,0.003,1\n";
+  const std::string fe  = "FE,fe,0,0,1,32,implicit,1e-05,0,0.51,1,1.56e9,0.41,0.002,0.003,1\n";
+  const std::string sound = choice_cache_file_text(header + rom + fe);
+  std::string why;
+  const auto write = [&](const std::string &text) {
+    std::filesystem::remove(path);
+    std::ofstream(path) << text;
+  };
+  const auto refused_because = [&](const std::string &reason) {
+    try
+      {
+        choose_model(scene, std::nullopt, dir, why, 2);
+        ADD_FAILURE() << "a cache that should be refused (" << reason << ") was used";
+      }
+    catch (const InputError &e)
+      {
+        EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+      }
+  };
+  write(sound);
+  EXPECT_EQ(choose_model(scene, std::nullopt, dir, why, 2).n_modes, 8u) << why;
+
+  std::string changed = sound;
+  changed[changed.find("0.40,")] = '5'; // ROM N=8 now ends at 5.40 L
+  write(changed);
+  refused_because("checksum does not match");
+  std::string other_build = sound;
+  other_build.replace(other_build.find(", build ") + 8, 10, "beamslider 0.0.0");
+  write(other_build);
+  refused_because("another build or format");
+  write(choice_cache_file_text(header + "ROM N=8,rom,8,0,1,0,explicit,x,0,0.5,0,8.5e6,0.40,0.002,0.003,1\n" + fe));
+  refused_because("not a number");
+  write(choice_cache_file_text(header + rom + fe + fe));
+  refused_because("2 reference rows");
+  write(sound.substr(0, sound.size() - 10));
+  refused_because("checksum does not match");
+  std::filesystem::remove(path);
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  refused_because("not a regular file (a FIFO)");
+  std::filesystem::remove_all(dir);
 }

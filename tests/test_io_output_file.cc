@@ -1,8 +1,9 @@
-// io/output_file.h. The reading half: read_text_file gives back every
+// io/output_file.h, and its reading half io/input_file.h: read_text_file gives back every
 // byte a write put there (a file larger than one read, with NUL bytes and no
 // final line break), and refuses what is not a readable file with an error
 // that names it; read_text_file_if_present reads a missing file as empty but
 // still refuses a folder.
+#include "io/input_file.h"
 #include "io/output_file.h"
 
 #include "tests/fresh_folder.h"

@@ -10,6 +10,7 @@ polynomial. Run by ctest with PYTHONPATH set to build/python and
 BEAMSLIDER_EXECUTABLE to the built program."""
 
 import csv
+import math
 import os
 import signal
 import subprocess
@@ -158,7 +159,42 @@ class Checkpoints(unittest.TestCase):
             self.assertIn("Frequency", str(raised.exception))
 
 
+    def test_a_failed_runs_checkpoint_resumes_as_the_failed_run(self):
+        # The run leaves the physical states at its first step; resumed, it
+        # says so, and a step neither advances nor says "completed".
+        scene = beamslider.Scene().set("Contact/Gravity", 1e30)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "failed.ckpt")
+            run = beamslider.Run(scene)
+            with self.assertRaises(RuntimeError):
+                run.advance(0.01)
+            self.assertEqual(run.status, "unphysical_state")
+            run.checkpoint(path)
+            resumed = beamslider.Run.resume(path)
+            self.assertEqual(resumed.status, "unphysical_state")
+            with self.assertRaises(RuntimeError) as raised:
+                resumed.step(100)
+            self.assertIn("unphysical_state", str(raised.exception))
+            self.assertEqual(resumed.t, run.t)
+
+
 class BadInput(unittest.TestCase):
+    def test_every_bad_argument_is_a_value_error_naming_it_and_its_range(self):
+        cases = [(lambda: beamslider.FEBeam(elements=10 ** 8), "elements = 100000000", "[1, 4096]"),
+                 (lambda: beamslider.FEBeam(elements=2.5), "elements = 2.5", "[1, 4096]"),
+                 (lambda: beamslider.ReducedModel(modes=1000), "modes = 1000", "[1, 40]"),
+                 (lambda: beamslider.Run().advance(math.inf), "seconds = inf", "[0, inf)"),
+                 (lambda: beamslider.Run().advance(1e9), "seconds = 1000000000.0", "1e11"),
+                 (lambda: beamslider.Run().step(-1), "n = -1", "[0, 100000000000]"),
+                 (lambda: beamslider.Run().step(True), "n = True", "[0, 100000000000]"),
+                 (lambda: beamslider.Ensemble(members=False), "members = False", "give a number")]
+        for make, named, allowed in cases:
+            with self.assertRaises(ValueError, msg=named) as raised:
+                make()
+            self.assertIn(named, str(raised.exception))
+            self.assertIn(allowed, str(raised.exception))
+
+
     def test_an_unknown_model_and_an_unstable_step_raise_the_command_lines_message(self):
         with self.assertRaises(ValueError) as raised:
             beamslider.Run(model="modal")

@@ -23,6 +23,8 @@ table: doc/python.md and doc/cli.md.
 
 import csv
 import io
+import math
+import numbers
 import os
 import shutil
 import tempfile
@@ -153,15 +155,20 @@ class Run:
         self._run = _core.Run(scene.path, list(scene._overrides), model)
 
     def step(self, n=1):
-        """Takes n time steps; returns the status."""
-        return self._run.step(int(n))
+        """Takes n time steps (a whole number in [0, 1e11], the scene's
+        limit on a run's steps); returns the status."""
+        return self._run.step(_whole_number("step: n", n, 0, _MAX_TIME_STEPS))
 
     def advance(self, seconds):
         """Steps on by ``seconds`` of simulated time (the nearest whole number
-        of time steps); returns the status."""
-        if not seconds >= 0:
-            raise ValueError(f"error: advance: seconds = {seconds} is outside the allowed range [0, inf)")
-        return self._run.step(int(round(seconds / self._run.time_step)))
+        of time steps, at most 1e11); returns the status."""
+        if isinstance(seconds, bool) or not isinstance(seconds, numbers.Real) or not 0 <= seconds < math.inf:
+            raise ValueError(f"error: advance: seconds = {seconds!r} is outside the allowed range [0, inf)")
+        n = round(seconds / self._run.time_step)
+        if n > _MAX_TIME_STEPS:
+            raise ValueError(f"error: advance: seconds = {seconds!r} is {n:.3g} time steps of "
+                             f"{self._run.time_step:g} s, more than the allowed 1e11")
+        return self._run.step(int(n))
 
     @property
     def t(self):
@@ -241,6 +248,18 @@ class Run:
         return f"<beamslider Run: {self.model}, t = {self.t:g} s, {self.status}>"
 
 
+# The scene's limit on a run's time steps ('Time stepping/End time').
+_MAX_TIME_STEPS = 10 ** 11
+
+
+def _whole_number(name, value, low, high):
+    """value as an int in [low, high], else ValueError naming it and the range
+    (a bool, a float or a string is not a whole number here)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        raise ValueError(f"error: {name} = {value!r} is outside the allowed range: a whole number in [{low}, {high}]")
+    return int(value)
+
+
 def _as_scene(scene):
     return scene if isinstance(scene, Scene) else Scene(scene)
 
@@ -263,7 +282,12 @@ class FEBeam:
 
     def __init__(self, scene="mueller2023", elements=None):
         self.scene = _as_scene(scene)
-        self._beam = _core.FEBeam(self.scene.path, list(self.scene._overrides), int(elements or 0))
+        # The mesh through the scene's own parameter, so that its range
+        # ([1, 4096], at least N + 1) is checked and named as everywhere.
+        overrides = list(self.scene._overrides)
+        if elements is not None:
+            overrides.append(f"Discretisation/Number of elements={_whole_number('elements', elements, 1, 4096)}")
+        self._beam = _core.FEBeam(self.scene.path, overrides, 0)
         self.n_dofs = self._beam.n_dofs
 
     def mass(self):
@@ -320,8 +344,10 @@ class ReducedModel:
 
     def __init__(self, scene="mueller2023", modes=None, coefficients=None):
         self.scene = _as_scene(scene)
-        self._rom = _core.ReducedModel(self.scene.path, list(self.scene._overrides), int(modes or 0),
-                                       coefficients or "")
+        overrides = list(self.scene._overrides)
+        if modes is not None:  # the scene's parameter and its range ([1, 40])
+            overrides.append(f"Discretisation/Number of modes={_whole_number('modes', modes, 1, 40)}")
+        self._rom = _core.ReducedModel(self.scene.path, overrides, 0, coefficients or "")
         self.omega = self._rom.omega
         self.damping = self._rom.damping
         self.length = self._rom.length
@@ -473,10 +499,16 @@ def _run(command, scene, options, output, progress, read=Result):
             shutil.rmtree(folder, ignore_errors=True)
 
 
+# The options that are flags (True: given); every other option takes a value.
+_FLAGS = {"full", "diagnostics", "unchecked"}
+
+
 def _options(**given):
     """--name value for every option given (None: the command's default)."""
     args = []
     for name, value in given.items():
+        if isinstance(value, bool) and name not in _FLAGS:
+            raise ValueError(f"error: {name} = {value!r} is not a value for {name}: give a number or leave it out")
         if value is None or value is False:
             continue
         flag = "--" + name.replace("_", "-")

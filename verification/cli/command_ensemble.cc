@@ -19,6 +19,7 @@
 //   ensemble.png       fan chart: every member's x_C/L and amplitude envelope
 //   summary.md         settings, outcome definitions, statistics, classes
 #include "io/csv_writer.h"
+#include "io/input_file.h"
 #include "io/interruption.h"
 #include "io/output_file.h"
 #include "fem/solid_reduced_model.h"
@@ -66,9 +67,16 @@ namespace beamslider
     // checked before any member runs: a bad file is an input error at once.
     OutcomeSamples read_members_csv(const std::string &path)
     {
-      std::ifstream in(path);
-      if (!in)
-        throw InputError("--against: no members.csv at '" + path + "'");
+      std::string text;
+      try
+        {
+          text = read_text_file(path);
+        }
+      catch (const FileReadError &e)
+        {
+          throw InputError("--against: no readable members.csv: " + std::string(e.what()));
+        }
+      std::istringstream in(text);
       std::string line;
       std::getline(in, line);
       if (line.rfind("member,perturbation,status,jump_time_s,turn_x_over_L,final_x_over_L,final_amplitude_over_h", 0) != 0)
@@ -285,6 +293,18 @@ namespace beamslider
           scene.time_stepping.end_time = *options.end_time;
           validate_scene(scene);
         }
+      // member_periods.csv holds a row per member and excitation period: as
+      // simulate's trace.csv, at most max_trace_rows (about 1 GB).
+      const double periods = scene.time_stepping.end_time * scene.excitation.frequency_hz;
+      if (options.members * periods > SimulateOptions::max_trace_rows)
+        throw InputError("--end-time " + std::to_string(scene.time_stepping.end_time) + " s with " +
+                         std::to_string(options.members) + " members would write " +
+                         std::to_string(static_cast<long long>(options.members * periods)) +
+                         " rows to member_periods.csv (one per member and excitation period), more than " +
+                         std::to_string(static_cast<long>(SimulateOptions::max_trace_rows)) +
+                         " (about 1 GB): the end time is at most " +
+                         std::to_string(SimulateOptions::max_trace_rows / (options.members * scene.excitation.frequency_hz)) +
+                         " s for this ensemble");
       const double x_last = scene.initial.slider_position_over_L + (options.members - 1) * options.perturbation;
       if (!(x_last <= 1.))
         throw InputError("--perturbation " + std::to_string(options.perturbation) +

@@ -7,6 +7,7 @@
 #include "verification/cli/command_line.h"
 
 #include "io/interruption.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "fem/petsc_session.h"
 #include "meshes/printable.h"
@@ -71,6 +72,12 @@ int exit_status_of_failure(std::ostream &errors)
       {
         // The library's checks of values that came from the scene or the
         // options (a time step above the model's stability limit, ...).
+        errors << "error: " << one_line(e.what()) << std::endl;
+        return 2;
+      }
+    catch (const FileReadError &e)
+      {
+        // A file the run was given or had to read back (io/input_file.h).
         errors << "error: " << one_line(e.what()) << std::endl;
         return 2;
       }

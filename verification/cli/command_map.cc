@@ -21,6 +21,7 @@
 // run, in another order.
 #include "io/csv_writer.h"
 #include "io/interruption.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
@@ -196,7 +197,7 @@ namespace beamslider
       const std::string planned = output_dir_path(m.common, m.base, "map");
       if (std::filesystem::is_directory(planned))
         lock_output_folder(planned);
-      const std::string previous = read_text_file_if_present(planned + "/map_settings.txt");
+      const std::string previous = read_text_file_if_present(planned + "/map_settings.txt", InputLimits::text);
       if (!previous.empty() && previous != what)
         throw InputError("the output folder '" + planned + "' holds a map with other settings (" + planned +
                          "/map_settings.txt); use another --output or remove that folder");

@@ -18,6 +18,7 @@
 #include "io/checkpoint.h"
 #include "io/csv_writer.h"
 #include "io/interruption.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "fem/output/vtk_animation.h"
 #include "meshes/scene.h"
@@ -82,7 +83,7 @@ namespace beamslider
     std::uint64_t scene_content_hash(const std::string &scene_file, const std::vector<std::string> &overrides,
                                      const std::string &case_name)
     {
-      std::uint64_t hash = fnv1a(read_text_file(scene_file));
+      std::uint64_t hash = fnv1a(read_text_file(scene_file, InputLimits::scene));
       for (const auto &o : overrides)
         hash = fnv1a(o + '\n', hash);
       return fnv1a("case:" + case_name, hash);
@@ -337,7 +338,7 @@ namespace beamslider
       std::string folder_scene;
       try
         {
-          folder_scene = read_text_file(resume_dir + "/parameters.prm");
+          folder_scene = read_text_file(resume_dir + "/parameters.prm", InputLimits::text);
         }
       catch (const FileReadError &e)
         {

@@ -2,6 +2,7 @@
 // doc/physics.md §10), both directions, with the Eq. 5 resonance curve and the
 // free-slider run overlaid; files and columns in verification/report/pcs_files.h.
 #include "io/output_file.h"
+#include "io/input_file.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/study_results.h"
@@ -53,7 +54,7 @@ namespace beamslider
             }
         require_same_positions(planned, other);
         // The other sweep's model, from its summary's title line.
-        std::ifstream summary(options.against + "/summary.md");
+        std::istringstream summary(read_text_file_if_present(options.against + "/summary.md", InputLimits::text));
         std::string title;
         std::getline(summary, title);
         const auto at = title.rfind(", model ");

@@ -12,6 +12,7 @@
 // solid instead of taking them one after the other. A thread would not do:
 // Debian's PETSc is not thread-safe.
 #include "io/interruption.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "meshes/scene.h"
 #include "verification/studies/child_process.h"

@@ -1,12 +1,16 @@
 // The cache of the model choice's error ladder, see ladder_cache.h.
 #include "verification/cli/ladder_cache.h"
 
-#include "io/csv_writer.h"
 #include "io/console.h"
+#include "io/csv_writer.h"
+#include "io/input_file.h"
+#include "io/output_file.h"
+#include "numerics/state_bytes.h"
+#include "verification/studies/build_info.h"
 #include "verification/studies/model_choice.h"
 
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace beamslider
@@ -17,37 +21,93 @@ namespace beamslider
                                                     "integrator",  "time_step_s",  "damped_modes", "theta", "reference",
                                                     "cost_units",  "final_x_median", "w1",         "w1_high", "refined_alike"};
 
-    // The cache, or an empty vector if there is none or it is not ours.
-    std::vector<LadderChoiceRow> read_cache(const std::string &path)
+    // The cache's first line: what it is, its format, the build that wrote
+    // it and the checksum of everything below (the CSV). A cache from
+    // another format or build, or with any byte changed, is not used.
+    constexpr unsigned int cache_format = 2;
+    std::string cache_title(const std::string &body)
     {
-      std::vector<LadderChoiceRow> rows;
-      std::ifstream in(path);
-      std::string line;
-      if (!in || !std::getline(in, line) || line != CsvWriter::line(cache_columns))
-        return rows;
-      while (std::getline(in, line))
+      std::ostringstream title;
+      title << "# beamslider model-choice cache, format " << cache_format << ", build " << build_revision() << " ("
+            << build_info().built_for << "), fnv1a " << std::hex << fnv1a(body);
+      return title.str();
+    }
+
+    // The cache's rows, or none and in `why` the reason it is not used.
+    std::vector<LadderChoiceRow> read_cache(const std::string &path, std::string &why)
+    {
+      std::string text;
+      try
         {
-          const auto c = CsvWriter::cells(line);
-          if (c.size() != cache_columns.size())
-            return {};
-          LadderChoiceRow r;
-          r.rung                = c[0];
-          r.model.family        = c[1];
-          r.model.n_modes              = std::stoul(c[2]);
-          r.model.n_static_corrections = std::stoul(c[3]);
-          r.model.ritz_blocks          = std::stoul(c[4]);
-          r.model.n_elements           = std::stoul(c[5]);
-          r.model.integrator           = c[6];
-          r.model.time_step            = std::stod(c[7]);
-          r.model.damped_modes         = std::stoul(c[8]);
-          r.model.theta                = std::stod(c[9]);
-          r.reference                  = c[10] == "1";
-          r.cost_units                 = std::stod(c[11]);
-          r.final_x_median             = std::stod(c[12]);
-          r.w1                         = std::stod(c[13]);
-          r.w1_high                    = std::stod(c[14]);
-          r.refined_alike              = c[15] == "1";
-          rows.push_back(r);
+          text = read_text_file_if_present(path);
+        }
+      catch (const FileReadError &e)
+        {
+          why = e.what(); // a FIFO, a folder, no permission: recomputed, never waited on
+          return {};
+        }
+      if (text.empty())
+        {
+          why = "none cached";
+          return {};
+        }
+      const auto first_end = text.find('\n');
+      const std::string title = text.substr(0, first_end);
+      const std::string body  = first_end == std::string::npos ? std::string() : text.substr(first_end + 1);
+      if (title != cache_title(body))
+        {
+          why = title.rfind("# beamslider model-choice cache, format " + std::to_string(cache_format) + ", build " +
+                              build_revision() + " (",
+                            0) == 0
+                  ? "its checksum does not match its content"
+                  : "written by another build or format of beamslider, or damaged";
+          return {};
+        }
+      std::istringstream in(body);
+      std::string line;
+      if (!std::getline(in, line) || line != CsvWriter::line(cache_columns))
+        {
+          why = "its columns are not this build's";
+          return {};
+        }
+      std::vector<LadderChoiceRow> rows;
+      try
+        {
+          while (std::getline(in, line))
+            {
+              const auto c = CsvWriter::cells(line);
+              if (c.size() != cache_columns.size())
+                throw std::invalid_argument("a row with " + std::to_string(c.size()) + " cells");
+              LadderChoiceRow r;
+              r.rung                       = c[0];
+              r.model.family               = c[1];
+              r.model.n_modes              = std::stoul(c[2]);
+              r.model.n_static_corrections = std::stoul(c[3]);
+              r.model.ritz_blocks          = std::stoul(c[4]);
+              r.model.n_elements           = std::stoul(c[5]);
+              r.model.integrator           = c[6];
+              r.model.time_step            = std::stod(c[7]);
+              r.model.damped_modes         = std::stoul(c[8]);
+              r.model.theta                = std::stod(c[9]);
+              r.reference                  = c[10] == "1";
+              r.cost_units                 = std::stod(c[11]);
+              r.final_x_median             = std::stod(c[12]);
+              r.w1                         = std::stod(c[13]);
+              r.w1_high                    = std::stod(c[14]);
+              r.refined_alike              = c[15] == "1";
+              rows.push_back(r);
+            }
+        }
+      catch (const std::exception &e)
+        {
+          why = std::string("a cell that is not a number (") + e.what() + ")";
+          return {};
+        }
+      const auto n_references = std::count_if(rows.begin(), rows.end(), [](const auto &r) { return r.reference; });
+      if (n_references != 1)
+        {
+          why = std::to_string(n_references) + " reference rows instead of one";
+          return {};
         }
       return rows;
     }
@@ -57,15 +117,16 @@ namespace beamslider
 
     void write_cache(const std::string &path, const std::vector<LadderChoiceRow> &rows)
     {
-      CsvWriter cache(path, cache_columns);
+      std::string body = CsvWriter::line(cache_columns) + "\n";
       for (const auto &r : rows)
-        cache.row({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes),
-                   CsvWriter::cell(r.model.n_static_corrections), CsvWriter::cell(r.model.ritz_blocks),
-                   CsvWriter::cell(r.model.n_elements),
-                   r.model.integrator, number(r.model.time_step), CsvWriter::cell(r.model.damped_modes),
-                   number(r.model.theta), r.reference ? "1" : "0", number(r.cost_units), number(r.final_x_median), number(r.w1),
-                   number(r.w1_high), r.refined_alike ? "1" : "0"});
-      cache.close();
+        body += CsvWriter::line({r.rung, r.model.family, CsvWriter::cell(r.model.n_modes),
+                                 CsvWriter::cell(r.model.n_static_corrections), CsvWriter::cell(r.model.ritz_blocks),
+                                 CsvWriter::cell(r.model.n_elements), r.model.integrator, number(r.model.time_step),
+                                 CsvWriter::cell(r.model.damped_modes), number(r.model.theta), r.reference ? "1" : "0",
+                                 number(r.cost_units), number(r.final_x_median), number(r.w1), number(r.w1_high),
+                                 r.refined_alike ? "1" : "0"}) +
+                "\n";
+      write_text_file(path, choice_cache_file_text(body));
     }
 
     // The quick ladder of `scene`, its progress on the console.
@@ -82,6 +143,11 @@ namespace beamslider
     }
   } // namespace
 
+  std::string choice_cache_file_text(const std::string &csv)
+  {
+    return cache_title(csv) + "\n" + csv;
+  }
+
   std::string choice_cache_dir(const Scene &scene)
   {
     return (std::filesystem::path("reports") / scene.name / "model_choice").string();
@@ -95,20 +161,37 @@ namespace beamslider
                        scene.solid.continuum + "') does not have: use --model rom (the solid's reduced model) or "
                        "--model fe (the 1D beam)");
     const std::string path = cache_dir + "/ladder-" + scene_content_key(scene) + ".csv";
-    std::vector<LadderChoiceRow> rows = read_cache(path);
+    std::string refused;
+    std::vector<LadderChoiceRow> rows = read_cache(path, refused);
     std::ostringstream log;
     if (!rows.empty())
       log << "model choice from the cached error ladder " << path << ":\n";
     else if (n_ranks > 1)
-      throw InputError("--model auto under mpirun needs the scene's error ladder cached: run the command once without "
-                       "mpirun (or `simulate --model auto`), which computes it and caches it in " + cache_dir);
+      throw InputError("--model auto under mpirun needs the scene's error ladder cached (" + path + ": " + refused +
+                       "): run the command once without mpirun (or `simulate --model auto`), which computes it and "
+                       "caches it in " + cache_dir);
     else
       {
+        if (refused != "none cached")
+          console() << "--model auto: the cached error ladder " << path << " is not used (" << refused
+                    << "); computing it again" << std::endl;
         const ChoiceLadder ladder = run_ladder_for_choice(scene);
         rows                      = ladder.rows;
-        std::filesystem::create_directories(cache_dir);
-        write_cache(path, rows);
-        log << "model choice from the error ladder just computed (cached in " << path << "):\n";
+        // The choice stands without the cache: a place it cannot be
+        // written costs the next run the ladder again, not this run's result.
+        std::string kept = "cached in " + path;
+        try
+          {
+            std::filesystem::create_directories(cache_dir);
+            write_cache(path, rows);
+          }
+        catch (const std::exception &e)
+          {
+            kept = "not cached: " + std::string(e.what());
+            console() << "--model auto: the error ladder could not be cached (" << e.what()
+                      << "); the next --model auto computes it again" << std::endl;
+          }
+        log << "model choice from the error ladder just computed (" << kept << "):\n";
         for (const std::string &verdict : ladder.check_verdicts)
           log << "  " << verdict << "\n";
       }

@@ -1,5 +1,6 @@
 // The files of a map, see map_files.h.
 #include "verification/report/map_files.h"
+#include "io/input_file.h"
 
 #include "io/csv_writer.h"
 
@@ -87,9 +88,7 @@ namespace beamslider
                                                          const unsigned int n_members)
   {
     std::map<std::string, std::string> finished;
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-      return finished;
+    std::istringstream in(read_text_file_if_present(path));
     std::string header;
     if (!std::getline(in, header) || in.eof())
       return finished; // empty or only a cut header: start afresh

@@ -2,6 +2,7 @@
 #include "verification/report/member_files.h"
 
 #include "io/csv_writer.h"
+#include "io/input_file.h"
 #include "io/output_file.h"
 #include "io/console.h"
 

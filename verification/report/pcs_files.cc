@@ -1,5 +1,6 @@
 // The files of the prescribed-position sweep, see pcs_files.h.
 #include "verification/report/pcs_files.h"
+#include "io/input_file.h"
 
 #include "runs/adaptation_run.h"
 #include "io/csv_writer.h"
@@ -131,9 +132,16 @@ namespace beamslider
 
   std::vector<PcsPoint> read_pcs_csv(const std::string &path)
   {
-    std::ifstream in(path);
-    if (!in)
-      throw InputError("--against: no pcs.csv at '" + path + "'");
+    std::string text;
+    try
+      {
+        text = read_text_file(path);
+      }
+    catch (const FileReadError &e)
+      {
+        throw InputError("--against: no readable pcs.csv: " + std::string(e.what()));
+      }
+    std::istringstream in(text);
     std::string line;
     std::getline(in, line);
     std::vector<std::string> header;

@@ -61,6 +61,12 @@ namespace beamslider
     save_setting(out, setting_);
     out.put(scene_file_text(scene_));
     out.put(stopped_);
+    // The last result, so that a resumed run that had failed says so (and
+    // takes no step), as the run it continues would.
+    out.put(std::uint64_t(last_.status));
+    out.put(last_.message);
+    out.put(last_.t_end);
+    out.put(last_.slider_x_over_L);
     run_->save(out);
     out.put(std::uint64_t(rows_.size()));
     for (const TraceRow &r : rows_)
@@ -79,6 +85,17 @@ namespace beamslider
                        "' where the checkpoint's has '" + lines->second + "'");
     auto simulation      = std::make_unique<Simulation>(scene, setting);
     simulation->stopped_ = in.get_bool();
+    const std::uint64_t status = in.get_uint();
+    if (status > std::uint64_t(RunStatus::interrupted))
+      throw CheckpointError("the checkpoint's run status " + std::to_string(status) + " is not one this program knows");
+    simulation->last_.status          = static_cast<RunStatus>(status);
+    simulation->last_.message         = in.get_string();
+    simulation->last_.t_end           = in.get_double();
+    simulation->last_.slider_x_over_L = in.get_double();
+    const RunStatus saved = simulation->last_.status;
+    if (simulation->stopped_ != (saved != RunStatus::completed && saved != RunStatus::interrupted))
+      throw CheckpointError("the checkpoint's run status (" + to_string(simulation->last_.status) +
+                            ") does not agree with whether it stopped");
     simulation->run_->load(in);
     simulation->rows_.clear();
     const std::uint64_t n_rows = in.get_count(7 * sizeof(double));
