@@ -54,6 +54,8 @@ namespace beamslider
     cache_cell_quadrature();
     pair_cell_quadrature();
     set_up_support_springs();
+    if (settings_.impulses_through_mass)
+      set_up_inverse_mass();
 
     const unsigned int n = beam_->n_dofs();
     for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &u_theta_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
@@ -104,6 +106,31 @@ namespace beamslider
       }
     beam.assemble_base_load(r_);
     to_eigen(r_, r_eigen_);
+  }
+
+  void FETransientBeam::set_up_inverse_mass()
+  {
+    // The free bending DoFs' block of M, inverted densely (131 DoFs on the
+    // default mesh: 0.1 MB, an impulse's velocity jump is a few columns of it).
+    const unsigned int n            = n_dofs();
+    const std::vector<bool> &axial = beam_->axial_dofs();
+    std::vector<unsigned int> bending;
+    for (unsigned int i = 0; i < n; ++i)
+      if (!axial[i] && !constrained_[i])
+        bending.push_back(i);
+    const Eigen::Index m = static_cast<Eigen::Index>(bending.size());
+    Eigen::MatrixXd M_bb = Eigen::MatrixXd::Zero(m, m);
+    for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index b = 0; b < m; ++b)
+        M_bb(a, b) = M_.el(bending[a], bending[b]);
+    const Eigen::LLT<Eigen::MatrixXd> llt(M_bb);
+    if (llt.info() != Eigen::Success)
+      throw std::logic_error("FE transient: the bending block of the mass matrix is not positive definite");
+    const Eigen::MatrixXd inverse = llt.solve(Eigen::MatrixXd::Identity(m, m));
+    inverse_mass_.setZero(n, n);
+    for (Eigen::Index a = 0; a < m; ++a)
+      for (Eigen::Index b = 0; b < m; ++b)
+        inverse_mass_(bending[a], bending[b]) = inverse(a, b);
   }
 
   void FETransientBeam::set_up_modal_damping(const unsigned int n_kept)
@@ -786,6 +813,8 @@ namespace beamslider
 
   const double *FETransientBeam::inverse_column(const unsigned int dof) const
   {
+    if (settings_.impulses_through_mass)
+      return inverse_mass_.col(dof).data();
     for (unsigned int k = 0; k < n_inverse_columns; ++k)
       if (inverse_column_dof_[k] == static_cast<int>(dof))
         return inverse_columns_.col(k).data();
@@ -849,6 +878,12 @@ namespace beamslider
                 x += B(i, j) * Eigen::Map<const Eigen::VectorXd>(inverse_column(i), n);
               }
           }
+        stats_.iteration_matrix_solves += B.cols();
+        return;
+      }
+    if (settings_.impulses_through_mass)
+      {
+        X.noalias() = inverse_mass_ * B; // zero rows and columns on the constrained and axial DoFs
         stats_.iteration_matrix_solves += B.cols();
         return;
       }

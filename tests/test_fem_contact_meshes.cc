@@ -44,7 +44,9 @@
 // value, and that value vanishes like √Δt. Measured (x = 0.3 L): 0.59 g at
 // Δt = 5e-6 s on 64–256 elements (0.63 g on 32), against the slider's 46 g.
 #include "runs/adaptation_run.h"
+#include "contact/base_excitation.h"
 #include "fem/fe_beam.h"
+#include "fem/fe_transient.h"
 #include "meshes/scene.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/fe_rom_study.h"
@@ -218,4 +220,51 @@ TEST(FEContactOnEveryMesh, OneStepPointMassConvergesInTheMeshAndVanishesWithTheS
   const double quarter_step = G[{256u, 5e-6}] / G[{256u, 2e-5}], sixteenth = G[{256u, 1.25e-6}] / G[{256u, 5e-6}];
   EXPECT_NEAR(quarter_step, 2., 0.02);
   EXPECT_NEAR(sixteenth, 2., 0.02);
+}
+
+// With `FE impulses = mass` an impulse moves the beam through M, not S:
+// G = ∇wᵀ M⁻¹ ∇w, the semi-discrete system's point mobility, the same at
+// every Δt (against the √Δt law above); M X = ∇w is checked with the
+// beam's assembled (deal.II) mass matrix. At a node of a uniform mesh it
+// doubles with each halving of the element length (the consistent mass at
+// a node is that of about one element): it has no limit in the mesh.
+TEST(FEContactOnEveryMesh, ImpulsesThroughTheMassSeeTheSamePointMassAtEveryStep)
+{
+  const double x_over_L = 0.25; // a node of both meshes
+  std::map<unsigned int, double> G_of_mesh;
+  for (const unsigned int n : {32u, 64u})
+    {
+      std::vector<double> G;
+      for (const double dt : {2e-5, 5e-6, 1.25e-6})
+        {
+          Scene scene                     = linear_scene(n, dt);
+          scene.time_stepping.fe_impulses = "mass";
+          FETransientSettings settings;
+          settings.impulses_through_mass = true;
+          FETransientBeam beam(scene, BaseExcitation::from_scene(scene.excitation), n, settings);
+          const unsigned int N = beam.n_dofs();
+          Eigen::VectorXd q = Eigen::VectorXd::Zero(N), u = Eigen::VectorXd::Zero(N), u_free(N);
+          BeamPointKinematics k;
+          k.grad_w.resize(N), k.grad_dw.resize(N);
+          beam.evaluate(x_over_L * beam.length(), q, k);
+          const BeamStep step = beam.free_velocity(0.5 * dt, q, u, dt, u_free);
+          Eigen::MatrixXd X(N, 1);
+          step.solve_iteration_matrix(k.grad_w, X);
+          G.push_back(k.grad_w.dot(X.col(0)));
+          // M X = ∇w on the free DoFs, with M from the beam's own assembly.
+          Eigen::VectorXd MX = Eigen::VectorXd::Zero(N);
+          for (unsigned int i = 0; i < N; ++i)
+            for (auto e = beam.mass_matrix().begin(i); e != beam.mass_matrix().end(i); ++e)
+              MX[i] += e->value() * X(e->column(), 0);
+          for (unsigned int i = 0; i < N; ++i)
+            if (!beam.beam().constraints().is_constrained(i))
+              EXPECT_NEAR(MX[i], k.grad_w[i], 1e-9 * k.grad_w.cwiseAbs().maxCoeff()) << "dof " << i;
+        }
+      std::cout << n << " elements: G through M = " << G[0] << ", " << G[1] << ", " << G[2]
+                << " 1/kg at 2e-5, 5e-6, 1.25e-6 s (effective mass " << 1e3 / G[0] << " g)\n";
+      EXPECT_EQ(G[1], G[0]);
+      EXPECT_EQ(G[2], G[0]);
+      G_of_mesh[n] = G[0];
+    }
+  EXPECT_NEAR(G_of_mesh[64] / G_of_mesh[32], 2., 0.1);
 }
