@@ -8,7 +8,30 @@ as `python3 scripts/NAME.py`, so it is found on the script's own path."""
 import csv
 import math
 import os
+import signal
 import sys
+
+
+def _die_with_the_run():
+    """A chart belongs to the run that started it (BEAMSLIDER_PARENT_PID):
+    the kernel kills it when that run ends (Linux's parent-death signal),
+    so a run killed while its chart is drawn leaves no writer behind in a
+    folder the next run may take; a chart whose run is gone already does
+    not start. Run by hand (no such variable), nothing changes."""
+    parent = os.environ.get("BEAMSLIDER_PARENT_PID")
+    if not parent:
+        return
+    try:
+        import ctypes
+        PR_SET_PDEATHSIG = 1
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    except (OSError, AttributeError):
+        pass  # not Linux: the check below still stops a late start
+    if os.getppid() != int(parent):
+        os._exit(1)
+
+
+_die_with_the_run()
 
 import matplotlib
 

@@ -23,15 +23,19 @@ namespace beamslider
     int spawn(const std::vector<std::string> &argv, const int input, const bool own_group, pid_t &pid,
               const ChildEnvironment environment = ChildEnvironment::inherited)
     {
+      // The child's environment: this one's (without an MPI launch's
+      // variables if asked), and the run's process id, so that a chart
+      // knows which process it belongs to (scripts/plot_common.py dies
+      // with it).
       std::vector<char *> envp;
-      if (environment == ChildEnvironment::without_mpi_launch)
-        {
-          for (char **e = environ; *e; ++e)
-            if (!is_mpi_launch_variable(*e))
-              envp.push_back(*e);
-          envp.push_back(nullptr);
-        }
-      char **const child_environment = environment == ChildEnvironment::inherited ? environ : envp.data();
+      for (char **e = environ; *e; ++e)
+        if (environment == ChildEnvironment::inherited || !is_mpi_launch_variable(*e))
+          if (std::string_view(*e).rfind("BEAMSLIDER_PARENT_PID=", 0) != 0)
+            envp.push_back(*e);
+      std::string parent = "BEAMSLIDER_PARENT_PID=" + std::to_string(::getpid());
+      envp.push_back(parent.data());
+      envp.push_back(nullptr);
+      char **const child_environment = envp.data();
 
       std::vector<char *> args;
       for (const auto &a : argv)
