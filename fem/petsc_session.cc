@@ -1,5 +1,7 @@
 #include "fem/petsc_session.h"
 
+#include "numerics/kept_signal_dispositions.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <mpi.h>
@@ -28,8 +30,11 @@ namespace beamslider
       Session()
       {
         if (!mpi_started())
-          // One thread for deal.II's own task parallelism, as main() sets.
-          mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
+          {
+            const KeptSignalDispositions kept; // MPI and PETSc would take SIGTERM and SIGINT
+            // One thread for deal.II's own task parallelism, as main() sets.
+            mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
+          }
       }
     };
     static Session session;

@@ -20,6 +20,8 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <mpi.h>
+
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
@@ -499,6 +501,17 @@ int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *h
     errors << "rank " << rank << ": " << messages.str() << std::flush;
   if (!record_run_end(status, messages.str(), errors) && status == 0)
     status = 1;
+  // Under mpirun no rank may exit before rank 0 has recorded the end: a
+  // non-zero exit (130/143 after a Ctrl-C) makes mpirun kill the others.
+  // A rank that does not come within a minute has died or hangs: the job
+  // is ended, with a message, instead of waiting for it.
+  constexpr double meet_seconds = 60;
+  if (!all_ranks_meet(meet_seconds))
+    {
+      errors << "rank " << rank << ": the other ranks did not end within " << meet_seconds
+             << " s (one died or hangs); ending the job" << std::endl;
+      MPI_Abort(MPI_COMM_WORLD, status ? status : 1);
+    }
   release_output_folders(); // the command's folders are free again (the Python module lives on)
   return status;
 }

@@ -4,6 +4,8 @@
 #include "meshes/scene.h"
 #include "verification/studies/parallel_for.h"
 
+#include "numerics/kept_signal_dispositions.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <mpi.h>
@@ -59,6 +61,28 @@ namespace beamslider
     return 0;
   }
 
+  bool all_ranks_meet(const double seconds)
+  {
+    int started = 0, finished = 0;
+    MPI_Initialized(&started);
+    if (started)
+      MPI_Finalized(&finished);
+    if (!started || finished)
+      return true;
+    MPI_Request request;
+    if (MPI_Ibarrier(MPI_COMM_WORLD, &request) != MPI_SUCCESS)
+      return false;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    int done       = 0;
+    while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && !done)
+      {
+        if (std::chrono::steady_clock::now() > end)
+          return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    return done != 0;
+  }
+
   void require_one_process(const std::string &command)
   {
     // Open MPI and MPICH/Hydra say the launch's size; a PMIx launcher alone
@@ -85,7 +109,10 @@ namespace beamslider
     if (!use_mpi)
       return;
     impl_ = std::make_unique<Impl>();
-    impl_->mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(impl_->argc, impl_->argv, 1);
+    {
+      const KeptSignalDispositions kept; // MPI and PETSc would take SIGTERM and SIGINT
+      impl_->mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(impl_->argc, impl_->argv, 1);
+    }
     int rank = 0, size = 1, provided = MPI_THREAD_SINGLE;
     check(MPI_Comm_rank(MPI_COMM_WORLD, &rank), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &size), "MPI_Comm_size");

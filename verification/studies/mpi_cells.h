@@ -27,6 +27,14 @@ namespace beamslider
   // rank 0 says (the error message of a command every rank runs).
   unsigned int launch_rank();
 
+  // Under MPI: waits until every rank has come here, at most `seconds`;
+  // true if they all did (and at once without MPI). A rank that exits with
+  // a status other than 0 (an interruption's 130/143) makes mpirun end the
+  // others at once, so the command line has every rank meet here after
+  // rank 0 wrote run.txt's `ended:` line; a rank that died or hangs is
+  // waited for no longer than the bound.
+  bool all_ranks_meet(double seconds);
+
   // Refuses (InputError, exit 2 on every rank) a command that runs on one
   // process when mpirun/srun started several: each rank would run it alone,
   // into the same folder. Names the commands that use MPI.
