@@ -14,6 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
+#include <thread>
 #include <cstring>
 #include <fcntl.h>
 #include <functional>
@@ -118,6 +121,44 @@ TEST(FaultsUnderMpi, AnInputErrorIsSaidOnceByRankZero)
       expect_ranks_exited_with(statuses, 2);
       EXPECT_EQ(count(run.err, "error: "), 1u) << args[1] << ": " << run.err;
     }
+  fs::remove_all(dir);
+}
+
+// A SIGTERM to the ranks of an mpirun job (a scheduler's, or `kill` of the
+// job's processes) ends it as it ends a single process: whole rows, exit
+// 143 on every rank and run.txt's `ended:` line. Before, PETSc's handler
+// (installed when MPI started) turned it into an abort with exit 1, and a
+// rank that exited first made mpirun kill rank 0 before it wrote run.txt.
+// The launcher records each rank's pid; the signal goes once the run's
+// folder holds run.txt (the run is under way).
+TEST(FaultsUnderMpi, ASigtermToTheRanksEndsTheJobWith143AndItsEndedLine)
+{
+  const fs::path dir = fresh_folder("faults_mpi_sigterm"), statuses = dir / "statuses", out = dir / "out";
+  fs::create_directories(statuses);
+  std::vector<std::string> launcher = two_ranks(statuses);
+  launcher.insert(launcher.end(), {"sh", "-c", "echo $$ > '" + (dir / "pid_").string() + "'$OMPI_COMM_WORLD_RANK; exec \"$@\"",
+                                   "sh"});
+  std::thread killer([&] {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+    while (std::chrono::steady_clock::now() < end &&
+           !(fs::exists(dir / "pid_0") && fs::exists(dir / "pid_1") && fs::exists(out / "run.txt")))
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(500)); // both ranks past their start-up
+    for (const char *rank : {"pid_0", "pid_1"})
+      {
+        const std::string pid = read_file(dir / rank);
+        if (!pid.empty())
+          ::kill(std::stoi(pid), SIGTERM);
+      }
+  });
+  const CliRun run = run_beamslider({"ensemble", "--members", "8", "--end-time", "300", "--quiet", "--output",
+                                     out.string()},
+                                    CliLimits().timeout(300).launched_by(launcher));
+  killer.join();
+  EXPECT_FALSE(run.timed_out);
+  expect_ranks_exited_with(statuses, 143);
+  const std::string record = read_file(out / "run.txt");
+  EXPECT_NE(record.find("interrupted (exit 143): interrupted by signal 15"), std::string::npos) << record;
   fs::remove_all(dir);
 }
 
