@@ -221,9 +221,6 @@ namespace beamslider
         t.model   = plan.models[k];
         t.witness = plan.judged_by_order && k == 2;
         t.members = std::move(trial_members[k]);
-        const OutcomeSamples samples = outcome_samples(t.members);
-        t.final_position  = statistics("final x_C/L", samples.final_position);
-        t.final_amplitude = statistics("final amplitude [h]", samples.final_amplitude);
         for (const EnsembleMember &m : t.members)
           t.wall_seconds_per_member += m.wall_seconds / t.members.size();
         check.trials.push_back(std::move(t));
@@ -233,14 +230,21 @@ namespace beamslider
       std::stable_sort(check.trials.begin(), check.trials.end(), [](const ConvergenceTrial &a, const ConvergenceTrial &b) {
         return a.model.time_step > b.model.time_step;
       });
+    // Each trial's end states once, in the sorted order.
+    std::vector<OutcomeSamples> samples;
+    for (ConvergenceTrial &t : check.trials)
+      {
+        samples.push_back(outcome_samples(t.members));
+        t.final_position  = statistics("final x_C/L", samples.back().final_position);
+        t.final_amplitude = statistics("final amplitude [h]", samples.back().final_amplitude);
+      }
     for (std::size_t k = 0; k + 1 < check.trials.size(); ++k)
       {
         ConvergenceTrial &t = check.trials[k];
         if (!enough_end_states(t) || !enough_end_states(check.trials[k + 1]))
           continue; // too few end states to compare (members failed): not accepted
-        const OutcomeSamples a = outcome_samples(t.members), b = outcome_samples(check.trials[k + 1].members);
-        t.position_to_next  = compare_samples(a.final_position, b.final_position);
-        t.amplitude_to_next = compare_samples(a.final_amplitude, b.final_amplitude);
+        t.position_to_next  = compare_samples(samples[k].final_position, samples[k + 1].final_position);
+        t.amplitude_to_next = compare_samples(samples[k].final_amplitude, samples[k + 1].final_amplitude);
       }
     // Judged by order, every step with both neighbours gets its estimates
     // (the evidence, whether or not its pair ends alike).

@@ -4,6 +4,7 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -123,19 +124,20 @@ namespace beamslider
     const SitePlan plan = site_plan(sites, rungs_of, members);
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
 
-    // Each check's first trials: its rung's members and the trials beside
-    // them (ladder_groups_with_checks puts them after the rungs).
-    std::vector<std::vector<std::vector<EnsembleMember>>> done;
+    // Each site's rungs and its checks' first trials (the rung's members and
+    // the trials ladder_groups_with_checks puts after the rungs), split as
+    // the ladder splits its own (first_check_trials).
+    std::vector<std::vector<std::vector<EnsembleMember>>> done, site_members(sites.size());
     for (std::size_t p = 0; p < sites.size(); ++p)
       {
         const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
-        std::size_t next        = first + n_rungs;
-        for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
-          {
-            done.push_back({results[first + plan.checks[p].rung[c]]});
-            for (std::size_t k = 1; k < first_round_size(plan.checks[p].plans[c]); ++k)
-              done.back().push_back(results[next++]);
-          }
+        std::size_t n_groups = n_rungs;
+        for (const std::size_t n : first_trial_counts(plan.checks[p]))
+          n_groups += n - 1;
+        site_members[p].assign(std::make_move_iterator(results.begin() + first),
+                               std::make_move_iterator(results.begin() + first + n_groups));
+        for (auto &trials : first_check_trials(site_members[p], n_rungs, plan.checks[p]))
+          done.push_back(std::move(trials));
       }
     std::vector<ConvergenceCheck> checks =
       run_convergence_checks(plan.check_scenes, plan.check_plans, std::move(done), members,
@@ -145,14 +147,11 @@ namespace beamslider
     std::size_t next_check = 0;
     for (std::size_t p = 0; p < sites.size(); ++p)
       {
-        const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
-        std::vector<std::vector<EnsembleMember>> members_p(results.begin() + first,
-                                                           results.begin() + first + n_rungs);
         std::vector<ConvergenceCheck> checks_p(checks.begin() + next_check,
                                                checks.begin() + next_check + plan.checks[p].plans.size());
         next_check += plan.checks[p].plans.size();
         ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.reference,
-                                          plan.scenes[p].time_stepping.end_time, std::move(members_p),
+                                          plan.scenes[p].time_stepping.end_time, std::move(site_members[p]),
                                           std::move(checks_p), plan.checks[p]));
       }
     return ladders;
