@@ -17,7 +17,7 @@
 //                        message).
 //   scene_parameters(path, overrides)
 //                        the same scene as {"Section/Name": text}, read by
-//                        the one scene reader (meshes/scene_parameters.cc).
+//                        the one scene reader (meshes/scene_parameters_read.cc).
 //   resolve_scene(name)  a scene name of meshes/ or a path, as the CLI
 //                        resolves it.
 //   Run, FEBeam, ReducedModel
