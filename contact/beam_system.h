@@ -158,6 +158,13 @@ namespace beamslider
     // Throws std::logic_error unless has_local_kinematics().
     virtual void evaluate_local(double x, const Eigen::VectorXd &q, LocalPointKinematics &out) const;
 
+    // Where the slider's two corner pairs are along the beam [m] in the
+    // step that begins next; the Moreau stepper says it before each
+    // free_velocity. A model whose mass follows the contact points (the FE
+    // beam with its mass redistributed away from them,
+    // FETransientSettings::redistributed_mass) keeps them; others ignore it.
+    virtual void set_contact_abscissae(double /*x_left*/, double /*x_right*/) {}
+
     // Begins a step of size dt: the end velocity u_free without contact
     // impulses, given the time t_M = t_B + (1 − θ) Δt of the detection
     // configuration q_M (the midpoint for θ = 1/2) and the start

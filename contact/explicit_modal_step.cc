@@ -105,7 +105,7 @@ namespace beamslider
 
     // u_free = u_B + Δt h with h = −c∘u_B − ω²∘q_M − N K'q_M + γ ẅ0 and
     // N = ½ k_ax q_Mᵀ K' q_M.
-    void free_velocity(double /*t_M*/)
+    void free_velocity(double /*t_M*/, const Eigen::Vector3d & /*s_M*/, const SliderFrame & /*frame*/)
     {
       const Eigen::VectorXd &q_M = st.q_M_, &u_B = st.state_.u;
       double axial_force = 0.;

@@ -13,7 +13,7 @@
 //   dt_B, dt_E                      the step's parts before and after the
 //                                   detection configuration [s]
 //   detection_frame(t_M, s_M)       the slider frame at the midpoint
-//   free_velocity(t_M)              u_free_ from q_M_ and the start state
+//   free_velocity(t_M, s_M, frame)  u_free_ from q_M_ and the start state
 //   closed_corner(k, frame, s_M, t_B, m)
 //                                   true if corner k is closed, its
 //                                   directions then in columns 2m, 2m + 1
@@ -50,7 +50,7 @@ namespace beamslider
     q_M_ = state_.q + stages.dt_B * state_.u;
 
     // Free motion.
-    stages.free_velocity(t_M);
+    stages.free_velocity(t_M, s_M, frame);
     const Eigen::Vector3d v_free = v_B + dt_ * Eigen::Vector3d(0., -slider_.gravity, 0.);
     const Eigen::Vector3d inv_mass(prescribed_x_ ? 0. : 1. / slider_.mass, 1. / slider_.mass, 1. / slider_.inertia);
 

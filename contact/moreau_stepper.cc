@@ -379,8 +379,15 @@ namespace beamslider
       return SliderGeometry::frame(t_M, st.base_, s_M[2]);
     }
 
-    void free_velocity(const double t_M)
+    void free_velocity(const double t_M, const Eigen::Vector3d &s_M, const SliderFrame &frame)
     {
+      // Where the left and right corner pairs are (the mean x of upper and
+      // lower corner): a beam whose mass follows them needs it first.
+      std::array<double, 2> x{};
+      for (unsigned int k = 0; k < n_slider_corners; ++k)
+        x[k % 2] += 0.5 * (s_M[0] + (frame.cos_beta * st.corner_position_[k][0] -
+                                     frame.sin_beta * st.corner_position_[k][1]));
+      st.beam_.set_contact_abscissae(x[0], x[1]);
       beam_step.emplace(st.beam_.free_velocity(t_M, st.q_M_, st.state_.u, st.dt_, st.u_free_));
     }
 

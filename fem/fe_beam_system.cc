@@ -18,6 +18,7 @@ namespace beamslider
     settings.damped_modes       = options.damped_modes;
     settings.theta              = options.theta.value_or(scene.time_stepping.fe_theta);
     settings.impulses_through_mass = scene.time_stepping.fe_impulses == "mass";
+    settings.redistributed_mass    = scene.time_stepping.fe_impulses == "redistributed";
     settings.relative_tolerance = scene.solvers.newton_relative_tolerance;
     settings.absolute_tolerance = scene.solvers.newton_absolute_tolerance;
     settings.max_iterations     = scene.solvers.newton_iterations;

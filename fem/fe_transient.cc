@@ -46,6 +46,9 @@ namespace beamslider
       throw std::invalid_argument("FE transient: theta = " + std::to_string(settings_.theta) +
                                   " of the Moreau-Jean scheme is outside the allowed range [0.5, 1] (0.5: the "
                                   "midpoint rule, no numerical damping; above: the unresolved modes are damped)");
+    if (settings_.impulses_through_mass && settings_.redistributed_mass)
+      throw std::invalid_argument("FE transient: impulses through the mass and a redistributed mass exclude each "
+                                  "other (Time stepping/FE impulses is one of step, mass, redistributed)");
     find_support_constraints();
     assemble_mass_and_base_load();
     set_up_modal_damping(settings.damped_modes ? settings.damped_modes : scene.discretisation.n_modes);
@@ -54,8 +57,10 @@ namespace beamslider
     cache_cell_quadrature();
     pair_cell_quadrature();
     set_up_support_springs();
-    if (settings_.impulses_through_mass)
+    if (settings_.impulses_through_mass || settings_.redistributed_mass)
       set_up_inverse_mass();
+    if (settings_.redistributed_mass)
+      set_up_redistribution();
 
     const unsigned int n = beam_->n_dofs();
     for (auto *v : {&q_bar_, &u_, &res_, &du_, &f_, &tmp_, &u_mean_, &u_theta_, &q_end_, &f_end_, &energy_q_, &energy_f_, &energy_Mu_})
@@ -697,7 +702,15 @@ namespace beamslider
         b.M_blocks_.multiply(b.tmp_, b.res_);
       else
         b.res_.noalias() = b.M_eigen_ * b.tmp_;
-      b.res_ = (b.res_ + dt * b.f_) - (dt * a) * b.r_eigen_;
+      if (b.settings_.redistributed_mass)
+        {
+          // M̃ (u − u_B) and the base load of M̃.
+          b.mrm_scratch_.noalias() = b.mrm_W_.transpose() * b.tmp_;
+          b.res_.noalias() -= b.mrm_W_ * (b.mrm_A_ * b.mrm_scratch_);
+          b.res_ = (b.res_ + dt * b.f_) - (dt * a) * b.r_tilde_;
+        }
+      else
+        b.res_ = (b.res_ + dt * b.f_) - (dt * a) * b.r_eigen_;
       if (rank > 0)
         {
           // (θ = 1/2: C(u_B + u)/2, the same bits as 0.5 (u_B + u).)
@@ -734,7 +747,15 @@ namespace beamslider
       // the contraction of this (already modified) Newton iteration; the
       // residual keeps the damping exactly, so the converged u_free is
       // the same. The contact impulses still see the full S (solve()).
-      beam.solve_factored(beam.res_, beam.du_);
+      // With the mass redistributed, M̃ changes every step: the whole
+      // S̃ = S − W A Wᵀ (damping included) by Woodbury on S's factor.
+      if (beam.settings_.redistributed_mass)
+        {
+          beam.solve(beam.res_, beam.du_);
+          beam.add_redistribution_term(beam.du_);
+        }
+      else
+        beam.solve_factored(beam.res_, beam.du_);
       beam.u_ -= beam.du_;
       ++beam.stats_.newton_iterations;
       const FETransientSettings &settings = beam.settings_;
@@ -809,6 +830,7 @@ namespace beamslider
   {
     inverse_column_dof_.fill(-1);
     next_inverse_column_ = 0;
+    mrm_current_         = false;
   }
 
   const double *FETransientBeam::inverse_column(const unsigned int dof) const
@@ -877,6 +899,12 @@ namespace beamslider
                 const unsigned int i = entries[j][k];
                 x += B(i, j) * Eigen::Map<const Eigen::VectorXd>(inverse_column(i), n);
               }
+            if (settings_.redistributed_mass)
+              {
+                block_column_ = x;
+                add_redistribution_term(block_column_);
+                x = block_column_;
+              }
           }
         stats_.iteration_matrix_solves += B.cols();
         return;
@@ -913,6 +941,13 @@ namespace beamslider
           }
         X.noalias() -= Z_ * w;
       }
+    if (settings_.redistributed_mass)
+      for (Eigen::Index j = 0; j < m; ++j)
+        {
+          block_column_ = X.col(j);
+          add_redistribution_term(block_column_);
+          X.col(j) = block_column_;
+        }
     stats_.iteration_matrix_solves += B.cols();
   }
 
@@ -930,6 +965,17 @@ namespace beamslider
         for (unsigned int a = 0; a < k; ++a)
           out(a, b) = column[index[a]];
       }
+    if (settings_.redistributed_mass)
+      {
+        // + Y C⁻¹ Yᵀ on the k coordinates.
+        update_redistribution();
+        for (unsigned int b = 0; b < k; ++b)
+          {
+            mrm_scratch_ = mrm_C_.solve(mrm_Y_.row(index[b]).transpose());
+            for (unsigned int a = 0; a < k; ++a)
+              out(a, b) += mrm_Y_.row(index[a]).dot(mrm_scratch_);
+          }
+      }
     ++stats_.contact_blocks;
   }
 
@@ -942,6 +988,16 @@ namespace beamslider
     for (unsigned int a = 0; a < k; ++a)
       if (y[a] != 0.)
         u += y[a] * Eigen::Map<const Eigen::VectorXd>(inverse_column(index[a]), n);
+    if (settings_.redistributed_mass)
+      {
+        // + Y C⁻¹ Yᵀ (Σ y_a e_a).
+        update_redistribution();
+        Eigen::Vector2d v = Eigen::Vector2d::Zero();
+        for (unsigned int a = 0; a < k; ++a)
+          v += y[a] * mrm_Y_.row(index[a]).transpose();
+        mrm_scratch_ = mrm_C_.solve(v);
+        u.noalias() += mrm_Y_ * mrm_scratch_;
+      }
   }
 
   Eigen::VectorXd FETransientBeam::internal_force(const Eigen::VectorXd &q) const
@@ -975,7 +1031,13 @@ namespace beamslider
   double FETransientBeam::energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const
   {
     energy_Mu_.noalias() = M_eigen_ * u;
-    return 0.5 * u.dot(energy_Mu_) + strain_energy(q);
+    double kinetic = 0.5 * u.dot(energy_Mu_);
+    if (settings_.redistributed_mass)
+      {
+        const Eigen::Vector2d Wu = mrm_W_.transpose() * u;
+        kinetic -= 0.5 * Wu.dot(mrm_A_ * Wu);
+      }
+    return kinetic + strain_energy(q);
   }
 
   BeamFieldSamples FETransientBeam::sample_fields(const Eigen::VectorXd &q) const
@@ -1034,6 +1096,6 @@ namespace beamslider
     for (Eigen::Index k = 0; k < U_.cols(); ++k)
       c_work += modal_c_[k] * U_.col(k).dot(u_mean_) * U_.col(k).dot(u_theta_);
     damping_work    = -last_dt_ * c_work;
-    excitation_work = last_dt_ * last_acceleration_ * r_eigen_.dot(u_mean_);
+    excitation_work = last_dt_ * last_acceleration_ * (settings_.redistributed_mass ? r_tilde_ : r_eigen_).dot(u_mean_);
   }
 } // namespace beamslider

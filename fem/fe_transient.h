@@ -100,6 +100,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 
@@ -188,6 +189,20 @@ namespace beamslider
     // M⁻¹ on the bending DoFs is kept dense (the consistent mass has no
     // axial–bending coupling, so an impulse moves no axial DoF).
     bool impulses_through_mass = false;
+    // true: no beam mass at the contact points (mass redistribution,
+    // Khenous, Laborde & Renard 2008). With W = [N_w(x_left), N_w(x_right)]
+    // the Hermite values at the two corner pairs (BeamSystem::
+    // set_contact_abscissae), the step uses
+    //   M̃ = M − W A Wᵀ,   A = (Wᵀ M⁻¹ W)⁻¹,
+    // the kinetic energy left once the least needed to move the contact
+    // points at their velocity is taken out: M̃ M⁻¹W = 0, so the points
+    // carry no inertia, an impact moves the slider alone, and the beam
+    // answers through its stiffness, not its highest modes. The removed
+    // mass (the 2 × 2 matrix A, ≈ 0.27 g a point on 32 elements) halves
+    // with each mesh refinement, and it feels no base load either
+    // (r̃ = −M̃ ι). M̃ follows the slider; S̃ = S − W A Wᵀ is solved by
+    // Woodbury on S's factorisation. Not with impulses_through_mass.
+    bool redistributed_mass = false;
   };
 
   // Counters for the benchmark note.
@@ -229,7 +244,12 @@ namespace beamslider
     double max_stable_time_step() const override { return std::numeric_limits<double>::infinity(); }
     double theta() const override { return settings_.theta; }
 
+    // Kinetic energy with M̃ when the mass is redistributed.
     double energy(const Eigen::VectorXd &q, const Eigen::VectorXd &u) const override;
+    // The corners' places for the redistributed mass (ignored without it).
+    void set_contact_abscissae(double x_left, double x_right) override;
+    // W A Wᵀ of the redistributed mass (zero without it), for tests.
+    Eigen::MatrixXd removed_mass() const;
     // The exact FE fields, 4 samples per element: u, w, w', w'' from the shape
     // functions, N = EA (u' + ½w'²) (u' alone without geometric nonlinearity).
     BeamFieldSamples sample_fields(const Eigen::VectorXd &q) const override;
@@ -462,5 +482,25 @@ namespace beamslider
     Eigen::VectorXd q_end_, f_end_;
     mutable Eigen::VectorXd u_mean_, u_theta_; // ū and u_θ of step_work
     mutable Eigen::VectorXd energy_q_, energy_f_, energy_Mu_; // scratch of energy()
+
+    // The redistributed mass (FETransientSettings::redistributed_mass):
+    // W (n × 2), A = (Wᵀ M⁻¹ W)⁻¹, the base load r̃ = r + W A Wᵀι, and for
+    // the solves with S̃ = S − W A Wᵀ by Woodbury,
+    //   S̃⁻¹ b = S⁻¹ b + Y C⁻¹ Wᵀ S⁻¹ b,  Y = S⁻¹ W,  C = A⁻¹ − Wᵀ Y,
+    // Y and C's factor made on first use after a new W or factorisation.
+    using NByTwo = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+    NByTwo mrm_W_;
+    Eigen::Matrix2d mrm_A_ = Eigen::Matrix2d::Zero();
+    Eigen::VectorXd iota_, r_tilde_; // ι: 1 on the free w values, 0 elsewhere
+    mutable NByTwo mrm_Y_;
+    mutable Eigen::LLT<Eigen::Matrix2d> mrm_C_;
+    mutable bool mrm_current_ = false;
+    std::array<double, 2> mrm_x_{{-1., -1.}};
+    void set_up_redistribution();
+    // Y and C for the current W and factorisation.
+    void update_redistribution() const;
+    // x ← x + Y C⁻¹ Wᵀ x: S⁻¹ b made S̃⁻¹ b.
+    void add_redistribution_term(Eigen::VectorXd &x) const;
+    mutable Eigen::Vector2d mrm_scratch_;
   };
 } // namespace beamslider

@@ -259,8 +259,10 @@ namespace beamslider
     // What an impact's impulse moves in the FE step: "step" (Moreau–Jean:
     // the step's iteration matrix S = M + θΔt C + θ²Δt² K_t, so the beam mass
     // under the impact shrinks like √Δt until Δt resolves the mesh's
-    // highest mode) or "mass" (the mass matrix: the velocity jump of the
-    // semi-discrete system, the same at every Δt). doc/physics.md §7.
+    // highest mode), "mass" (the mass matrix: the velocity jump of the
+    // semi-discrete system, the same at every Δt) or "redistributed"
+    // (Moreau–Jean with no beam mass at the two contact points: M − W A Wᵀ,
+    // fem/fe_transient.h). doc/physics.md §7.
     std::string fe_impulses = "step";
     double end_time    = 60.;  // [s]
     double output_rate = 1000.; // samples per second written to trace.csv [1/s]

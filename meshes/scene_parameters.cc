@@ -326,10 +326,12 @@ namespace beamslider
              "Delta t [s] of the FE model (every --model fe run and the error ladder's FE reference), > 0, at most "
              "1/20 of the excitation period; with FE theta = 0.5 the FE's end state converges only at a much "
              "smaller step than with theta slightly above 0.5 (doc/verification.md section 7)");
-      e.bind("FE impulses", s.time_stepping.fe_impulses, Selection("step|mass"),
+      e.bind("FE impulses", s.time_stepping.fe_impulses, Selection("step|mass|redistributed"),
              "what an impact's impulse moves in the FE step: step (Moreau-Jean, through the step's iteration matrix "
-             "M + theta^2 Delta t^2 K: the beam mass under an impact shrinks like sqrt(Delta t)) or mass (through the "
-             "mass matrix: the semi-discrete system's velocity jump, the same at every Delta t)");
+             "M + theta^2 Delta t^2 K: the beam mass under an impact shrinks like sqrt(Delta t)), mass (through the "
+             "mass matrix: the semi-discrete system's velocity jump, the same at every Delta t) or redistributed "
+             "(Moreau-Jean with the beam's mass taken away from the two contact points: M - W A W^T, about half "
+             "an element's mass a point)");
       e.bind("FE theta", s.time_stepping.fe_theta, Double(0.5, 1),
              "theta of the FE's Moreau-Jean scheme, in [0.5, 1]: 0.5 is the implicit midpoint rule (no numerical "
              "damping); above, the modes the FE time step cannot resolve are damped, and the resolved ones by a "
