@@ -25,11 +25,17 @@ namespace beamslider
     // it and the checksum of everything below (the CSV). A cache from
     // another format or build, or with any byte changed, is not used.
     constexpr unsigned int cache_format = 2;
+    // The title up to this build's name: the same in every cache this build
+    // and format write, whatever their content.
+    std::string cache_title_prefix()
+    {
+      return "# beamslider model-choice cache, format " + std::to_string(cache_format) + ", build " +
+             build_revision() + " (";
+    }
     std::string cache_title(const std::string &body)
     {
       std::ostringstream title;
-      title << "# beamslider model-choice cache, format " << cache_format << ", build " << build_revision() << " ("
-            << build_info().built_for << "), fnv1a " << std::hex << fnv1a(body);
+      title << cache_title_prefix() << build_info().built_for << "), fnv1a " << std::hex << fnv1a(body);
       return title.str();
     }
 
@@ -56,10 +62,7 @@ namespace beamslider
       const std::string body  = first_end == std::string::npos ? std::string() : text.substr(first_end + 1);
       if (title != cache_title(body))
         {
-          why = title.rfind("# beamslider model-choice cache, format " + std::to_string(cache_format) + ", build " +
-                              build_revision() + " (",
-                            0) == 0
-                  ? "its checksum does not match its content"
+          why = title.rfind(cache_title_prefix(), 0) == 0 ? "its checksum does not match its content"
                   : "written by another build or format of beamslider, or damaged";
           return {};
         }
