@@ -92,4 +92,15 @@ namespace beamslider
       return std::string();
     return read_text_file(path, max_bytes);
   }
+  std::string read_option_file(const std::string &path, const std::string &role, const std::size_t max_bytes)
+  {
+    try
+      {
+        return read_text_file(path, max_bytes);
+      }
+    catch (const FileReadError &e)
+      {
+        throw FileReadError(role + ": " + e.what());
+      }
+  }
 } // namespace beamslider

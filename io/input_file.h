@@ -47,4 +47,10 @@ namespace beamslider
   // The same, or "" if nothing is at `path` (a folder a run is about to
   // start in); anything that is there but cannot be read still throws.
   std::string read_text_file_if_present(const std::string &path, std::size_t max_bytes = InputLimits::table);
+
+  // read_text_file for a file an option names: the FileReadError's message
+  // begins with what the file is to the command, e.g. role = "--against: no
+  // readable members.csv".
+  std::string read_option_file(const std::string &path, const std::string &role,
+                               std::size_t max_bytes = InputLimits::table);
 } // namespace beamslider

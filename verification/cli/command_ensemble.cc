@@ -67,16 +67,7 @@ namespace beamslider
     // checked before any member runs: a bad file is an input error at once.
     OutcomeSamples read_members_csv(const std::string &path)
     {
-      std::string text;
-      try
-        {
-          text = read_text_file(path);
-        }
-      catch (const FileReadError &e)
-        {
-          throw InputError("--against: no readable members.csv: " + std::string(e.what()));
-        }
-      std::istringstream in(text);
+      std::istringstream in(read_option_file(path, "--against: no readable members.csv"));
       std::string line;
       std::getline(in, line);
       if (line.rfind("member,perturbation,status,jump_time_s,turn_x_over_L,final_x_over_L,final_amplitude_over_h", 0) != 0)

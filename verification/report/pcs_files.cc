@@ -132,16 +132,7 @@ namespace beamslider
 
   std::vector<PcsPoint> read_pcs_csv(const std::string &path)
   {
-    std::string text;
-    try
-      {
-        text = read_text_file(path);
-      }
-    catch (const FileReadError &e)
-      {
-        throw InputError("--against: no readable pcs.csv: " + std::string(e.what()));
-      }
-    std::istringstream in(text);
+    std::istringstream in(read_option_file(path, "--against: no readable pcs.csv"));
     std::string line;
     std::getline(in, line);
     std::vector<std::string> header;

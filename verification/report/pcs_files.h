@@ -59,7 +59,7 @@ namespace beamslider
   // comparison.csv and crossings.csv into dir.
   void write_pcs_comparison(const PcsComparison &comparison, const std::string &dir);
 
-  // Reads a sweep's pcs.csv (the columns above); throws InputError for a
-  // missing or foreign file.
+  // Reads a sweep's pcs.csv (the columns above); throws FileReadError for a
+  // missing or unreadable file, InputError for a foreign one.
   std::vector<PcsPoint> read_pcs_csv(const std::string &path);
 } // namespace beamslider
