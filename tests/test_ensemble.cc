@@ -2,12 +2,20 @@
 // differ; order statistics and two-sample distances against values worked
 // out by hand.
 #include "io/csv_writer.h"
+#include "io/input_file.h"
+#include "verification/report/member_files.h"
 #include "verification/studies/ensemble.h"
+#include "verification/studies/fe_rom_study.h"
+#include "verification/studies/member_runs.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 using namespace beamslider;
 
@@ -161,4 +169,81 @@ TEST(EnsembleComparison, DistancesOfConstructedSamples)
   for (auto &x : near)
     x += 0.002;
   EXPECT_FALSE(compare_samples(a, near).distinguishable);
+}
+
+// The store shared across studies (member_files.h, share_fe_members): an FE
+// member one study ran is taken by another that asks for the same member
+// under another group name, and gives the same numbers to the bit; a member
+// of other settings (another Δt) is not taken; a damaged file is not used
+// (its member runs again, with the same numbers); ROM members are not kept.
+TEST(SharedMembers, AnFEMemberRunOnceIsTakenByAnotherStudyWithTheSameSettingsOnly)
+{
+  namespace fs         = std::filesystem;
+  const fs::path store = fs::temp_directory_path() / ("beamslider-shared-" + std::to_string(::getpid()));
+  fs::remove_all(store);
+  Scene scene                  = read_scene(mueller);
+  scene.time_stepping.end_time = 0.05;
+  ModelSetting fe              = scene_model(scene, "fe");
+  ModelSetting rom             = scene_model(scene, "rom");
+  ModelSetting fe_half         = fe;
+  fe_half.time_step /= 2;
+
+  auto run = [&](const std::vector<MemberGroup> &groups, std::size_t &n_taken) {
+    MemberRunsSettings settings;
+    settings.n_threads = 1;
+    settings.n_kept    = &n_taken;
+    share_fe_members(settings, store.string());
+    return run_member_groups(groups, settings);
+  };
+  auto same = [](const EnsembleMember &a, const EnsembleMember &b) {
+    if (a.periods.size() != b.periods.size() || a.result.slider_x_over_L != b.result.slider_x_over_L)
+      return false;
+    for (std::size_t k = 0; k < a.periods.size(); ++k)
+      if (a.periods[k].slider_x_over_L != b.periods[k].slider_x_over_L ||
+          a.periods[k].amplitude_over_h != b.periods[k].amplitude_over_h)
+        return false;
+    return true;
+  };
+  auto files = [&] {
+    std::size_t n = 0;
+    if (fs::exists(store))
+      for (const auto &e : fs::recursive_directory_iterator(store))
+        n += e.is_regular_file();
+    return n;
+  };
+
+  std::size_t taken = 0;
+  const auto first = run({{"ladder reference", scene, fe, 2, 1e-9}, {"rom", scene, rom, 1, 1e-9}}, taken);
+  EXPECT_EQ(taken, 0u);
+  EXPECT_EQ(files(), 2u); // the two FE members, not the ROM's
+  const SharedMemberCounts after_first = shared_member_counts();
+
+  const auto second = run({{"region reference", scene, fe, 2, 1e-9}}, taken);
+  EXPECT_EQ(taken, 2u);
+  ASSERT_EQ(second.size(), 1u);
+  ASSERT_EQ(second[0].size(), 2u);
+  EXPECT_TRUE(same(first[0][0], second[0][0]));
+  EXPECT_TRUE(same(first[0][1], second[0][1]));
+  EXPECT_EQ(shared_member_counts().reused, after_first.reused + 2);
+  EXPECT_NE(shared_member_counts().folder.find("fe_members"), std::string::npos);
+
+  run({{"region reference", scene, fe_half, 1, 1e-9}}, taken);
+  EXPECT_EQ(taken, 0u) << "a member of another time step was taken";
+  EXPECT_EQ(files(), 3u);
+
+  // A changed key line: the file is not used, its member runs again.
+  for (const auto &e : fs::recursive_directory_iterator(store))
+    if (e.is_regular_file())
+      {
+        const std::string text = read_text_file(e.path().string());
+        if (text.find("; member 1") == std::string::npos) // only the first group has a member 1
+          continue;
+        std::string changed = text;
+        changed.replace(changed.find("; member 1"), 10, "; member 7");
+        std::ofstream(e.path(), std::ios::trunc) << changed;
+      }
+  const auto third = run({{"cases reference", scene, fe, 2, 1e-9}}, taken);
+  EXPECT_EQ(taken, 1u);
+  EXPECT_TRUE(same(first[0][1], third[0][1]));
+  fs::remove_all(store);
 }

@@ -3,6 +3,7 @@
 #include "meshes/scene.h"
 #include "meshes/source_directory.h"
 #include "verification/cli/commands.h"
+#include "verification/report/member_files.h"
 #include "verification/studies/simulation.h"
 #include "verification/studies/build_info.h"
 #include "verification/studies/simulation_cases.h"
@@ -199,6 +200,13 @@ namespace beamslider
             << (first.empty() ? "" : ": " + one_line(first))
             << "\n           the results in this folder are partial (run the command again, or --resume it)";
       }
+    // Members this process took from, or kept in, the store it shares with
+    // other studies and reports (member_files.h).
+    const SharedMemberCounts shared = shared_member_counts();
+    if (shared.reused + shared.kept > 0)
+      how << "\nshared:    " << shared.reused << " FE members taken from " << shared.folder
+          << " (run before with the same scene content, settings and build; not run again), " << shared.kept
+          << " run now and kept there";
     bool written = true;
     for (const std::string &dir : held_output_folders())
       {

@@ -5,9 +5,13 @@
 #include "io/input_file.h"
 #include "io/output_file.h"
 #include "io/console.h"
+#include "numerics/state_bytes.h"
 
+#include <atomic>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 namespace beamslider
@@ -119,5 +123,74 @@ namespace beamslider
     settings.on_progress     = [](const std::string &line) { console() << line << std::endl; };
     settings.records         = member_files(dir, file, progress_prefix, settings.on_progress);
     return settings;
+  }
+  namespace
+  {
+    std::atomic<std::size_t> shared_reused{0}, shared_kept{0};
+    std::mutex shared_folder_mutex;
+    std::string shared_folder;
+
+    void note_shared_folder(const std::string &path)
+    {
+      const std::lock_guard<std::mutex> lock(shared_folder_mutex);
+      shared_folder = std::filesystem::path(path).parent_path().string();
+    }
+
+    std::string shared_member_path(const std::string &dir, const MemberGroup &group, const std::string &key)
+    {
+      char hash[17];
+      std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+      return (std::filesystem::path(dir) / group.scene.name / "fe_members" / (std::string(hash) + ".csv")).string();
+    }
+
+    std::string shared_member_title(const std::string &key) { return "# beamslider member, key: " + key; }
+  } // namespace
+
+  void share_fe_members(MemberRunsSettings &settings, const std::string &dir)
+  {
+    settings.cached = [dir](const MemberGroup &group,
+                            const std::string &key) -> std::optional<std::vector<std::string>> {
+      if (group.model.family != "fe")
+        return std::nullopt;
+      std::vector<std::string> lines;
+      try
+        {
+          lines = records(read_text_file_if_present(shared_member_path(dir, group, key), InputLimits::table));
+        }
+      catch (const FileReadError &)
+        {
+          return std::nullopt; // a FIFO, a folder, no permission: run the member
+        }
+      if (lines.size() != 3 || lines[0] != shared_member_title(key) ||
+          lines[1] != CsvWriter::line(member_record_columns()))
+        return std::nullopt;
+      note_shared_folder(shared_member_path(dir, group, key));
+      ++shared_reused;
+      return CsvWriter::cells(lines[2]);
+    };
+    settings.remember = [dir](const MemberGroup &group, const std::string &key,
+                              const std::vector<std::string> &record) {
+      if (group.model.family != "fe")
+        return;
+      try
+        {
+          const std::string path = shared_member_path(dir, group, key);
+          std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+          write_file_atomically(path, shared_member_title(key) + "\n" + CsvWriter::line(member_record_columns()) +
+                                        "\n" + CsvWriter::line(record) + "\n");
+          note_shared_folder(path);
+          ++shared_kept;
+        }
+      catch (const std::exception &)
+        {
+          // Not kept: a later report runs this member again.
+        }
+    };
+  }
+
+  SharedMemberCounts shared_member_counts()
+  {
+    const std::lock_guard<std::mutex> lock(shared_folder_mutex);
+    return {shared_reused.load(), shared_kept.load(), shared_folder};
   }
 } // namespace beamslider

@@ -31,6 +31,27 @@ namespace beamslider
   member_files(const std::string &dir, const std::string &file, const std::string &progress_prefix,
                const std::function<void(const std::string &line)> &on_progress);
 
+  // The store of FE members shared across studies and reports
+  // (MemberRunsSettings::cached, remember): one file a member,
+  // `dir`/<scene>/fe_members/<FNV-1a of its key, hex>.csv, holding
+  //   # beamslider member, key: <member_cache_key>
+  //   <the member record's columns>
+  //   <its record>
+  // A file whose key line or columns are not exactly these, or that cannot
+  // be read, is not used; the member runs and its file is written anew
+  // (whole, renamed into place). A file that cannot be written only costs
+  // the reuse. ROM members cost little and are not kept.
+  void share_fe_members(MemberRunsSettings &settings, const std::string &dir = "reports");
+
+  // What the shared stores of this process have done since it started:
+  // members taken from them and members kept in them (for run.txt).
+  struct SharedMemberCounts
+  {
+    std::size_t reused = 0, kept = 0;
+    std::string folder; // the last store's folder used
+  };
+  SharedMemberCounts shared_member_counts();
+
   // The settings of member runs persisted in `dir`/`file` (see above), with
   // their progress on the console.
   MemberRunsSettings member_files_settings(const std::string &dir, const std::string &study, const MpiSession *mpi,

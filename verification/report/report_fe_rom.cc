@@ -45,10 +45,20 @@ namespace beamslider
   {
     using clock = std::chrono::steady_clock;
 
+    // The FE members this report shares with the other reports beside it
+    // (report/member_files.h): <the report folder's parent>/<scene>/fe_members,
+    // e.g. reports/mueller2023/fe_members for reports/mueller2023-full.
+    std::string shared_members_root(const Report &report)
+    {
+      const std::filesystem::path parent = std::filesystem::path(report.dir).parent_path();
+      return parent.empty() ? std::string(".") : parent.string();
+    }
+
     // 5.1 and 5.2: the ladder.
     std::string ladder_subsections(Report &report, const Scene &scene, const bool full)
     {
-      const ReportLadder ladder = report_ladder(scene, full, report.ladder_diagnostics);
+      ReportLadder ladder                 = report_ladder(scene, full, report.ladder_diagnostics);
+      ladder.settings.shared_members_root = shared_members_root(report);
       return run_and_describe_ladder(report.dir, scene, ladder.rungs, ladder.reference, ladder.settings);
     }
 
@@ -215,8 +225,10 @@ namespace beamslider
          << "How to read it. With `step` (the reference's formulation) m falls with Δt at an order near ½: the step "
             "reaches the beam within a bending wavelength √(Δt·√(EI/ρA)), so m approaches the semi-discrete "
             "1/(wᵀM⁻¹w) (the `mass` row, the same at every Δt) only once Δt resolves the mesh's highest mode, far "
-            "below 1e-6 s. That m halves with each mesh refinement: it has no limit in the mesh. With `redistributed` "
-            "the corner carries no mass of its own and m falls faster still, towards zero. The ROM's m falls like 1/N. "
+            "below 1e-6 s; at the steps a run takes, m hardly depends on the mesh (the continuum's own law). The "
+            "semi-discrete m falls with each mesh refinement (about half an element's mass at a node): it has no limit "
+            "in the mesh. With `redistributed` the corner carries no mass of its own and m falls faster still, towards "
+            "zero. The ROM's m falls like 1/N. "
             "So every refinement (Δt, mesh, N) changes the impacts, which is why the FE reference's end state drifts "
             "with Δt at a low observed order (the reference checks above) and why the ROM's N and the FE's Δt agree "
             "where their m agree. A formulation whose reference converges at Δt ≥ 1e-5 s needs an impact that does "
@@ -241,11 +253,13 @@ namespace beamslider
         // The headline of the full report: the verdict at six operating
         // points, each against its own converged reference.
         RegionRunSettings region;
-        region.progress_prefix = "[verify] region: ";
+        region.progress_prefix     = "[verify] region: ";
+        region.shared_members_root = shared_members_root(report);
         md << "### 5.0 The verdict across the signature-move region\n\n"
            << run_and_describe_region(report.dir, scene, region);
         RegionRunSettings cases;
-        cases.progress_prefix = "[verify] published cases: ";
+        cases.progress_prefix     = "[verify] published cases: ";
+        cases.shared_members_root = shared_members_root(report);
         md << "#### 5.0.1 The published cases\n\n"
            << run_and_describe_cases(report.dir, published_case_sites(report.scene_file, report.overrides), cases);
       }

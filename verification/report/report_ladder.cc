@@ -151,6 +151,8 @@ namespace beamslider
     {
       MemberRunsSettings runs = member_files_settings(dir, "ladder", MpiSession::active(), settings.progress_prefix);
       runs.n_kept             = &n_kept;
+      if (!settings.shared_members_root.empty())
+        share_fe_members(runs, settings.shared_members_root); // its FE reference, if the region or the cases ran it
       announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
       const LadderStudy study = run_ladder(
         scene, rungs, reference, settings.end_time, settings.members,

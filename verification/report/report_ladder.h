@@ -51,6 +51,9 @@ namespace beamslider
     // "" gives "## …" (a summary of its own).
     std::string numbering;
     std::string progress_prefix; // before each progress line on the console
+    // Where FE members are shared with other studies and reports
+    // (member_files.h, share_fe_members); "": not shared.
+    std::string shared_members_root;
   };
 
   // Runs `rungs` (reference: rungs[reference]) as ensembles into `dir`

@@ -338,8 +338,10 @@ namespace beamslider
     console() << settings.progress_prefix << "the verdict across the signature-move region: " << points.size()
               << " operating points × (the quick ladder's models and their checks) × " << settings.members << " members over "
               << settings.end_time << " s" << std::endl;
-    const MemberRunsSettings runs =
+    MemberRunsSettings runs =
       member_files_settings(dir, "region", MpiSession::active(), settings.progress_prefix, "member_runs.region.csv");
+    if (!settings.shared_members_root.empty())
+      share_fe_members(runs, settings.shared_members_root); // the FE references the cases and the ladder may run too
     const RegionStudy study = run_region(scene, points, settings.end_time, settings.members, member_runs_runner(runs),
                                          check_rounds_runner(runs), round_sharer(runs.mpi));
     write_region_csv(dir, study);
@@ -410,8 +412,10 @@ namespace beamslider
     console() << settings.progress_prefix << "the published cases: " << sites.size()
               << " cases × (the published ROM, the front's candidates and the FE reference, with their checks) × "
               << settings.members << " members over each case's end time" << std::endl;
-    const MemberRunsSettings runs =
+    MemberRunsSettings runs =
       member_files_settings(dir, "cases", MpiSession::active(), settings.progress_prefix, "member_runs.cases.csv");
+    if (!settings.shared_members_root.empty())
+      share_fe_members(runs, settings.shared_members_root);
     const std::vector<LadderStudy> ladders = run_sites(sites, case_rungs, settings.members, member_runs_runner(runs),
                                                        check_rounds_runner(runs), round_sharer(runs.mpi));
     write_cases_csv(dir, sites, ladders);

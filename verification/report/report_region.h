@@ -25,6 +25,9 @@ namespace beamslider
     double end_time      = 40.; // [s] simulated per member
     unsigned int members = 4;
     std::string progress_prefix;
+    // Where FE members are shared with the ladder and later reports
+    // (member_files.h, share_fe_members); "": not shared.
+    std::string shared_members_root;
   };
 
   // Runs the region study into `dir` (over the MPI ranks under mpirun, else

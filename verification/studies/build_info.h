@@ -19,4 +19,9 @@ namespace beamslider
 
   // "beamslider <version> <revision>".
   std::string build_revision();
+
+  // This executable's size and modification time ("<bytes> bytes, modified
+  // <ns since the epoch>"): what tells two builds of one revision with
+  // uncommitted changes apart. "unknown" if it cannot be read.
+  std::string executable_identity();
 } // namespace beamslider

@@ -147,12 +147,15 @@ namespace beamslider
 
       // "N member runs, K of them kept from …; T to run, longest first, on …"
       void start(const std::size_t n_total, const std::size_t n_kept, const std::string &store,
-                 const std::size_t n_todo) const
+                 const std::size_t n_todo, const std::size_t n_cached) const
       {
         std::ostringstream text;
         text << n_total << " member runs";
         if (n_kept)
           text << ", " << n_kept << " of them kept from " << store;
+        if (n_cached)
+          text << ", " << n_cached << " taken from the shared store of members run before with the same scene, "
+               << "settings and build";
         text << "; " << n_todo << " to run, longest first, on "
              << (n_ranks > 1 ? std::to_string(n_ranks) + " MPI ranks" : std::string("the cores of this process"));
         line(text.str());
@@ -207,9 +210,29 @@ namespace beamslider
       if (settings.n_kept)
         *settings.n_kept = n_kept;
 
+      // The shared store's members next (each also into this study's own).
+      std::size_t n_cached = 0;
+      if (settings.cached)
+        for (const std::size_t run : table.todo())
+          {
+            const auto [g, m] = group_and_member(groups, run);
+            std::optional<std::vector<std::string>> record = settings.cached(groups[g], member_cache_key(groups[g], m));
+            if (!record || record->size() != member_record_columns().size())
+              continue;
+            (*record)[0] = std::to_string(g); // this study's group and its name
+            (*record)[1] = groups[g].name;
+            if (!table.take_previous_record(*record))
+              continue;
+            if (store.append)
+              store.append(*record);
+            ++n_cached;
+          }
+      if (settings.n_kept)
+        *settings.n_kept += n_cached;
+
       const std::vector<std::size_t> todo = table.todo();
       const MemberProgress progress{settings, mpi.size()};
-      progress.start(n_total, n_kept, store.name, todo.size());
+      progress.start(n_total, n_kept, store.name, todo.size(), n_cached);
       std::size_t n_done = 0;
       distribute_cells(
         mpi, todo, work,
@@ -221,6 +244,8 @@ namespace beamslider
           EnsembleMember member = member_from_record(cells, table.thresholds[g], group, name);
           if (store.append)
             store.append(cells);
+          if (settings.remember)
+            settings.remember(groups[g], member_cache_key(groups[g], m), cells);
           table.members[g][m] = std::move(member);
           table.have[g][m]    = true;
           ++n_done;
@@ -270,6 +295,25 @@ namespace beamslider
             << "), end time " << exact(r.scene.time_stepping.end_time) << " s, " << r.n_members
             << " members, perturbation " << exact(r.perturbation);
       }
+    std::string text = key.str();
+    for (char &c : text)
+      if (c == '\n' || c == '\r')
+        c = ' ';
+    return text;
+  }
+
+  std::string member_cache_key(const MemberGroup &group, const unsigned int member)
+  {
+    const ModelSetting &s = group.model;
+    std::ostringstream key;
+    key << build_revision() << " (" << build_info().built_for << ") executable " << executable_identity()
+        << "; scene " << group.scene.name << " content " << scene_content_key(group.scene)
+        << "; model " << s.family << " elements " << s.n_elements << " modes " << s.n_modes << " corrections "
+        << s.n_static_corrections << " ritz " << s.ritz_blocks << " coefficients " << s.coefficients
+        << " integrator " << s.integrator << " axial inertia " << s.axial_inertia << " damped " << s.damped_modes
+        << " dt " << exact(s.time_step) << " theta " << exact(s.theta) << " offset " << exact(s.slider_offset_over_L)
+        << "; end time " << exact(group.scene.time_stepping.end_time) << " perturbation " << exact(group.perturbation)
+        << "; member " << member;
     std::string text = key.str();
     for (char &c : text)
       if (c == '\n' || c == '\r')

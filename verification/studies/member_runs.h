@@ -21,6 +21,7 @@
 #include "verification/studies/ensemble.h"
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -59,6 +60,16 @@ namespace beamslider
     // Each progress line (prefix included, without '\n'); empty: none.
     std::function<void(const std::string &line)> on_progress;
     std::size_t *n_kept = nullptr;   // if given: set to the members read back
+    // A store of single members shared by every study that runs the same
+    // member, whatever its group's name or study (the FE references the
+    // region, the published cases and the ladder of a report have in
+    // common, and a later report's): `cached` gives the record kept under a
+    // member's own key (member_cache_key) or nothing, `remember` keeps a
+    // finished member's record. Either may decline a group (the file store
+    // keeps FE members only). Empty: none.
+    std::function<std::optional<std::vector<std::string>>(const MemberGroup &group, const std::string &key)> cached;
+    std::function<void(const MemberGroup &group, const std::string &key, const std::vector<std::string> &record)>
+      remember;
   };
 
   // A stop (Ctrl-C, SIGTERM) before every member was done; the finished ones
@@ -97,4 +108,11 @@ namespace beamslider
   // scene (with its content key, model_choice.h), model and exact time
   // step, end time, members and perturbation; one line.
   std::string member_runs_key(const std::vector<MemberGroup> &groups, const std::string &study);
+  // The key of one member of `group` in a shared store: beamslider's
+  // version, source revision and the executable's identity (its size and
+  // modification time: a rebuild is another build), the scene's name and
+  // content key, every field of the model setting with exact numbers, the
+  // end time, ε and the member's index. Not the group's name or the study:
+  // the same member asked by two studies is one.
+  std::string member_cache_key(const MemberGroup &group, unsigned int member);
 } // namespace beamslider
