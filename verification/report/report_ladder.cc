@@ -599,12 +599,19 @@ namespace beamslider
   std::string run_and_describe_ladder(const std::string &dir, const Scene &scene, const std::vector<LadderRung> &rungs,
                                       const std::size_t reference, const LadderRunSettings &settings, bool *proven)
   {
-    const auto start        = clock::now();
-    std::size_t n_kept      = 0;
-    const LadderStudy study = run_ladder_study(dir, scene, rungs, reference, settings, n_kept);
+    const auto start                  = clock::now();
+    const SharedMemberCounts before   = shared_member_counts();
+    std::size_t n_kept                = 0;
+    const LadderStudy study           = run_ladder_study(dir, scene, rungs, reference, settings, n_kept);
+    const SharedMemberCounts after    = shared_member_counts();
     if (proven)
       *proven = study.proven();
-    return write_and_describe_ladder(dir, scene, rungs, study, settings, n_kept, seconds_since(start));
+    std::string md = write_and_describe_ladder(dir, scene, rungs, study, settings, n_kept, seconds_since(start));
+    if (after.reused > before.reused)
+      md += std::to_string(after.reused - before.reused) + " FE members were taken from " + after.folder +
+            ", run before by this build with the same scene and settings (the region's, the published cases' or "
+            "an earlier report's), not run again.\n\n";
+    return md;
   }
 
   void work_on_ladder(const Scene &scene, const std::vector<LadderRung> &rungs, const std::size_t reference,

@@ -227,8 +227,6 @@ namespace beamslider
               store.append(*record);
             ++n_cached;
           }
-      if (settings.n_kept)
-        *settings.n_kept += n_cached;
 
       const std::vector<std::size_t> todo = table.todo();
       const MemberProgress progress{settings, mpi.size()};

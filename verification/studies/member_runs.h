@@ -59,7 +59,7 @@ namespace beamslider
     std::string progress_prefix;     // before each progress line
     // Each progress line (prefix included, without '\n'); empty: none.
     std::function<void(const std::string &line)> on_progress;
-    std::size_t *n_kept = nullptr;   // if given: set to the members read back
+    std::size_t *n_kept = nullptr;   // if given: set to the members read back (not those of `cached`)
     // A store of single members shared by every study that runs the same
     // member, whatever its group's name or study (the FE references the
     // region, the published cases and the ladder of a report have in
