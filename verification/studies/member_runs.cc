@@ -43,6 +43,15 @@ namespace beamslider
       return cells;
     }
 
+    // A key on one line, breaks as spaces (a scene's name may hold one; meshes/printable.h's one_line escapes them instead, which would change the keys of existing files).
+    std::string key_on_one_line(std::string text)
+    {
+      for (char &c : text)
+        if (c == '\n' || c == '\r')
+          c = ' ';
+      return text;
+    }
+
     std::string exact(const double x)
     {
       char buffer[32];
@@ -293,11 +302,7 @@ namespace beamslider
             << "), end time " << exact(r.scene.time_stepping.end_time) << " s, " << r.n_members
             << " members, perturbation " << exact(r.perturbation);
       }
-    std::string text = key.str();
-    for (char &c : text)
-      if (c == '\n' || c == '\r')
-        c = ' ';
-    return text;
+    return key_on_one_line(key.str());
   }
 
   std::string member_cache_key(const MemberGroup &group, const unsigned int member)
@@ -312,11 +317,7 @@ namespace beamslider
         << " dt " << exact(s.time_step) << " theta " << exact(s.theta) << " offset " << exact(s.slider_offset_over_L)
         << "; end time " << exact(group.scene.time_stepping.end_time) << " perturbation " << exact(group.perturbation)
         << "; member " << member;
-    std::string text = key.str();
-    for (char &c : text)
-      if (c == '\n' || c == '\r')
-        c = ' ';
-    return text;
+    return key_on_one_line(key.str());
   }
 
   std::vector<std::vector<EnsembleMember>> run_member_groups(const std::vector<MemberGroup> &groups,
