@@ -29,6 +29,8 @@ namespace beamslider
 
   PeriodMapValue AttachedSliderModel::operator()(const Eigen::VectorXd &y, const double x_over_L) const
   {
+    if (!(x_over_L >= 0. && x_over_L <= 1.))
+      throw PeriodMapFailure("the slider's position x_C/L = " + std::to_string(x_over_L) + " is off the beam [0, 1]");
     const ModalBasis &basis = rom_.basis();
     const Eigen::Index n    = rom_.n_modes();
     Eigen::VectorXd phi, dphi, phi_c, dphi_c;

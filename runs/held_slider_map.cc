@@ -121,14 +121,14 @@ namespace beamslider
 
   Eigen::VectorXd HeldSliderMap::scale(const Eigen::VectorXd &y) const
   {
+    // Each beam block its largest entry, but not below the coordinates that
+    // deflect the centre by the clearance (a beam at rest has no size of
+    // its own); the slider's relative coordinates move within the clearance.
     const Eigen::Index n = beam_.n_dofs();
+    const double q_floor = clearance_ / std::max(centre_grad_w_.cwiseAbs().maxCoeff(), 1e-300);
     Eigen::VectorXd s(2 * n + 4);
-    const double q = std::max(y.head(n).cwiseAbs().maxCoeff(), 1e-30);
-    const double u = std::max(y.segment(n, n).cwiseAbs().maxCoeff(), 1e-30);
-    s.head(n).setConstant(q);
-    s.segment(n, n).setConstant(u);
-    // Relative to the beam under the slider, z_C and β move within the
-    // clearance: that is their size.
+    s.head(n).setConstant(std::max(y.head(n).cwiseAbs().maxCoeff(), q_floor));
+    s.segment(n, n).setConstant(std::max(y.segment(n, n).cwiseAbs().maxCoeff(), omega_ * q_floor));
     const double z = clearance_, beta = clearance_ / window_width_;
     s.tail<4>() << z, beta, omega_ * z, omega_ * beta;
     return s;

@@ -63,8 +63,9 @@ namespace beamslider
     PeriodMapValue operator()(const Eigen::VectorXd &y, double x_over_L);
 
     // Typical sizes of the unknowns around y, for ShootingSettings::scale:
-    // each block (q, u) its largest entry, the slider's coordinates the
-    // clearance R − h (and (R − h)/B for β) or more, their rates Ω times that.
+    // each beam block (q, u) its largest entry, at least the coordinates
+    // that deflect the centre by the clearance R − h (and Ω times that); the
+    // slider's relative coordinates R − h and (R − h)/B, their rates Ω times.
     Eigen::VectorXd scale(const Eigen::VectorXd &y) const;
 
     // A PeriodMap that calls this object (which must outlive it).

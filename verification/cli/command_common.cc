@@ -94,6 +94,7 @@ namespace beamslider
         {"statics", {"statics.csv", "statics.vtu", "statics.pvtu", "statics_*.vtu", "summary.md"}},
         {"coefficients", {"coefficients.csv", "quadratic_coefficients.csv", "summary.md"}},
         {"backbone", {"backbone.csv", "eq4.csv", "backbone.png", "summary.md"}},
+        {"branches", {"branches.csv", "attractor.csv", "branch_events.csv", "branches.png", "summary.md"}},
         {"map",
          {"summary.md", "published_cases.csv", "map_outcome_*.png", "map_final_position_*.png",
           "map_late_amplitude_*.png", "map_line_*.png"}},

@@ -219,6 +219,21 @@ CLI::App *declare_simulate(CLI::App &app, const AddCommon &add_common, SimulateO
   return simulate_cmd;
 }
 
+CLI::App *declare_branches(CLI::App &app, const AddCommon &add_common, BranchesOptions &branches)
+{
+  auto *cmd = app.add_subcommand("branches", "the held slider's slow manifold: periodic orbits by shooting and "
+                                             "continuation, attractor probes (branches.csv, attractor.csv)");
+  add_common(cmd);
+  cmd->add_option("--case", branches.case_name, "a published case or ablation (its excitation and slider; see doc/scenes.md)");
+  cmd->add_option("--from", branches.low_over_L, "smallest x_C/L (default: the half of the beam holding the start)")
+    ->check(finite_in(0., 1.));
+  cmd->add_option("--to", branches.high_over_L, "largest x_C/L")->check(finite_in(0., 1.));
+  cmd->add_option("--probe-step", branches.probe_step_over_L, "x_C/L between attractor probes")->check(finite_in(1e-3, 0.5));
+  cmd->add_option("--settle-periods", branches.settle_periods, "excitation periods each probe settles before its section")
+    ->check(CLI::Range(0u, 100000u));
+  return cmd;
+}
+
 CLI::App *declare_sweep(CLI::App &app, const AddCommon &add_common, SweepOptions &sweep)
 {
   auto *sweep_cmd = app.add_subcommand("sweep", "prescribed slider position sweeps (pcs.csv)");
@@ -383,6 +398,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors, StudyHandover *ha
   auto *simulate_cmd = declare_simulate(app, add_common, simulate);
   SweepOptions sweep;
   auto *sweep_cmd = declare_sweep(app, add_common, sweep);
+  BranchesOptions branches;
+  auto *branches_cmd = declare_branches(app, add_common, branches);
   AnimateOptions animate;
   auto *animate_cmd = declare_animate(app, add_common, animate);
   EnsembleOptions ensemble;
@@ -430,7 +447,7 @@ int parse_and_run(int argc, char **argv, std::ostream &errors, StudyHandover *ha
         return run_coefficients(common, coefficients);
       if (*statics_cmd)
         return run_statics(common, statics);
-      for (const CLI::App *one : {backbone_cmd, simulate_cmd, sweep_cmd, animate_cmd, identify_cmd})
+      for (const CLI::App *one : {backbone_cmd, simulate_cmd, sweep_cmd, branches_cmd, animate_cmd, identify_cmd})
         if (*one)
           require_one_process(one->get_name());
       if (*backbone_cmd)
@@ -442,6 +459,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors, StudyHandover *ha
         }
       if (*sweep_cmd)
         return run_sweep(common, sweep, handover);
+      if (*branches_cmd)
+        return run_branches(common, branches);
       if (*animate_cmd)
         return run_animate(common, animate);
       if (*ensemble_cmd)

@@ -154,6 +154,15 @@ namespace beamslider
   };
   int run_sweep(const CommonOptions &common, const SweepOptions &options, StudyHandover *handover = nullptr);
 
+  struct BranchesOptions
+  {
+    std::optional<double> low_over_L, high_over_L; // range; default: the sweep's
+    double probe_step_over_L = 0.02;               // between attractor probes
+    unsigned int settle_periods = 120;             // per probe
+    std::string case_name;                         // a published case or ablation
+  };
+  int run_branches(const CommonOptions &common, const BranchesOptions &options);
+
   struct AnimateOptions
   {
     std::string model = "fe";
