@@ -78,4 +78,7 @@ namespace beamslider
   // free run. (Settling 2 s instead of 0.5 s moved no jump by a step on
   // system1.)
   void add_pcs_sweep_subsection(Report &report, const Scene &scene, bool full);
+  // The held slider's periodic orbits: attractor probes and the attached
+  // model's branch (report_pcs.cc, verification/studies/slow_manifold.h).
+  void add_slow_manifold_subsection(Report &report, const Scene &scene);
 } // namespace beamslider

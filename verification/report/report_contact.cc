@@ -129,6 +129,7 @@ namespace beamslider
             "input with μ = 0 and no damping (test_reduced_rom_contact_beam).\n\n";
 
     add_pcs_sweep_subsection(report, scene, full);
+    add_slow_manifold_subsection(report, scene);
     const double seconds = elapsed_seconds(start);
     md << "Section 4 took " << fixed(seconds, 1) << " s.\n\n";
   }

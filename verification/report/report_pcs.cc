@@ -3,6 +3,7 @@
 #include "verification/report/charts.h"
 #include "verification/report/pcs_files.h"
 #include "verification/report/report.h"
+#include "verification/report/slow_manifold_files.h"
 #include "io/console.h"
 #include "verification/studies/pcs_sweep.h"
 
@@ -120,5 +121,25 @@ namespace beamslider
     if (plotted)
       report.text << "![PCS sweep](pcs.png)\n\n";
     report.text << "Data: `pcs.csv`, `resonance.csv`, `free_periods.csv`, `runs.csv`.\n\n";
+  }
+
+  void add_slow_manifold_subsection(Report &report, const Scene &scene)
+  {
+    const SlowManifoldSettings settings = SlowManifoldSettings::for_scene(scene);
+    console() << "Periodic orbits of the held slider (ROM, x_C/L " << settings.low_over_L << " … "
+              << settings.high_over_L << ")" << std::endl;
+    const SlowManifold m = run_slow_manifold_into(scene, settings, report.dir);
+    const bool plotted   = run_plot_script("plot_branches.py", {report.dir, scene.name});
+    report.text << "### Periodic orbits of the held slider\n\n"
+                << "The slider held as in the sweeps, the periodic orbits looked for by shooting on the period map "
+                   "(doc/physics.md §12): the rattling held slider probed every "
+                << settings.probe_step_over_L << " L (each settled " << settings.settle_periods
+                << " periods from the state the probe before left), and the attached-slider model (the slider moving "
+                   "with the beam) continued in x_C by pseudo-arclength with its Floquet multipliers.\n\n"
+                << describe_slow_manifold(m, scene, "####") << "\n";
+    if (plotted)
+      report.text << "![Slow manifold of the held slider](branches.png)\n\n";
+    report.text << "Data: `attractor.csv`, `branches.csv`, `branch_events.csv` (" << fixed(m.wall_seconds, 1)
+                << " s).\n\n";
   }
 } // namespace beamslider
