@@ -225,4 +225,5 @@ PYBIND11_MODULE(_core, m)
   beamslider_python::bind_models(m);
   beamslider_python::bind_solid(m);
   beamslider_python::bind_studies(m);
+  beamslider_python::bind_branches(m);
 }

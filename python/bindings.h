@@ -63,4 +63,5 @@ namespace beamslider_python
   void bind_models(py::module_ &m);
   void bind_solid(py::module_ &m);
   void bind_studies(py::module_ &m);
+  void bind_branches(py::module_ &m);
 } // namespace beamslider_python

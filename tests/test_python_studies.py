@@ -210,5 +210,34 @@ class MapObject(unittest.TestCase):
                              partial.cells_done)
 
 
+class BranchesObject(unittest.TestCase):
+    """beamslider.Branches runs the study itself (no command line): its
+    columns are the command's files' to the last printed digit, and bad
+    settings are ValueErrors naming the parameter."""
+
+    def test_columns_are_the_commands_files(self):
+        b = beamslider.Branches("mueller2023", from_=0.3, to=0.34, settle_periods=10)
+        with tempfile.TemporaryDirectory() as folder:
+            run_cli(folder, "branches", "--from", "0.3", "--to", "0.34", "--settle-periods", "10")
+            rows = csv_rows(os.path.join(folder, "branches.csv"))
+            probes = csv_rows(os.path.join(folder, "attractor.csv"))
+        self.assertEqual(len(rows) - 1, len(b.branches["x_over_L"]))
+        for i, row in enumerate(rows[1:]):
+            self.assertAlmostEqual(float(row[0]), b.branches["x_over_L"][i], delta=1e-9 * abs(float(row[0])))
+            self.assertAlmostEqual(float(row[1]), b.branches["amplitude_over_h"][i], delta=1e-9 * float(row[1]))
+            self.assertEqual(int(row[3]), int(b.branches["stable"][i]))
+        self.assertEqual(len(probes) - 1, len(b.attractor["x_over_L"]))
+        for i, row in enumerate(probes[1:]):
+            self.assertAlmostEqual(float(row[6]), b.attractor["amplitude_over_h"][i], delta=1e-9 * float(row[6]))
+
+    def test_bad_settings_are_value_errors(self):
+        with self.assertRaisesRegex(ValueError, "high x_C/L = 0.3"):
+            beamslider.Branches("mueller2023", from_=0.4, to=0.3)
+        with self.assertRaisesRegex(ValueError, "settle_periods = -1"):
+            beamslider.Branches("mueller2023", settle_periods=-1)
+        with self.assertRaisesRegex(ValueError, "probe_step"):
+            beamslider.Branches("mueller2023", probe_step="0.1")
+
+
 if __name__ == "__main__":
     unittest.main()

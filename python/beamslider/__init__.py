@@ -35,7 +35,7 @@ import numpy as np
 from . import _core
 
 __all__ = ["Scene", "Run", "FEBeam", "ReducedModel", "Solid", "Result", "Interrupted", "NotConvergedWarning", "PartialResultWarning", "interrupt", "modes", "coefficients", "statics", "backbone", "simulate",
-           "ensemble", "sweep", "map", "ladder", "verify", "Ensemble", "Ladder", "Sweep", "Map", "read_table"]
+           "ensemble", "sweep", "map", "ladder", "verify", "Ensemble", "Ladder", "Sweep", "Map", "Branches", "read_table"]
 
 
 class NotConvergedWarning(UserWarning):
@@ -771,6 +771,39 @@ class Map(_Study):
 
     def _partial(self):
         return self.cells_done < self.cells
+
+
+class Branches:
+    """The held slider's slow manifold (the study of the command `branches`,
+    doc/physics.md §12), computed in this process: ``attractor`` (the
+    rattling held slider's probes: attractor.csv's columns), ``branches`` (the
+    attached-slider model's periodic orbits along x_C: x_over_L,
+    amplitude_over_h, mean_fx_N, stable, largest_multiplier), ``events``
+    (turning points, period doublings, tori: (kind, x_over_L,
+    amplitude_over_h, mean_fx_N) each), ``model``, ``end_reason``,
+    ``wall_seconds``. The range defaults to the sweep's (the half of the beam
+    holding the scene's start); about 10 s for the published ROM."""
+
+    def __init__(self, scene="mueller2023", from_=None, to=None, probe_step=0.02, settle_periods=120):
+        self.scene = _as_scene(scene)
+        settle_periods = _whole_number("settle_periods", settle_periods, 0, 100000)
+        for name, value in (("from_", from_), ("to", to), ("probe_step", probe_step)):
+            if value is not None and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
+                raise ValueError(f"error: {name} = {value!r} is not a number")
+        result = _core.compute_branches(self.scene.path, list(self.scene._overrides),
+                                        None if from_ is None else float(from_), None if to is None else float(to),
+                                        float(probe_step), settle_periods)
+        self.attractor = result["attractor"]
+        self.branches = result["branches"]
+        self.events = result["events"]
+        self.model = result["model"]
+        self.end_reason = result["end_reason"]
+        self.probe_stop = result["probe_stop"]
+        self.wall_seconds = result["wall_seconds"]
+
+    def turning_points(self):
+        """x_C/L of the attached model's turning points along the branch."""
+        return [e[1] for e in self.events if e[0] == "turning point"]
 
 
 def _saved(study, output):

@@ -73,7 +73,7 @@ namespace beamslider
       fail("high x_C/L", high_over_L, range.str());
     if (!(high_over_L > low_over_L))
       fail("high x_C/L", high_over_L, "(low x_C/L = " + std::to_string(low_over_L) + ", inf)");
-    if (!(probe_step_over_L > 0. && probe_step_over_L <= high_over_L - low_over_L))
+    if (!(probe_step_over_L > 0. && probe_step_over_L <= high_over_L - low_over_L + 1e-12))
       fail("probe step dx_C/L", probe_step_over_L, "(0, high - low]");
     if (!(max_step_over_L > 0. && max_step_over_L <= 0.05))
       fail("continuation step dx_C/L", max_step_over_L, "(0, 0.05]");
