@@ -210,20 +210,22 @@ namespace beamslider
   }
 
   double largest_lyapunov_exponent(const PeriodMap &map, Eigen::VectorXd y, const double lambda,
-                                   const Eigen::VectorXd &scale, const unsigned int periods, const double separation)
+                                   const Eigen::VectorXd &scale, const unsigned int periods, const double separation,
+                                   const unsigned int discard)
   {
     // The first separation along every scaled unknown alike.
     const double n       = static_cast<double>(y.size());
     Eigen::VectorXd near = y + scale * (separation / std::sqrt(n));
     double sum           = 0;
-    for (unsigned int i = 0; i < periods; ++i)
+    for (unsigned int i = 0; i < discard + periods; ++i)
       {
         y                        = map(y, lambda).end;
         near                     = map(near, lambda).end;
         const double growth      = (near - y).cwiseQuotient(scale).norm() / separation;
         if (!(growth > 0.) || !std::isfinite(growth))
           return growth == 0. ? -std::numeric_limits<double>::infinity() : not_a_number;
-        sum += std::log(growth);
+        if (i >= discard)
+          sum += std::log(growth);
         near = y + (near - y) / growth;
       }
     return sum / periods;

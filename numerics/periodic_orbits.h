@@ -104,11 +104,14 @@ namespace beamslider
 
   // The largest Lyapunov exponent of the map [per period], by the growth of
   // a small separation (`separation`, scaled) renormalised after every
-  // period (Benettin et al. 1980), averaged over `periods` periods from y.
-  // Positive: nearby states part exponentially (chaos), no periodic orbit
-  // to shoot for; on a stable periodic orbit it tends to ln |μ₁| < 0.
+  // period (Benettin et al. 1980), averaged over `periods` periods from y
+  // after `discard` more (in which the separation turns toward the fastest
+  // growing direction). Positive: nearby states part exponentially (chaos),
+  // no periodic orbit to shoot for; started on a periodic orbit it is
+  // ln |μ₁|: the cross-check of its multipliers by time integration.
   double largest_lyapunov_exponent(const PeriodMap &map, Eigen::VectorXd y, double lambda,
-                                   const Eigen::VectorXd &scale, unsigned int periods, double separation = 1e-8);
+                                   const Eigen::VectorXd &scale, unsigned int periods, double separation = 1e-8,
+                                   unsigned int discard = 0);
 
   // Bifurcations met along a branch, between two computed points.
   enum class BranchEvent

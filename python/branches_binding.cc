@@ -75,6 +75,12 @@ namespace beamslider_python
                                   return std::vector<double>{p.lambda, p.observables[0], p.observables[1],
                                                              p.stable() ? 1. : 0., p.largest_multiplier()};
                                 });
+      {
+        py::array_t<double> growth(static_cast<py::ssize_t>(m.attached_growth.size()));
+        for (std::size_t i = 0; i < m.attached_growth.size(); ++i)
+          growth.mutable_at(static_cast<py::ssize_t>(i)) = m.attached_growth[i];
+        out["branches"].cast<py::dict>()["integration_growth"] = growth;
+      }
       py::list events;
       for (const auto &e : m.attached.events)
         events.append(py::make_tuple(beamslider::to_string(e.kind), e.lambda, e.observables[0], e.observables[1]));

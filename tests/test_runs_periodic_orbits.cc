@@ -202,6 +202,19 @@ namespace beamslider
             EXPECT_GT(p.multipliers[0].real(), 1.);
             EXPECT_NEAR(p.multipliers[0].imag(), 0., 1e-12);
           }
+        // The verdict against time integration started on the orbit: a small
+        // separation grows (or shrinks) by |μ₁| per period, measured over 40
+        // periods after 20 (a complex pair rotates the separation, so its
+        // norm's mean growth approaches |μ₁| as 1/periods). At a turning
+        // point |μ₁| → 1 and no integration of finite length decides.
+        if (i % 10 == 0 && std::abs(p.largest_multiplier() - 1.) > 0.01)
+          {
+            const double growth =
+              std::exp(largest_lyapunov_exponent(d, p.y, p.lambda, Eigen::Vector2d(1., 1.), 40, 1e-7, 20));
+            EXPECT_EQ(growth < 1., p.stable()) << "at Omega = " << p.lambda << ": growth " << growth;
+            EXPECT_NEAR(growth, p.largest_multiplier(), 0.2 * std::abs(p.largest_multiplier() - 1.) + 1e-3)
+              << "at Omega = " << p.lambda;
+          }
         // The point (Ω, A₁) on the harmonic-balance curve: its relative
         // distance to the nearest sample of the curve (both roots in Ω),
         // within the same 0.2 % as the turning points.

@@ -778,7 +778,8 @@ class Branches:
     doc/physics.md §12), computed in this process: ``attractor`` (the
     rattling held slider's probes: attractor.csv's columns), ``branches`` (the
     attached-slider model's periodic orbits along x_C: x_over_L,
-    amplitude_over_h, mean_fx_N, stable, largest_multiplier), ``events``
+    amplitude_over_h, mean_fx_N, stable, largest_multiplier,
+    integration_growth), ``events``
     (turning points, period doublings, tori: (kind, x_over_L,
     amplitude_over_h, mean_fx_N) each), ``model``, ``end_reason``,
     ``wall_seconds``. The range defaults to the sweep's (the half of the beam

@@ -7,7 +7,9 @@
 //                      mean_fx_N: the rattling held slider of the scene's ROM
 //                      at each probe (period_count 0: no period ≤ 8 found);
 //   branches.csv       x_over_L, amplitude_over_h, mean_fx_N, stable,
-//                      largest_multiplier, period_count, branch, model: the
+//                      largest_multiplier, integration_growth (every 50th
+//                      orbit: the stability by time integration), period_count,
+//                      branch, model: the
 //                      attached-slider model's periodic orbits along x_C
 //                      (period_count 1: orbits of one excitation period);
 //   branch_events.csv  kind, x_over_L, amplitude_over_h, mean_fx_N: turning

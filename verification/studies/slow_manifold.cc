@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace beamslider
@@ -24,7 +25,7 @@ namespace beamslider
     // The attached model's branch from the low end of the range upward,
     // started on the linear steady state there.
     Branch continue_attached(const Scene &scene, const ReducedOrderModel &rom, const SlowManifoldSettings &s,
-                             const SlowManifoldObserver &observer)
+                             const SlowManifoldObserver &observer, std::vector<double> &growth)
     {
       const AttachedSliderModel model(rom, scene.slider_mass(), scene.slider_inertia(), scene.contact.gravity,
                                       BaseExcitation::from_scene(scene.excitation), scene.beam.thickness);
@@ -51,7 +52,14 @@ namespace beamslider
       c.initial_step   = 0.05;
       c.max_step       = s.max_step_over_L / c.lambda_scale;
       c.max_points     = 20000;
-      c.on_point       = observer.on_orbit;
+      c.on_point       = [&](const OrbitPoint &p) {
+        double g = std::numeric_limits<double>::quiet_NaN();
+        if (growth.size() % 50 == 0)
+          g = std::exp(largest_lyapunov_exponent(model, p.y, p.lambda, model.scale(p.y), 40, 1e-7, 20));
+        growth.push_back(g);
+        if (observer.on_orbit)
+          observer.on_orbit(p, g);
+      };
       c.stop_requested = [] { return interruption_requested(); };
       return continue_branch(model, out.point, c);
     }
@@ -151,7 +159,7 @@ namespace beamslider
       }
     progress("attractor probes done (" + std::to_string(result.probes.size()) + "); continuing the attached model");
 
-    result.attached     = continue_attached(scene, rom, settings, observer);
+    result.attached     = continue_attached(scene, rom, settings, observer, result.attached_growth);
     result.wall_seconds = elapsed_seconds(start);
     return result;
   }

@@ -44,13 +44,17 @@ namespace beamslider
     std::vector<HeldSliderAttractor> probes;
     std::string probe_stop;                     // why the probes stopped early ("" if they did not)
     Branch attached;                            // x_C/L is λ; observables: amplitude/h, F̄_x [N]
+    // The stability verdict by time integration, at every 50th orbit: the
+    // growth per period of a small separation started on the orbit (40
+    // periods after 20), |μ₁| if the multipliers are right; NaN elsewhere.
+    std::vector<double> attached_growth;
     double wall_seconds = 0;
   };
 
   struct SlowManifoldObserver
   {
     std::function<void(const HeldSliderAttractor &)> on_probe;
-    std::function<void(const OrbitPoint &)> on_orbit;
+    std::function<void(const OrbitPoint &, double growth)> on_orbit; // growth: see attached_growth
     std::function<void(const std::string &)> on_progress; // a line without '\n'
   };
 
