@@ -43,6 +43,27 @@ namespace beamslider_python
       }
   }
 
+  // Records as {column name: float array}, `values` giving each record's
+  // row (indexable, one number per name) in the order of `names`.
+  template <typename Record, typename Values>
+  py::dict columns(const std::vector<Record> &records, const std::vector<std::string> &names, Values values)
+  {
+    const auto n = static_cast<py::ssize_t>(records.size());
+    std::vector<py::array_t<double>> arrays;
+    for (std::size_t c = 0; c < names.size(); ++c)
+      arrays.emplace_back(n);
+    for (py::ssize_t i = 0; i < n; ++i)
+      {
+        const auto row = values(records[static_cast<std::size_t>(i)]);
+        for (std::size_t c = 0; c < names.size(); ++c)
+          arrays[c].mutable_at(i) = row[c];
+      }
+    py::dict out;
+    for (std::size_t c = 0; c < names.size(); ++c)
+      out[py::str(names[c])] = arrays[c];
+    return out;
+  }
+
   // Refuses (ValueError) a statics load path the command statics would
   // refuse: a line load Q [N/m] that is zero or not finite, steps outside
   // [1, 10000].

@@ -15,26 +15,6 @@ namespace beamslider_python
 {
   namespace
   {
-    // {name: float array} from per-row values.
-    template <typename Row, typename Values>
-    py::dict columns(const std::vector<Row> &rows, const std::vector<std::string> &names, Values values)
-    {
-      const auto n = static_cast<py::ssize_t>(rows.size());
-      std::vector<py::array_t<double>> arrays;
-      for (std::size_t c = 0; c < names.size(); ++c)
-        arrays.emplace_back(n);
-      for (py::ssize_t i = 0; i < n; ++i)
-        {
-          const std::vector<double> row = values(rows[static_cast<std::size_t>(i)]);
-          for (std::size_t c = 0; c < names.size(); ++c)
-            arrays[c].mutable_at(i) = row[c];
-        }
-      py::dict out;
-      for (std::size_t c = 0; c < names.size(); ++c)
-        out[py::str(names[c])] = arrays[c];
-      return out;
-    }
-
     py::dict compute_branches(const std::string &path, const std::vector<std::string> &overrides, py::object low,
                               py::object high, const double probe_step, const unsigned int settle_periods)
     {

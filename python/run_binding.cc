@@ -21,27 +21,6 @@ namespace beamslider_python
 {
   namespace
   {
-    // Records as {column name: float array}, `values` giving each record's
-    // row in the order of `names` (runs/adaptation_run.h).
-    template <typename Record, typename Values>
-    py::dict columns(const std::vector<Record> &records, const std::vector<std::string> &names, Values values)
-    {
-      const auto n = static_cast<py::ssize_t>(records.size());
-      std::vector<py::array_t<double>> arrays;
-      for (std::size_t c = 0; c < names.size(); ++c)
-        arrays.emplace_back(n);
-      for (py::ssize_t i = 0; i < n; ++i)
-        {
-          const auto row = values(records[static_cast<std::size_t>(i)]);
-          for (std::size_t c = 0; c < names.size(); ++c)
-            arrays[c].mutable_at(i) = row[c];
-        }
-      py::dict out;
-      for (std::size_t c = 0; c < names.size(); ++c)
-        out[py::str(names[c])] = arrays[c];
-      return out;
-    }
-
     // A run in this process (see the top). Steps go in pieces with the GIL
     // released; between pieces Python's signal handlers run, so Ctrl-C raises
     // KeyboardInterrupt with the run at the end of a whole piece, intact.

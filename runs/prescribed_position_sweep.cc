@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 namespace beamslider
 {
@@ -57,11 +58,12 @@ namespace beamslider
 
   std::string to_string(const SweepDirection direction) { return direction == SweepDirection::up ? "up" : "down"; }
 
-  void PcsSweepSettings::validate(const Scene &scene) const
+  void validate_held_position_range(const Scene &scene, const double low_over_L, const double high_over_L,
+                                    const std::string &who)
   {
-    auto fail = [](const std::string &name, const double value, const std::string &range) {
+    auto fail = [&](const std::string &name, const double value, const std::string &range) {
       std::ostringstream m;
-      m << "sweep parameter " << name << " = " << value << " is outside the allowed range " << range;
+      m << who << " parameter " << name << " = " << value << " is outside the allowed range " << range;
       throw InputError(m.str());
     };
     const double edge = outermost_position_over_L(scene);
@@ -73,6 +75,22 @@ namespace beamslider
       fail("high x_C/L", high_over_L, range.str());
     if (!(high_over_L > low_over_L))
       fail("high x_C/L", high_over_L, "(low x_C/L = " + std::to_string(low_over_L) + ", inf)");
+  }
+
+  std::pair<double, double> default_held_position_range(const Scene &scene)
+  {
+    const double edge = std::max(0.05, outermost_position_over_L(scene));
+    return scene.initial.slider_position_over_L <= 0.5 ? std::make_pair(edge, 0.5) : std::make_pair(0.5, 1. - edge);
+  }
+
+  void PcsSweepSettings::validate(const Scene &scene) const
+  {
+    auto fail = [](const std::string &name, const double value, const std::string &range) {
+      std::ostringstream m;
+      m << "sweep parameter " << name << " = " << value << " is outside the allowed range " << range;
+      throw InputError(m.str());
+    };
+    validate_held_position_range(scene, low_over_L, high_over_L, "sweep");
     if (!(step_over_L > 0. && step_over_L <= high_over_L - low_over_L))
       fail("step dx_C/L", step_over_L, "(0, high − low]");
     if (!(settle_time >= 0.))
@@ -85,17 +103,7 @@ namespace beamslider
   PcsSweepSettings PcsSweepSettings::for_scene(const Scene &scene)
   {
     PcsSweepSettings s;
-    const double edge = std::max(0.05, outermost_position_over_L(scene));
-    if (scene.initial.slider_position_over_L <= 0.5)
-      {
-        s.low_over_L  = edge;
-        s.high_over_L = 0.5;
-      }
-    else
-      {
-        s.low_over_L  = 0.5;
-        s.high_over_L = 1. - edge;
-      }
+    std::tie(s.low_over_L, s.high_over_L) = default_held_position_range(scene);
     return s;
   }
 

@@ -26,6 +26,7 @@
 
 #include <functional>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,16 @@ namespace beamslider
     down
   };
   std::string to_string(SweepDirection direction);
+
+  // The range of positions x_C/L a held slider may take on a scene, both
+  // window corners (x_C ± B/2) 0.01 L inside the beam: throws InputError
+  // "<who> parameter low x_C/L = … is outside the allowed range …" (or
+  // high), and for high ≤ low. Shared by the sweeps and `branches`.
+  void validate_held_position_range(const Scene &scene, double low_over_L, double high_over_L, const std::string &who);
+  // The default range: the half of the beam holding the scene's initial
+  // slider position, from the centre to 0.05 L (0.95 L) or as close to the
+  // support as the slider's window allows.
+  std::pair<double, double> default_held_position_range(const Scene &scene);
 
   struct PcsSweepSettings
   {

@@ -14,6 +14,7 @@
 // E = 210 GPa, ρ = 7683 kg/m³; Müller, Beck & Krack, MSSP 2023).
 #pragma once
 
+#include "meshes/scene.h"
 #include "reduced/modal_basis.h"
 
 #include <Eigen/Dense>
@@ -146,4 +147,14 @@ namespace beamslider_test
 
   // |a − b| ≤ tol·|b| (relative to the reference b).
   inline double relative_error(const double a, const double b) { return std::abs(a - b) / std::abs(b); }
+
+  // The mueller2023 scene (scene.h's defaults) with its supports ideal
+  // clamps, the beam these analytic modes describe.
+  inline beamslider::Scene ideal_clamp_scene()
+  {
+    beamslider::Scene scene;
+    scene.name                 = "mueller2023-analytic-clamp";
+    scene.supports.ideal_clamp = true;
+    return scene;
+  }
 } // namespace beamslider_test

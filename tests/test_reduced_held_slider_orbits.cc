@@ -17,17 +17,8 @@
 
 using namespace beamslider;
 using beamslider_test::ClampedBeam;
+using beamslider_test::ideal_clamp_scene;
 
-namespace
-{
-  Scene ideal_clamp_scene()
-  {
-    Scene scene; // scene.h defaults are the mueller2023 numbers
-    scene.name                 = "mueller2023-analytic-clamp";
-    scene.supports.ideal_clamp = true;
-    return scene;
-  }
-} // namespace
 
 // One period of the map is one period of AdaptationRun with the slider held,
 // started from the same resting state at the same step: the same end state,

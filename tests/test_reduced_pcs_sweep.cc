@@ -15,17 +15,10 @@
 
 using namespace beamslider;
 using beamslider_test::ClampedBeam;
+using beamslider_test::ideal_clamp_scene;
 
 namespace
 {
-  Scene ideal_clamp_scene()
-  {
-    Scene scene; // scene.h defaults are the mueller2023 numbers
-    scene.name                 = "mueller2023-analytic-clamp";
-    scene.supports.ideal_clamp = true;
-    return scene;
-  }
-
   PcsPoint point(const double x, const double amplitude, const double fx)
   {
     PcsPoint p;

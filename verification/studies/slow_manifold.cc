@@ -5,23 +5,19 @@
 #include "numerics/stop_request.h"
 #include "reduced/attached_slider_model.h"
 #include "reduced/rom_beam_system.h"
+#include "runs/prescribed_position_sweep.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace beamslider
 {
   namespace
   {
-    double outermost_position_over_L(const Scene &scene)
-    {
-      // Both window corners 0.01 L inside the beam, as the sweep requires.
-      return 0.5 * scene.slider.window_width / scene.beam.length + 0.01;
-    }
-
     // The attached model's branch from the low end of the range upward,
     // started on the linear steady state there.
     Branch continue_attached(const Scene &scene, const ReducedOrderModel &rom, const SlowManifoldSettings &s,
@@ -72,15 +68,7 @@ namespace beamslider
       m << "branches parameter " << name << " = " << value << " is outside the allowed range " << range;
       throw InputError(m.str());
     };
-    const double edge = outermost_position_over_L(scene);
-    std::ostringstream range;
-    range << "[" << edge << ", " << 1. - edge << "] (slider window corners at x_C ± B/2 must stay 0.01 L inside the beam)";
-    if (!(low_over_L >= edge - 1e-12 && low_over_L <= 1. - edge + 1e-12))
-      fail("low x_C/L", low_over_L, range.str());
-    if (!(high_over_L >= edge - 1e-12 && high_over_L <= 1. - edge + 1e-12))
-      fail("high x_C/L", high_over_L, range.str());
-    if (!(high_over_L > low_over_L))
-      fail("high x_C/L", high_over_L, "(low x_C/L = " + std::to_string(low_over_L) + ", inf)");
+    validate_held_position_range(scene, low_over_L, high_over_L, "branches");
     if (!(probe_step_over_L > 0. && probe_step_over_L <= high_over_L - low_over_L + 1e-12))
       fail("probe step dx_C/L", probe_step_over_L, "(0, high - low]");
     if (!(max_step_over_L > 0. && max_step_over_L <= 0.05))
@@ -98,17 +86,7 @@ namespace beamslider
   SlowManifoldSettings SlowManifoldSettings::for_scene(const Scene &scene)
   {
     SlowManifoldSettings s;
-    const double edge = std::max(0.05, outermost_position_over_L(scene));
-    if (scene.initial.slider_position_over_L <= 0.5)
-      {
-        s.low_over_L  = edge;
-        s.high_over_L = 0.5;
-      }
-    else
-      {
-        s.low_over_L  = 0.5;
-        s.high_over_L = 1. - edge;
-      }
+    std::tie(s.low_over_L, s.high_over_L) = default_held_position_range(scene);
     return s;
   }
 
