@@ -1,8 +1,8 @@
 // Shooting and arclength continuation (numerics/periodic_orbits.h) on systems
 // with known answers: the damped linear oscillator (multipliers in closed
 // form), the forced Duffing oscillator continued in frequency through both
-// turning points against its harmonic-balance response curve, and a forced
-// oscillator against a rigid stop whose one-impact-per-period orbit and its
+// turning points against its harmonic-balance response curve, and a ball
+// bouncing on a vibrating table, whose one-impact-per-period orbit and its
 // stability are known in closed form.
 #include "numerics/periodic_orbits.h"
 
@@ -61,6 +61,46 @@ namespace beamslider
       return disc < 0 ? std::nan("") : std::sqrt(p - z2 + std::sqrt(disc));
     }
 
+    // A ball bouncing on a table that moves as s(t) = A sin Ωt, impacts with
+    // restitution e (v⁺ − ṡ = −e (v⁻ − ṡ)), free flight under g between:
+    // the stroboscopic map of (x, v) at t = 0 over one period, impacts found
+    // exactly (a sign change of x − s on a fine grid, then bisection to
+    // round-off). Observables: the last impact's time in the period and the
+    // ball's velocity after it.
+    struct BouncingBall
+    {
+      double g = 9.81, A = 0.003, omega = 2. * M_PI * 10., e = 0.5;
+
+      double table(const double t) const { return A * std::sin(omega * t); }
+      double table_velocity(const double t) const { return A * omega * std::cos(omega * t); }
+
+      PeriodMapValue operator()(const Eigen::VectorXd &y, double) const
+      {
+        const double T = 2. * M_PI / omega;
+        double t0 = 0, x0 = y[0], v0 = y[1], t_impact = -1, v_after = 0;
+        auto gap = [&](const double t) { return x0 + v0 * (t - t0) - 0.5 * g * (t - t0) * (t - t0) - table(t); };
+        const unsigned int n = 4000;
+        for (unsigned int i = 1; i <= n; ++i)
+          {
+            double a = T * (i - 1) / n, b = T * i / n;
+            if (b <= t0 + 1e-12 || !(gap(std::max(a, t0 + 1e-12)) > 0. && gap(b) <= 0.))
+              continue;
+            a = std::max(a, t0 + 1e-12);
+            for (int k = 0; k < 200 && b - a > 1e-15; ++k)
+              (gap(0.5 * (a + b)) > 0. ? a : b) = 0.5 * (a + b);
+            const double t = b, v_before = v0 - g * (t - t0), w = table_velocity(t);
+            x0 = table(t);
+            v0 = w - e * (v_before - w);
+            t0 = t_impact = t;
+            v_after = v0;
+          }
+        PeriodMapValue out;
+        out.end         = Eigen::Vector2d(x0 + v0 * (T - t0) - 0.5 * g * (T - t0) * (T - t0), v0 - g * (T - t0));
+        out.observables = Eigen::Vector2d(t_impact, v_after);
+        return out;
+      }
+    };
+
     ShootingSettings duffing_settings()
     {
       ShootingSettings s;
@@ -104,6 +144,47 @@ namespace beamslider
       largest_lyapunov_exponent(d, out.point.y, 0.8, Eigen::Vector2d(1., 1.), 400, 1e-7);
     EXPECT_NEAR(exponent, std::log(out.point.largest_multiplier()), 0.01 * std::abs(std::log(out.point.largest_multiplier())));
     EXPECT_LT(exponent, 0.);
+  }
+
+  TEST(PeriodicOrbits, BouncingBallOrbitAndStabilityAreTheClosedForm)
+  {
+    // The period-1 orbit (one impact per period T): the ball leaves with
+    // u = gT/2 and lands after T, so the table's velocity at the impact is
+    // w = gT(1 − e) / (2(1 + e)) = AΩ cos Ωt₀, at the root with the table
+    // decelerating (s̈ = −AΩ² sin Ωt₀ < 0). Linearising the impact-to-impact
+    // map there: det J = e², tr J = 1 + e² + (1 + e)² s̈/g; the stroboscopic
+    // map has the same multipliers. With these numbers a stable complex
+    // pair of modulus e.
+    const BouncingBall ball;
+    const double T = 2. * M_PI / ball.omega, u = 0.5 * ball.g * T;
+    const double w = ball.g * T * (1. - ball.e) / (2. * (1. + ball.e));
+    const double t0 = std::acos(w / (ball.A * ball.omega)) / ball.omega;
+    const double acceleration = -ball.A * ball.omega * ball.omega * std::sin(ball.omega * t0);
+    const double trace = 1. + ball.e * ball.e + (1. + ball.e) * (1. + ball.e) * acceleration / ball.g;
+    const std::complex<double> root = std::sqrt(std::complex<double>(trace * trace - 4. * ball.e * ball.e));
+    const std::complex<double> mu1 = 0.5 * (trace + root), mu2 = 0.5 * (trace - root);
+
+    // The orbit's state at t = 0 (T − t₀ after the impact), 1 % off.
+    const double tau = T - t0;
+    const Eigen::Vector2d on_orbit(ball.table(t0) + u * tau - 0.5 * ball.g * tau * tau, u - ball.g * tau);
+    ShootingSettings s;
+    s.scale     = Eigen::Vector2d(ball.A, u);
+    s.tolerance = 1e-11;
+    const ShootingOutcome out = shoot(ball, 1.01 * on_orbit, 0., s);
+    ASSERT_TRUE(out.converged) << out.reason;
+    EXPECT_NEAR(out.point.y[0], on_orbit[0], 1e-9 * ball.A);
+    EXPECT_NEAR(out.point.y[1], on_orbit[1], 1e-9 * u);
+    EXPECT_NEAR(out.point.observables[0], t0, 1e-10 * T);
+    EXPECT_NEAR(out.point.observables[1], u, 1e-9 * u);
+    // The multipliers by differences of whole periods through the impact.
+    ASSERT_EQ(out.point.multipliers.size(), 2);
+    const bool order = std::abs(out.point.multipliers[0] - mu1) < std::abs(out.point.multipliers[0] - mu2);
+    EXPECT_LT(std::abs(out.point.multipliers[0] - (order ? mu1 : mu2)), 1e-5);
+    EXPECT_LT(std::abs(out.point.multipliers[1] - (order ? mu2 : mu1)), 1e-5);
+    std::cout << "bouncing ball: multipliers " << out.point.multipliers.transpose() << ", closed form " << mu1 << " "
+              << mu2 << ", " << out.point.iterations << " corrections" << std::endl;
+    EXPECT_NEAR(std::abs(out.point.multipliers[0]), ball.e, 1e-5);
+    EXPECT_TRUE(out.point.stable());
   }
 
   TEST(PeriodicOrbits, ShootingReportsWhyItFails)
