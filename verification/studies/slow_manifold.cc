@@ -121,8 +121,8 @@ namespace beamslider
         const double x = settings.low_over_L + i * settings.probe_step_over_L;
         try
           {
-            if (i > 0)
-              y = map.pack(map.unpack(y, x)); // carried along (the unknowns are relative to the beam)
+            // y from the probe before: its slider unknowns are relative to
+            // the beam, so at the new x_C the slider is carried along.
             HeldSliderAttractor a = probe_held_slider_attractor(map, x, y, settings.settle_periods,
                                                                 settings.section_periods, settings.lyapunov_periods);
             y                     = a.state;
