@@ -18,8 +18,6 @@ namespace beamslider
 {
   namespace
   {
-    double max_abs(const Eigen::VectorXd &v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.; }
-
     // The linearisation at an accepted point.
     struct PointJacobian
     {
@@ -87,8 +85,8 @@ namespace beamslider
         R_.resize(n + 1);
         R_.head(n)     = (value_.end - y()).cwiseQuotient(s_.shooting.scale);
         R_[n]          = inner(t_, w_ - w_p_);
-        residual_norm_ = max_abs(R_.head(n));
-        if (!std::isfinite(max_abs(R_)))
+        residual_norm_ = R_.head(n).lpNorm<Eigen::Infinity>();
+        if (!std::isfinite(R_.lpNorm<Eigen::Infinity>()))
           return NewtonState::diverged;
         if (residual_norm_ <= s_.shooting.tolerance && std::abs(R_[n]) <= s_.shooting.tolerance)
           return NewtonState::converged;
@@ -101,7 +99,7 @@ namespace beamslider
       {
         const Eigen::VectorXd dw = lu_.solve(-R_);
         w_ += dw;
-        return max_abs(dw);
+        return dw.lpNorm<Eigen::Infinity>();
       }
       bool small(const double) const { return false; }
 

@@ -17,8 +17,6 @@ namespace beamslider
   {
     constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
-    double max_abs(const Eigen::VectorXd &v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.; }
-
     // The Jacobian check: how far the monodromy matrices from two difference
     // steps disagree, relative to the larger entry.
     double jacobian_change(const PeriodMap &map, const Eigen::VectorXd &y, const double lambda,
@@ -74,7 +72,7 @@ namespace beamslider
             try
               {
                 PeriodMapValue v = map_(y_try, lambda_);
-                const double n   = max_abs((v.end - y_try).cwiseQuotient(settings_.scale));
+                const double n   = (v.end - y_try).cwiseQuotient(settings_.scale).lpNorm<Eigen::Infinity>();
                 if (std::isfinite(n) && (n < residual_norm_ || k == settings_.max_halvings))
                   {
                     if (!(n < residual_norm_))
@@ -87,7 +85,7 @@ namespace beamslider
                       }
                     y_ = y_try;
                     set_value(std::move(v));
-                    return alpha * max_abs(dz);
+                    return alpha * dz.lpNorm<Eigen::Infinity>();
                   }
               }
             catch (const PeriodMapFailure &e)
@@ -111,7 +109,7 @@ namespace beamslider
       {
         value_         = std::move(v);
         r_             = (value_.end - y_).cwiseQuotient(settings_.scale);
-        residual_norm_ = max_abs(r_);
+        residual_norm_ = r_.lpNorm<Eigen::Infinity>();
         have_value_    = true;
       }
 
@@ -204,7 +202,7 @@ namespace beamslider
     if (section)
       *section = points;
     for (unsigned int k = 1; k <= max_k; ++k)
-      if (max_abs((points[k] - points[0]).cwiseQuotient(scale)) <= tolerance)
+      if ((points[k] - points[0]).cwiseQuotient(scale).lpNorm<Eigen::Infinity>() <= tolerance)
         return k;
     return 0;
   }

@@ -133,6 +133,20 @@ void refuse_what_resume_takes_from_the_checkpoint(const CLI::App &simulate_cmd, 
 // Adds the options every sub-command has (scene, --set, --output, --quiet).
 using AddCommon = std::function<void(CLI::App *)>;
 
+// The same options mean the same on every sub-command: the scene (a path or
+// a name in meshes/, default mueller2023), --set, --output, --quiet.
+AddCommon common_options(CommonOptions &common, bool &quiet)
+{
+  return [&common, &quiet](CLI::App *sub) {
+    sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
+    sub->add_option("--set", common.overrides, "override a parameter: \"Section/Name=value\" (repeatable)");
+    sub->add_option("--output,-o", common.output_dir, "output folder (default reports/<scene>/<command>)");
+    sub->add_flag("--quiet,-q", quiet,
+                  "nothing on standard output (no progress, timing or summary); the results are in the output "
+                  "folder, errors and warnings still on standard error");
+  };
+}
+
 // One function a sub-command: it declares the sub-command and its options,
 // which parse into the struct it is given, and returns the sub-command.
 CLI::App *declare_modes(CLI::App &app, const AddCommon &add_common, ModesOptions &modes)
@@ -374,17 +388,8 @@ int parse_and_run(int argc, char **argv, std::ostream &errors, StudyHandover *ha
 
   CommonOptions common;
   bool quiet = false;
-  // The same options mean the same on every sub-command: the scene (a path or
-  // a name in meshes/, default mueller2023), --set, --output, --quiet.
-  common.scene_file = "mueller2023";
-  auto add_common = [&common, &quiet](CLI::App *sub) {
-    sub->add_option("scene", common.scene_file, "scene file (.prm) or name in meshes/ (default: mueller2023)");
-    sub->add_option("--set", common.overrides, "override a parameter: \"Section/Name=value\" (repeatable)");
-    sub->add_option("--output,-o", common.output_dir, "output folder (default reports/<scene>/<command>)");
-    sub->add_flag("--quiet,-q", quiet,
-                  "nothing on standard output (no progress, timing or summary); the results are in the output "
-                  "folder, errors and warnings still on standard error");
-  };
+  common.scene_file           = "mueller2023";
+  const AddCommon add_common = common_options(common, quiet);
 
   ModesOptions modes;
   auto *modes_cmd = declare_modes(app, add_common, modes);
