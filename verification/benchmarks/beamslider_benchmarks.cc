@@ -136,7 +136,7 @@ static void RomContact(benchmark::State &state)
   state.counters["dt [us]"] = 1e6 * dt;
   run_contact(state, scene, rom, 10.0, dt);
 }
-BENCHMARK(RomContact)->Arg(5)->Arg(7)->Arg(10)->Arg(15)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(RomContact)->Arg(5)->Arg(7)->Arg(10)->Arg(15)->Arg(20)->Arg(30)->Unit(benchmark::kSecond)->Iterations(1);
 
 // The same with N modes and m static corrections (fem/static_corrections.h;
 // the candidates of the speed–accuracy front, `ladder --full`): the same
