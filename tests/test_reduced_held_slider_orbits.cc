@@ -167,3 +167,107 @@ TEST(AttachedSliderModel, CarriesTheRattlingSlidersAmplitudeOnTheHighBranch)
       EXPECT_NEAR(out.point.observables[0], mean, 0.05 * mean) << "x_C/L = " << x;
     }
 }
+
+// Why the rattling system has no edge state between its low and high
+// regimes (doc/physics.md §12): at x_C/L = 0.40 the ideal-clamp reduced
+// model is bistable (about 0.045 h and 1.12 h). Bisecting on the line from
+// the low state to the high one finds the boundary of their basins to
+// round-off. Were it the stable manifold of a saddle (an unstable orbit or a
+// chaotic saddle, what edge tracking follows), two states ε either side of
+// it would part like e^{λk} ε, and their fates would take ~ ln(1/ε)/λ
+// periods to show: halving the distance would add the same number of
+// periods. Instead the map jumps there: after one period the two states
+// are apart by the same finite fraction of the low–high distance at
+// ε = 1e-6 and at ε = 1e-12, and their fates show after the same number of
+// periods (a corner's contact set differs between them: a discontinuity of
+// the rigid slider's impact map, not a saddle).
+TEST(HeldSliderMap, TheBasinBoundaryOfTheRattlingSliderIsAJumpOfTheMapNotASaddle)
+{
+  const Scene scene = ideal_clamp_scene();
+  const ClampedBeam beam;
+  RomBeamSystem rom = RomBeamSystem::from_scene(scene, beam.modes(5).basis);
+  HeldSliderMap map(scene, rom, scene.time_stepping.time_step);
+  const double x = 0.40;
+  Eigen::VectorXd low = map.resting(x), high = map.resting(x);
+  BeamPointKinematics centre;
+  rom.evaluate(0.5 * rom.length(), Eigen::VectorXd::Unit(rom.n_dofs(), 0), centre);
+  high[0] = 3. * scene.beam.thickness / centre.w;
+  double a_low = 0, a_high = 0;
+  for (int i = 0; i < 200; ++i)
+    {
+      const PeriodMapValue l = map(low, x), h = map(high, x);
+      low  = l.end;
+      high = h.end;
+      if (i >= 150)
+        {
+          a_low += l.observables[0] / 50;
+          a_high += h.observables[0] / 50;
+        }
+    }
+  ASSERT_LT(a_low, 0.1);
+  ASSERT_GT(a_high, 0.8); // bistable here
+
+  // The fate of a state: +1 once five periods in a row are above the
+  // upper quarter of [a_low, a_high], −1 below the lower quarter; and when.
+  const double upper = a_high - 0.25 * (a_high - a_low), lower = a_low + 0.25 * (a_high - a_low);
+  struct Fate
+  {
+    int side = 0, periods = 0;
+  };
+  const auto fate = [&](Eigen::VectorXd y) {
+    Fate f;
+    for (int above = 0, below = 0; f.periods < 400; ++f.periods)
+      {
+        const PeriodMapValue v = map(y, x);
+        y                      = v.end;
+        above                  = v.observables[0] > upper ? above + 1 : 0;
+        below                  = v.observables[0] < lower ? below + 1 : 0;
+        if (above == 5 || below == 5)
+          {
+            f.side = above == 5 ? 1 : -1;
+            break;
+          }
+      }
+    return f;
+  };
+  double a = 0, b = 1;
+  for (int i = 0; i < 48; ++i)
+    {
+      const double m = 0.5 * (a + b);
+      const int side = fate(low + m * (high - low)).side;
+      ASSERT_NE(side, 0) << "undecided after 400 periods at alpha = " << m;
+      (side > 0 ? b : a) = m;
+    }
+
+  const Eigen::VectorXd scale = map.scale(high);
+  const auto distance = [&](const Eigen::VectorXd &p, const Eigen::VectorXd &q) {
+    return (p - q).cwiseQuotient(scale).lpNorm<Eigen::Infinity>();
+  };
+  const double span = distance(high, low);
+  double parted[2];
+  Fate fates[2][2];
+  const double eps[2] = {1e-6, 1e-12};
+  for (int e = 0; e < 2; ++e)
+    {
+      const Eigen::VectorXd below = low + (a - eps[e]) * (high - low), above = low + (b + eps[e]) * (high - low);
+      parted[e]   = distance(map(above, x).end, map(below, x).end) / span;
+      fates[e][0] = fate(below);
+      fates[e][1] = fate(above);
+      std::cout << "eps " << eps[e] << ": one period parts them by " << parted[e] << " of the low-high distance; fates "
+                << fates[e][0].side << " after " << fates[e][0].periods << ", " << fates[e][1].side << " after "
+                << fates[e][1].periods << " periods" << std::endl;
+    }
+  // A smooth map would part them by |μ| ε, a few ε: here by a finite
+  // fraction, the same at both ε.
+  EXPECT_GT(parted[1], 1e-3);
+  EXPECT_NEAR(parted[0], parted[1], 0.1 * parted[1]);
+  for (int e = 0; e < 2; ++e)
+    {
+      EXPECT_EQ(fates[e][0].side, -1);
+      EXPECT_EQ(fates[e][1].side, 1);
+    }
+  // ln(1e6) more periods for the closer pair were it a saddle with λ of
+  // order one per period; here the same count.
+  EXPECT_EQ(fates[1][0].periods, fates[0][0].periods);
+  EXPECT_EQ(fates[1][1].periods, fates[0][1].periods);
+}
