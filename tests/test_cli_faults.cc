@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <iostream>
 #include <thread>
 #include <cstring>
 #include <fcntl.h>
@@ -160,6 +161,57 @@ TEST(FaultsUnderMpi, ASigtermToTheRanksEndsTheJobWith143AndItsEndedLine)
   const std::string record = read_file(out / "run.txt");
   EXPECT_NE(record.find("interrupted (exit 143): interrupted by signal 15"), std::string::npos) << record;
   fs::remove_all(dir);
+}
+
+// A rank that dies in the middle of an mpirun job (kill -9, the OOM
+// killer, a crash) with mpirun told not to end the job for it, as
+// schedulers and these tests run it: the rank waiting for it sees, within
+// about a second of its own wait, that its process is gone, says which rank
+// died, and ends the job. Before, the survivor waited forever: rank 0 for
+// the dead worker's cell, the worker for rank 0's next cell. When rank 1
+// dies, rank 0 finishes its own member, records the failure in run.txt and
+// keeps the finished rows.
+TEST(FaultsUnderMpi, ARankThatDiesMidRunEndsTheJobWithAMessageNamingIt)
+{
+  for (const int victim : {1, 0})
+    {
+      const fs::path dir = fresh_folder("faults_mpi_dead_rank"), statuses = dir / "statuses", out = dir / "out";
+      fs::create_directories(statuses);
+      std::vector<std::string> launcher = two_ranks(statuses);
+      launcher.insert(launcher.end(), {"sh", "-c",
+                                       "echo $$ > '" + (dir / "pid_").string() + "'$OMPI_COMM_WORLD_RANK; exec \"$@\"",
+                                       "sh"});
+      const std::string victim_pid = "pid_" + std::to_string(victim);
+      std::thread killer([&] {
+        const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+        while (std::chrono::steady_clock::now() < end &&
+               !(fs::exists(dir / "pid_0") && fs::exists(dir / "pid_1") && fs::exists(out / "run.txt")))
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        std::this_thread::sleep_for(std::chrono::milliseconds(1500)); // both ranks among their members
+        const std::string pid = read_file(dir / victim_pid);
+        if (!pid.empty())
+          ::kill(std::stoi(pid), SIGKILL);
+      });
+      // Forty members of 60 s (about a second each): a minute were the job
+      // left alone; the survivor ends a second or two after the kill.
+      const auto start = std::chrono::steady_clock::now();
+      const CliRun run = run_beamslider({"ensemble", "--members", "40", "--end-time", "60", "--quiet", "--output",
+                                         out.string()},
+                                        CliLimits().timeout(60).launched_by(launcher));
+      std::cout << "rank " << victim << " killed: the job ended after "
+                << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s" << std::endl;
+      killer.join();
+      EXPECT_FALSE(run.timed_out) << "rank " << victim << " killed: the other rank waits for it";
+      const std::string said = "rank " + std::to_string(victim) + " (process ";
+      EXPECT_NE(run.err.find(said), std::string::npos) << run.err;
+      EXPECT_NE(run.err.find("ended in the middle of the run, so the job ends"), std::string::npos) << run.err;
+      if (victim == 1)
+        {
+          const std::string record = read_file(out / "run.txt");
+          EXPECT_NE(record.find("failed (exit 1): beamslider failed: " + said), std::string::npos) << record;
+        }
+      fs::remove_all(dir);
+    }
 }
 
 // A failure in the middle of a run on two ranks: a load step of the solid

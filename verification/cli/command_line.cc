@@ -521,7 +521,7 @@ int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *h
     }
   if (rank == 0)
     errors << messages.str() << std::flush;
-  else if (status != 2 && status < 128 && !mpi_started() && !messages.str().empty())
+  else if (status != 2 && status < 128 && (!mpi_started() || a_rank_was_lost()) && !messages.str().empty())
     errors << "rank " << rank << ": " << messages.str() << std::flush;
   if (!record_run_end(status, messages.str(), errors) && status == 0)
     status = 1;
@@ -530,6 +530,11 @@ int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *h
   // A rank that does not come within a minute has died or hangs: the job
   // is ended, with a message, instead of waiting for it.
   constexpr double meet_seconds = 60;
+  if (a_rank_was_lost())
+    {
+      // Nobody to wait for: the error above named the rank that died.
+      MPI_Abort(MPI_COMM_WORLD, status ? status : 1);
+    }
   if (!all_ranks_meet(meet_seconds))
     {
       errors << "rank " << rank << ": the other ranks did not end within " << meet_seconds

@@ -10,14 +10,22 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
+#include <fstream>
+#include <functional>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <unistd.h>
+#include <vector>
 
 namespace beamslider
 {
@@ -35,7 +43,74 @@ namespace beamslider
   namespace
   {
     const MpiSession *active_session = nullptr; // MpiSession::active()
-  }
+
+    // Each rank's host and process id, gathered when MPI starts, so that a
+    // rank waiting for another can tell whether it still lives: mpirun told
+    // not to end the job when a rank dies (orte_abort_on_non_zero_status 0)
+    // would otherwise leave the survivors waiting forever.
+    struct Peer
+    {
+      std::uint64_t host = 0;
+      std::int64_t pid   = 0;
+    };
+    std::vector<Peer> peers;
+    std::atomic<int> lost_rank{-1};
+
+    std::uint64_t this_host()
+    {
+      char name[256] = {};
+      ::gethostname(name, sizeof name - 1);
+      return std::hash<std::string>()(name);
+    }
+
+    // Whether the process `pid` of this host has ended (or is a zombie its
+    // launcher has not reaped yet).
+    bool process_ended(const std::int64_t pid)
+    {
+      if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+        return true;
+      std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+      std::string line;
+      if (!std::getline(stat, line))
+        return false;
+      const std::size_t name_end = line.rfind(')');
+      return name_end != std::string::npos && name_end + 2 < line.size() &&
+             (line[name_end + 2] == 'Z' || line[name_end + 2] == 'X');
+    }
+
+    // Throws RankLost if `rank` is known to have died. A rank on another
+    // host cannot be seen from here: it is taken to live (mpirun's default
+    // ends the job when a rank dies there).
+    void require_alive(const unsigned int rank)
+    {
+      if (rank >= peers.size() || peers[rank].host != this_host() || !process_ended(peers[rank].pid))
+        return;
+      lost_rank = static_cast<int>(rank);
+      throw RankLost("rank " + std::to_string(rank) + " (process " + std::to_string(peers[rank].pid) +
+                     ") ended in the middle of the run, so the job ends; the rows finished before are kept in the "
+                     "output folder (run the command again to compute the rest)");
+    }
+
+    // A wait by probing and sleeping that looks, about once a second,
+    // whether the ranks in `watched` still live.
+    class PatientWait
+    {
+    public:
+      void pause(const std::vector<unsigned int> &watched)
+      {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        if (++polls_ % 500 != 0)
+          return;
+        for (const unsigned int rank : watched)
+          require_alive(rank);
+      }
+
+    private:
+      unsigned long polls_ = 0;
+    };
+  } // namespace
+
+  bool a_rank_was_lost() { return lost_rank >= 0; }
 
   // distribute_cells counts itself on the session (MpiSession::n_distributions).
   class DistributionCount
@@ -121,6 +196,10 @@ namespace beamslider
     size_       = size;
     serialized_ = provided >= MPI_THREAD_SERIALIZED;
     active_session = this;
+    const Peer me{this_host(), static_cast<std::int64_t>(::getpid())};
+    peers.assign(size_, Peer{});
+    check(MPI_Allgather(&me, sizeof(Peer), MPI_BYTE, peers.data(), sizeof(Peer), MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Allgather");
   }
 
   const MpiSession *MpiSession::active() { return active_session; }
@@ -143,11 +222,12 @@ namespace beamslider
       const std::function<bool()> &stop;
       std::atomic<std::size_t> next{0};
       std::mutex done_mutex{};
+      std::atomic<bool> lost{false}; // a worker died: hand out no more
 
       // The next cell to hand out, or npos when all are out or we stop.
       std::size_t take()
       {
-        if (stop())
+        if (lost || stop())
           return std::string::npos;
         const std::size_t k = next++;
         return k < todo.size() ? todo[k] : std::string::npos;
@@ -189,9 +269,12 @@ namespace beamslider
     // its stop.
     void manage_workers(const MpiSession &mpi, Distribution &d)
     {
-      unsigned int active = mpi.size() - 1;
+      std::vector<unsigned int> active; // the workers not yet stopped
+      for (unsigned int r = 1; r < mpi.size(); ++r)
+        active.push_back(r);
       std::vector<char> buffer;
-      while (active > 0)
+      PatientWait wait;
+      while (!active.empty())
         {
           int flag = 0;
           MPI_Status status;
@@ -199,7 +282,7 @@ namespace beamslider
           if (!flag)
             {
               // Sleeping, not spinning: the manager shares a core with rank 0's work.
-              std::this_thread::sleep_for(std::chrono::milliseconds(2));
+              wait.pause(active);
               continue;
             }
           int count = 0;
@@ -223,7 +306,7 @@ namespace beamslider
           else
             {
               check(MPI_Send(nullptr, 0, MPI_UINT64_T, status.MPI_SOURCE, tag_stop, MPI_COMM_WORLD), "MPI_Send");
-              --active;
+              active.erase(std::find(active.begin(), active.end(), static_cast<unsigned int>(status.MPI_SOURCE)));
             }
         }
     }
@@ -234,9 +317,24 @@ namespace beamslider
     {
       if (mpi.manager_can_work())
         {
-          std::thread manager([&] { manage_workers(mpi, d); });
+          // A dead worker ends the manager; rank 0 then hands itself no
+          // more cells and says why once its own cell is done.
+          std::exception_ptr failure;
+          std::thread manager([&] {
+            try
+              {
+                manage_workers(mpi, d);
+              }
+            catch (...)
+              {
+                failure = std::current_exception();
+                d.lost  = true;
+              }
+          });
           d.work_through();
           manager.join();
+          if (failure)
+            std::rethrow_exception(failure);
         }
       else
         manage_workers(mpi, d);
@@ -248,7 +346,19 @@ namespace beamslider
       std::vector<char> message;
       while (true)
         {
-          check(MPI_Send(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD), "MPI_Send");
+          // Sent without blocking: a result larger than MPI's eager limit
+          // waits for rank 0 to take it, and rank 0 may have died.
+          MPI_Request sent;
+          check(MPI_Isend(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD, &sent),
+                "MPI_Isend");
+          PatientWait wait;
+          for (int done = 0;;)
+            {
+              check(MPI_Test(&sent, &done, MPI_STATUS_IGNORE), "MPI_Test");
+              if (done)
+                break;
+              wait.pause({0});
+            }
           // Waiting by probing and sleeping, not in a blocking receive (which
           // Open MPI spins in): the answer may be long in coming when rank 0
           // does other work first (verify's sections before the ladder), and
@@ -258,7 +368,7 @@ namespace beamslider
             {
               check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
               if (!flag)
-                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                wait.pause({0});
             }
           std::uint64_t cell = 0;
           check(MPI_Recv(&cell, 1, MPI_UINT64_T, 0, status.MPI_TAG, MPI_COMM_WORLD, &status), "MPI_Recv");
@@ -300,7 +410,17 @@ namespace beamslider
     if (mpi.size() > 1)
       {
         static_assert(sizeof(unsigned long) == 8, "the mask travels as 64 bits");
-        check(MPI_Bcast(&mask, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+        // Waited for as the cells are, so that a dead rank 0 is seen.
+        MPI_Request request;
+        check(MPI_Ibcast(&mask, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request), "MPI_Ibcast");
+        PatientWait wait;
+        for (int done = 0;;)
+          {
+            check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+            if (done)
+              break;
+            wait.pause({0});
+          }
       }
     if (mpi.rank() == 0 && mask == 0)
       {

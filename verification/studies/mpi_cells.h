@@ -14,11 +14,24 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace beamslider
 {
+  // A rank this one waited for has died (its process on this host ended):
+  // the distribution or round it was part of cannot finish.
+  class RankLost : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // Whether this process saw another rank die (RankLost): the command then
+  // ends the job instead of waiting for every rank at its end.
+  bool a_rank_was_lost();
+
   // Whether this process was started by mpirun/srun (their environment).
   bool launched_by_mpi_launcher();
 
@@ -79,7 +92,10 @@ namespace beamslider
   // result, rank)` is called (one call at a time) as each finishes, in the
   // order they finish; an empty result (an interrupted cell) is not passed
   // on. `stop()` on rank 0 (e.g. after Ctrl-C) ends the handing-out. Every
-  // rank returns when all cells are done or stopped. Cells are handed out in
+  // rank returns when all cells are done or stopped. A rank that waits for
+  // another (the manager for its workers, a worker for the manager) looks
+  // about once a second whether it still lives, if it runs on this host,
+  // and throws RankLost when it died (rank 0 after its own cell). Cells are handed out in
   // the order of `todo` (longest first keeps the ranks busy to the end).
   // In a single process (no mpirun), `n_threads` threads compute cells
   // (0: one per core; the default 1 computes them one after another);
