@@ -22,11 +22,12 @@ extern char **environ;
 namespace beamslider::testing
 {
   // Returns the exit status, or 128 + the signal that ended it. With
-  // `kill_when`, SIGKILL is sent the first time it returns true (checked
+  // `kill_when`, `signal` is sent the first time it returns true (checked
   // every 20 ms while the program runs): a kill tied to what the run has
-  // done, not to a clock.
+  // done, not to a clock. After a signal other than SIGKILL the program
+  // has two minutes to end by itself, then it is killed.
   inline int run_clean_mpi_program(const std::vector<std::string> &args,
-                                   const std::function<bool()> &kill_when = {})
+                                   const std::function<bool()> &kill_when = {}, const int signal = SIGKILL)
   {
     std::vector<std::string> env;
     for (char **e = environ; *e; ++e)
@@ -50,9 +51,17 @@ namespace beamslider::testing
     if (spawned != 0)
       return -1;
     int status = 0;
+    std::chrono::steady_clock::time_point deadline{};
+    bool signalled = false;
     while (waitpid(pid, &status, WNOHANG) != pid)
       {
-        if (kill_when && kill_when())
+        if (kill_when && !signalled && kill_when())
+          {
+            kill(pid, signal);
+            signalled = true;
+            deadline  = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+          }
+        if (signalled && (signal == SIGKILL || std::chrono::steady_clock::now() > deadline))
           {
             kill(pid, SIGKILL);
             waitpid(pid, &status, 0);

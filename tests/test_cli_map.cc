@@ -7,6 +7,7 @@
 #include "verification/studies/operating_map.h"
 
 #include "tests/clean_mpi_program.h"
+#include <csignal>
 #include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>
@@ -159,3 +160,47 @@ TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
   std::filesystem::remove_all(two);
 }
 
+
+// A map on two ranks stopped by SIGTERM to its ranks ends as interrupted
+// (exit 143 in run.txt) with whole cells in map.csv; run again into its
+// folder, it computes only the cells not done and ends with the rows of one
+// uninterrupted process.
+TEST(MapCommand, TwoRanksStoppedBySigtermAndRunAgainGiveTheRowsOfOneProcess)
+{
+  const auto one = fresh("stopped_one"), two = fresh("stopped_two"), pids = fresh("stopped_pids");
+  // 5 × 3 cells of 2 members over 10 s: about 0.3 s a member.
+  const auto map = [](const std::filesystem::path &out) {
+    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:2.5", "--acceleration",
+                                    "10:14:2", "--members", "2", "--end-time", "10", "--output", out.string()};
+  };
+  ASSERT_EQ(run_program(map(one)), 0);
+  const std::vector<std::string> reference = sorted_lines(one / "map.csv");
+  ASSERT_EQ(reference.size(), 1u + 15 * 2);
+  std::filesystem::create_directories(pids);
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe", "sh", "-c",
+                                   "echo $$ > '" + pids.string() + "'/$OMPI_COMM_WORLD_RANK; exec \"$@\"", "sh"};
+  for (const auto &a : map(two))
+    args.push_back(a);
+  const auto rows = [&] { return std::filesystem::exists(two / "map.csv") ? sorted_lines(two / "map.csv").size() : 0; };
+  // The signal once two cells are in map.csv, a second into a run of five.
+  bool sent = false;
+  const auto stop_ranks_after_two_cells = [&] {
+    if (!sent && std::filesystem::exists(pids / "0") && std::filesystem::exists(pids / "1") && rows() >= 1 + 2 * 2)
+      for (const char *rank : {"0", "1"})
+        {
+          ::kill(std::stoi(read_file(pids / rank)), SIGTERM);
+          sent = true;
+        }
+    return false;
+  };
+  EXPECT_EQ(run_program(args, stop_ranks_after_two_cells), 143);
+  ASSERT_TRUE(sent);
+  const std::string record = read_file(two / "run.txt");
+  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+  EXPECT_LT(rows(), reference.size()) << "the run ended before the signal";
+  EXPECT_EQ((rows() - 1) % 2, 0u) << "a cell's rows are written together";
+  ASSERT_EQ(run_program(args), 0);
+  EXPECT_EQ(sorted_lines(two / "map.csv"), reference);
+  for (const auto &d : {one, two, pids})
+    std::filesystem::remove_all(d);
+}

@@ -24,9 +24,10 @@ using beamslider::testing::read_file;
 
 namespace
 {
-  int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {})
+  int run_program(const std::vector<std::string> &args, const std::function<bool()> &kill_when = {},
+                  const int signal = SIGKILL)
   {
-    return beamslider::testing::run_clean_mpi_program(args, kill_when);
+    return beamslider::testing::run_clean_mpi_program(args, kill_when, signal);
   }
 
   std::vector<std::string> lines(const fs::path &p)
@@ -202,5 +203,52 @@ TEST(MemberRuns, TwoRanksUnderMpirunGiveTheMembersOfOneProcess)
   ASSERT_EQ(run_program(args), 0);
   expect_same_ladder(ladder_one, ladder_two);
   for (const auto &d : {one, two, ladder_one, ladder_two})
+    fs::remove_all(d);
+}
+
+// An ensemble on two ranks stopped by SIGTERM to its ranks (a scheduler's
+// stop, or `kill` of the job's processes) ends as interrupted, exit 143 in
+// run.txt, keeping the members finished; run again into its folder, it
+// computes only the rest and ends with the members of one uninterrupted
+// process.
+TEST(MemberRuns, TwoRanksStoppedBySigtermAndRunAgainGiveTheMembersOfOneProcess)
+{
+  const fs::path one = fresh("stopped_one"), two = fresh("stopped_two"), pids = fresh("stopped_pids");
+  const auto ensemble = [](const fs::path &out) {
+    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "ensemble", "--members", "12", "--end-time", "20",
+                                    "--output", out.string()};
+  };
+  ASSERT_EQ(run_program(ensemble(one)), 0);
+  fs::create_directories(pids);
+  // Each rank's process id in pids/<rank>.
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe", "sh", "-c",
+                                   "echo $$ > '" + pids.string() + "'/$OMPI_COMM_WORLD_RANK; exec \"$@\"", "sh"};
+  for (const auto &a : ensemble(two))
+    args.push_back(a);
+  // The signal once two members are in member_runs.csv (after its key line
+  // and header), about a second into a run of six.
+  bool sent = false;
+  const auto stop_ranks_after_two = [&] {
+    if (!sent && fs::exists(pids / "0") && fs::exists(pids / "1") && fs::exists(two / "member_runs.csv") &&
+        lines(two / "member_runs.csv").size() >= 4)
+      for (const char *rank : {"0", "1"})
+        {
+          ::kill(std::stoi(read_file(pids / rank)), SIGTERM);
+          sent = true;
+        }
+    return false;
+  };
+  EXPECT_EQ(run_program(args, stop_ranks_after_two), 143);
+  ASSERT_TRUE(sent);
+  const std::string record = read_file(two / "run.txt");
+  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+  const std::size_t kept = lines(two / "member_runs.csv").size() - 2;
+  EXPECT_GE(kept, 2u);
+  EXPECT_LT(kept, 12u) << "the run ended before the signal";
+  ASSERT_EQ(run_program(args), 0);
+  EXPECT_EQ(lines(two / "member_runs.csv").size() - 2, 12u);
+  EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
+  EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+  for (const auto &d : {one, two, pids})
     fs::remove_all(d);
 }
