@@ -17,6 +17,7 @@
 #include <chrono>
 #include <csignal>
 #include <iostream>
+#include <map>
 #include <thread>
 #include <cstring>
 #include <fcntl.h>
@@ -406,16 +407,37 @@ TEST(FaultsCheckpoint, ARecordedCountBeyondTheFileIsRefusedNamingTheFile)
 // Every file the program reads goes through one guarded reader
 // (io/input_file.h): a FIFO or a device in a file's place is refused by its
 // type before it is opened (no read that waits for a writer or never ends),
-// and a file of random bytes by its format. Each reader, each bad file:
-// exit 2 and a message that names the file. A run that waited on the FIFO
-// would use no CPU time and be ended by the wall-clock limit (timed_out).
-TEST(FaultsReaders, EveryReaderRefusesAFifoADeviceAndRandomBytesNamingTheFile)
+// and a file of random bytes or a sound file cut short (in the middle of a
+// line, as a full disk or a killed writer leaves it) by its format. Each
+// reader, each bad file: exit 2 and a message that names the file. A run
+// that waited on the FIFO would use no CPU time and be ended by the
+// wall-clock limit (timed_out).
+TEST(FaultsReaders, EveryReaderRefusesAFifoADeviceRandomBytesAndACutFileNamingTheFile)
 {
   const fs::path dir = fresh_folder("faults_readers");
   const std::string scene = BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm";
   // A finished run's parameters.prm, for the resume folders.
-  CliRun run = run_beamslider({"simulate", "--end-time", "0.01", "--quiet", "--output", (dir / "done").string()});
+  CliRun run = run_beamslider({"simulate", "--end-time", "0.02", "--checkpoint-every", "0.01", "--quiet", "--output",
+                                (dir / "done").string()});
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Sound files of each kind, to cut short.
+  for (const std::vector<std::string> &made :
+       {std::vector<std::string>{"ensemble", "--members", "2", "--end-time", "0.01", "--quiet", "--output",
+                                 (dir / "sound_ensemble").string()},
+        std::vector<std::string>{"sweep", "--from", "0.3", "--to", "0.31", "--free-time", "0", "--quiet", "--output",
+                                 (dir / "sound_sweep").string()},
+        std::vector<std::string>{"map", "--frequency", "124", "--acceleration", "14", "--start", "0.3", "--end-time",
+                                 "0.01", "--members", "1", "--quiet", "--output", (dir / "sound_map").string()}})
+    {
+      run = run_beamslider(made);
+      ASSERT_EQ(run.exit_code, 0) << made[0] << ": " << run.err;
+    }
+  const std::map<std::string, fs::path> sound = {{"scene.prm", BEAMSLIDER_SOURCE_DIR "/meshes/mueller2023.prm"},
+                                                 {"uniform.msh", BEAMSLIDER_SOURCE_DIR "/meshes/uniform.msh"},
+                                                 {"members.csv", dir / "sound_ensemble" / "members.csv"},
+                                                 {"pcs.csv", dir / "sound_sweep" / "pcs.csv"},
+                                                 {"checkpoint.bin", dir / "done" / "checkpoint.bin"},
+                                                 {"map_settings.txt", dir / "sound_map" / "map_settings.txt"}};
   std::string random_bytes(4096, '\0');
   unsigned int state = 12345;
   for (char &c : random_bytes)
@@ -459,9 +481,9 @@ TEST(FaultsReaders, EveryReaderRefusesAFifoADeviceAndRandomBytesNamingTheFile)
 
   unsigned int n = 0;
   for (const Reader &reader : readers)
-    for (const std::string bad : {"fifo", "device", "random"})
+    for (const std::string bad : {"fifo", "device", "random", "cut"})
       {
-        if (bad == "random" && !reader.input_format)
+        if ((bad == "random" || bad == "cut") && !reader.input_format)
           continue;
         const fs::path folder = dir / (std::to_string(n++) + "-" + bad);
         fs::create_directories(folder);
@@ -471,16 +493,25 @@ TEST(FaultsReaders, EveryReaderRefusesAFifoADeviceAndRandomBytesNamingTheFile)
           ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
         else if (bad == "device")
           fs::create_symlink("/dev/zero", file);
-        else
+        else if (bad == "random")
           std::ofstream(file, std::ios::binary) << random_bytes;
+        else
+          {
+            // Cut at 60 % of its length, inside a line.
+            std::string text = read_file(sound.at(reader.name));
+            std::size_t at   = text.size() * 3 / 5;
+            while (at > 0 && (text[at - 1] == '\n' || text[at] == '\n'))
+              --at;
+            std::ofstream(file, std::ios::binary) << text.substr(0, at);
+          }
         run = run_beamslider(args, CliLimits().timeout(10));
         const std::string what = reader.name + " as " + bad;
         EXPECT_FALSE(run.timed_out) << what << ": hangs";
         EXPECT_EQ(run.exit_code, 2) << what << ": " << run.err;
         EXPECT_NE(run.err.find(reader.name), std::string::npos) << what << ": " << run.err;
-        if (bad != "random")
+        if (bad == "fifo" || bad == "device")
           EXPECT_NE(run.err.find("not a regular file"), std::string::npos) << what << ": " << run.err;
       }
-  EXPECT_EQ(n, 20u);
+  EXPECT_EQ(n, 26u);
   fs::remove_all(dir);
 }

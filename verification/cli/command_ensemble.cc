@@ -67,23 +67,37 @@ namespace beamslider
     // checked before any member runs: a bad file is an input error at once.
     OutcomeSamples read_members_csv(const std::string &path)
     {
-      std::istringstream in(read_option_file(path, "--against: no readable members.csv"));
+      const std::string text = read_option_file(path, "--against: no readable members.csv");
+      std::istringstream in(text);
       std::string line;
       std::getline(in, line);
       if (line.rfind("member,perturbation,status,jump_time_s,turn_x_over_L,final_x_over_L,final_amplitude_over_h", 0) != 0)
         throw InputError("--against: '" + path + "' is not an ensemble's members.csv");
+      // Every row as wide as the header, and the file ends its last line: a
+      // file cut short (a full disk, a killed writer) is refused, not read
+      // as fewer members or a number cut to fewer digits.
+      const auto cells_of = [](const std::string &l) {
+        std::vector<std::string> cells;
+        std::stringstream row(l);
+        std::string cell;
+        while (std::getline(row, cell, ','))
+          cells.push_back(cell);
+        if (!l.empty() && l.back() == ',')
+          cells.emplace_back();
+        return cells;
+      };
+      const std::size_t width = cells_of(line).size();
+      if (text.back() != '\n')
+        throw InputError("--against: '" + path + "' does not end with a whole line (a file cut short?)");
       OutcomeSamples s;
       std::size_t line_number = 1;
       while (std::getline(in, line))
         {
           ++line_number;
-          std::vector<std::string> cells;
-          std::stringstream row(line);
-          std::string cell;
-          while (std::getline(row, cell, ','))
-            cells.push_back(cell);
-          if (cells.size() < 7)
-            continue;
+          const std::vector<std::string> cells = cells_of(line);
+          if (cells.size() != width)
+            throw InputError("--against: '" + path + "' line " + std::to_string(line_number) + " has " +
+                             std::to_string(cells.size()) + " cells, its header " + std::to_string(width));
           const auto number = [&](const std::size_t column, std::vector<double> &into) {
             if (cells[column].empty())
               return;
