@@ -178,6 +178,28 @@ class Checkpoints(unittest.TestCase):
             self.assertEqual(resumed.t, run.t)
 
 
+    def test_a_checkpoint_that_is_a_fifo_a_device_or_cut_short_is_refused_naming_it(self):
+        # Through the program's one guarded reader: a FIFO or a device is
+        # refused by its type before it is opened (a read never waits for a
+        # writer), a file cut short by its length and checksum.
+        with tempfile.TemporaryDirectory() as tmp:
+            sound = os.path.join(tmp, "sound.ckpt")
+            run = beamslider.Run(beamslider.Scene())
+            run.advance(0.01)
+            run.checkpoint(sound)
+            with open(sound, "rb") as f:
+                good = f.read()
+            fifo, device, cut = (os.path.join(tmp, name) for name in ("fifo.ckpt", "device.ckpt", "cut.ckpt"))
+            os.mkfifo(fifo)
+            os.symlink("/dev/zero", device)
+            with open(cut, "wb") as f:
+                f.write(good[: len(good) * 3 // 5])
+            for path, why in ((fifo, "not a regular file"), (device, "not a regular file"), (cut, cut)):
+                with self.assertRaises(ValueError) as raised:
+                    beamslider.Run.resume(path)
+                self.assertIn(os.path.basename(path), str(raised.exception))
+                self.assertIn(why, str(raised.exception))
+
 class BadInput(unittest.TestCase):
     def test_every_bad_argument_is_a_value_error_naming_it_and_its_range(self):
         cases = [(lambda: beamslider.FEBeam(elements=10 ** 8), "elements = 100000000", "[1, 4096]"),
