@@ -52,6 +52,13 @@ TEST(ReferenceCheck, EnsembleOfACoarseFeSaysItDidNotConverge)
   EXPECT_EQ(run.exit_code, 3) << run.err;
   EXPECT_EQ(first_line(run.err).rfind("ensemble: the FE in Δt: NOT CONVERGED in Δt down to Δt = 2.5e-05 s", 0), 0u)
     << run.err;
+  // run.txt says what happened: every result written, not converged; not
+  // "failed … partial, --resume it" (ensemble has no --resume).
+  const std::string record = read_file(dir / "run.txt");
+  EXPECT_NE(record.find("completed, not converged (exit 3)"), std::string::npos) << record;
+  EXPECT_NE(record.find("every result is written"), std::string::npos) << record;
+  EXPECT_EQ(record.find("partial"), std::string::npos) << record;
+  EXPECT_EQ(record.find("--resume"), std::string::npos) << record;
   // Coarsest first: the witness 2Δt, then the scene's step and its halvings.
   const auto rows = convergence_rows(dir);
   ASSERT_EQ(rows.size(), 4u);

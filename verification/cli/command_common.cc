@@ -192,14 +192,22 @@ namespace beamslider
   {
     std::ostringstream how;
     how << "ended:     " << utc_now() << ", ";
+    const std::string first = messages.substr(0, messages.find('\n'));
     if (status == 0)
       how << "completed (exit 0)";
+    else if (status == not_converged_exit_code)
+      how << "completed, not converged (exit 3)" << (first.empty() ? "" : ": " + one_line(first))
+          << "\n           every result is written; a reference did not prove its convergence (summary.md says "
+             "which and by how much)";
     else
       {
-        const std::string first = messages.substr(0, messages.find('\n'));
+        // Only `simulate` continues from a checkpoint; the studies take up
+        // their finished members or cells when run again into the folder.
+        const bool resumable = command_line().size() > 1 && command_line()[1] == "simulate";
         how << (status >= 128 ? "interrupted" : status == 2 ? "refused" : "failed") << " (exit " << status << ")"
             << (first.empty() ? "" : ": " + one_line(first))
-            << "\n           the results in this folder are partial (run the command again, or --resume it)";
+            << "\n           the results in this folder are partial (run the command again"
+            << (resumable ? ", or --resume it from its checkpoint" : "") << ")";
       }
     // Members this process took from, or kept in, the store it shares with
     // other studies and reports (member_files.h).
