@@ -252,3 +252,22 @@ TEST(MemberRuns, TwoRanksStoppedBySigtermAndRunAgainGiveTheMembersOfOneProcess)
   for (const auto &d : {one, two, pids})
     fs::remove_all(d);
 }
+
+// A folder holds the files of the command beside it: the check rounds'
+// member files (member_runs.check-r.csv) of an earlier run that went
+// further than this one are removed once this one ends; files of other
+// names are left alone.
+TEST(MemberRuns, AnEndedRunLeavesNoCheckFilesOfRoundsItDidNotReach)
+{
+  const fs::path dir = fresh("unreached_checks");
+  fs::create_directories(dir);
+  for (const char *name : {"member_runs.check-1.csv", "member_runs.check-12.csv", "member_runs.check-x.csv", "notes.txt"})
+    std::ofstream(dir / name) << "an earlier run's\n";
+  ASSERT_EQ(run_program(small_ensemble(dir)), 0); // the ROM: no check rounds
+  EXPECT_FALSE(fs::exists(dir / "member_runs.check-1.csv"));
+  EXPECT_FALSE(fs::exists(dir / "member_runs.check-12.csv"));
+  EXPECT_TRUE(fs::exists(dir / "member_runs.check-x.csv"));
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  EXPECT_EQ(lines(dir / "member_runs.csv").size(), 2u + 4);
+  fs::remove_all(dir);
+}

@@ -455,9 +455,12 @@ namespace beamslider
         e.dir = handover ? std::string() : prepare_dir();
         MemberRunsSettings runs = member_files_settings(e.dir, "ensemble", &mpi, "  ");
         runs.n_kept             = &e.n_kept;
+        const auto rounds       = count_check_rounds(runs);
         announce_ensemble(e, options, checked);
         if (!run_members(e, plans.front(), runs, checked))
           return interruption_exit_code();
+        if (mpi.rank() == 0)
+          remove_unreached_check_files(e.dir, "member_runs.csv", *rounds);
         if (handover)
           {
             e.against        = other;

@@ -194,7 +194,9 @@ namespace beamslider
             console() << "--model auto: the error ladder could not be cached (" << e.what()
                       << "); the next --model auto computes it again" << std::endl;
           }
-        log << "model choice from the error ladder just computed (" << kept << "):\n";
+        log << "model choice from the error ladder just computed ("
+            << (refused != "none cached" ? "the cached one was not used: " + refused + "; " : std::string()) << kept
+            << "):\n";
         for (const std::string &verdict : ladder.check_verdicts)
           log << "  " << verdict << "\n";
       }

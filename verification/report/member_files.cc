@@ -7,12 +7,14 @@
 #include "io/console.h"
 #include "numerics/state_bytes.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <vector>
 
 namespace beamslider
 {
@@ -111,6 +113,39 @@ namespace beamslider
       return member_file_store(round == 0 ? stem : stem + ".check-" + std::to_string(round), progress_prefix,
                                on_progress);
     };
+  }
+
+  std::shared_ptr<const unsigned int> count_check_rounds(MemberRunsSettings &settings)
+  {
+    auto highest = std::make_shared<unsigned int>(0);
+    if (settings.records)
+      settings.records = [inner = settings.records, highest](const unsigned int round) {
+        *highest = std::max(*highest, round);
+        return inner(round);
+      };
+    return highest;
+  }
+
+  void remove_unreached_check_files(const std::string &dir, const std::string &file, const unsigned int rounds_used)
+  {
+    if (dir.empty())
+      return;
+    const std::string head = file.substr(0, file.rfind(".csv")) + ".check-", tail = ".csv";
+    std::vector<std::filesystem::path> unreached;
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      {
+        const std::string name = it->path().filename().string();
+        if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+            name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+          continue;
+        const std::string round = name.substr(head.size(), name.size() - head.size() - tail.size());
+        if (round.find_first_not_of("0123456789") == std::string::npos && round.size() < 6 &&
+            std::stoul(round) > rounds_used)
+          unreached.push_back(it->path());
+      }
+    for (const std::filesystem::path &path : unreached)
+      std::filesystem::remove(path, ec);
   }
 
   MemberRunsSettings member_files_settings(const std::string &dir, const std::string &study, const MpiSession *mpi,

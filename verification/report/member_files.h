@@ -20,6 +20,7 @@
 #include "verification/studies/member_runs.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace beamslider
@@ -30,6 +31,16 @@ namespace beamslider
   std::function<MemberRecordStore(unsigned int round)>
   member_files(const std::string &dir, const std::string &file, const std::string &progress_prefix,
                const std::function<void(const std::string &line)> &on_progress);
+
+  // Counts the check rounds whose store `settings` opens from now on: the
+  // highest round r, read once the study ended (0: none beyond the first).
+  std::shared_ptr<const unsigned int> count_check_rounds(MemberRunsSettings &settings);
+
+  // After a study that ended (not one that was stopped): the check files of
+  // rounds it did not reach are an earlier run's, which went further. Removes
+  // `file`'s rounds above `rounds_used` from `dir` (member_runs.check-r.csv
+  // for r > rounds_used), so that the folder holds this run's files alone.
+  void remove_unreached_check_files(const std::string &dir, const std::string &file, unsigned int rounds_used);
 
   // The store of FE members shared across studies and reports
   // (MemberRunsSettings::cached, remember): one file a member,

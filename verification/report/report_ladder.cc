@@ -153,6 +153,7 @@ namespace beamslider
       runs.n_kept             = &n_kept;
       if (!settings.shared_members_root.empty())
         share_fe_members(runs, settings.shared_members_root); // its FE reference, if the region or the cases ran it
+      const auto rounds = count_check_rounds(runs);
       announce_checks(ladder_checks(scene, rungs, reference), settings.progress_prefix);
       const LadderStudy study = run_ladder(
         scene, rungs, reference, settings.end_time, settings.members,
@@ -163,6 +164,8 @@ namespace beamslider
         member_runs_runner(runs), check_rounds_runner(runs), round_sharer(runs.mpi));
       for (const ConvergenceCheck &c : study.checks)
         (c.converged ? console() : std::cerr) << settings.progress_prefix << c.verdict() << std::endl;
+      if (!runs.mpi || runs.mpi->rank() == 0)
+        remove_unreached_check_files(dir, "member_runs.csv", *rounds);
       return study;
     }
 
