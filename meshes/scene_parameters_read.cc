@@ -248,10 +248,18 @@ namespace beamslider
       {
         // deal.II counts the lines of the expanded text: name the file and
         // the line they come from instead.
+        // (Most of deal.II's messages close the file's name with '>', its
+        // "no such subsection" does not.)
         const std::string message = deal_ii_message(e);
         std::smatch m;
-        if (std::regex_search(message, m, std::regex("^Line <([0-9]+)> of file <[^>]*>: *")))
-          throw InputError(text.where(std::stoul(m[1])) + ": " + printable(m.suffix(), 400));
+        if (std::regex_search(message, m, std::regex("^Line <([0-9]+)> of file <")))
+          {
+            std::string rest = m.suffix();
+            if (rest.compare(0, filename.size(), filename) == 0)
+              rest.erase(0, filename.size());
+            rest.erase(0, rest.find_first_not_of(">: "));
+            throw InputError(text.where(std::stoul(m[1])) + ": " + printable(rest, 400));
+          }
         throw InputError("Scene file '" + printable(filename) + "': " + printable(message, 400));
       }
     for (const auto &o : overrides)

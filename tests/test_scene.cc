@@ -255,7 +255,21 @@ TEST(SceneErrors, EachIncludedFileStandsOnItsOwn)
   expect_contains(error("chain_0.prm"), "includes nest deeper than 16 files");
   for (int i = 0; i < 20; ++i)
     std::remove((dir + "chain_" + std::to_string(i) + ".prm").c_str());
-  for (const char *name : {"open_part.prm", "open_scene.prm", "continued_part.prm", "continued_scene.prm"})
+
+  // deal.II's own errors (an unknown subsection, an unknown parameter) are
+  // counted in the expanded text; they name the file and line the text
+  // came from: here line 5 of the including file, after the lines of the
+  // scene and the part it includes; and line 2 of the included part.
+  write("after_part.prm", "subsection Slider\nend\n");
+  write("after_scene.prm", std::string("include ") + BEAMSLIDER_SOURCE_DIR +
+                             "/meshes/mueller2023.prm\ninclude after_part.prm\n\n\nsubsection Nonsense\nend\n");
+  expect_contains(error("after_scene.prm"),
+                  "after_scene.prm', line 5: There is no such subsection to be entered: Nonsense");
+  write("unknown_part.prm", "subsection Slider\n  set Mas = 0.05\nend\n");
+  write("unknown_scene.prm", "include unknown_part.prm\n");
+  expect_contains(error("unknown_scene.prm"), "unknown_part.prm', line 2: No entry with name <Mas>");
+  for (const char *name : {"open_part.prm", "open_scene.prm", "continued_part.prm", "continued_scene.prm",
+                           "after_part.prm", "after_scene.prm", "unknown_part.prm", "unknown_scene.prm"})
     std::remove((dir + name).c_str());
 }
 
