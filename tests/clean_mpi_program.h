@@ -10,11 +10,13 @@
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
+#include <fstream>
 #include <functional>
 #include <spawn.h>
 #include <string>
 #include <sys/wait.h>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
 extern char **environ;
@@ -70,5 +72,38 @@ namespace beamslider::testing
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
       }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+
+  // `program` on two ranks under mpirun, each rank writing its process id
+  // into `pids`/<rank> (a folder that exists) before it becomes the program.
+  inline std::vector<std::string> two_ranks_recording_pids(const std::string &pids,
+                                                           const std::vector<std::string> &program)
+  {
+    std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe", "sh", "-c",
+                                     "echo $$ > '" + pids + "'/$OMPI_COMM_WORLD_RANK; exec \"$@\"", "sh"};
+    args.insert(args.end(), program.begin(), program.end());
+    return args;
+  }
+
+  // A `kill_when` for run_clean_mpi_program that sends `signal` to both
+  // ranks (their ids in `pids`) the first time `ready` holds, and never to
+  // the launcher itself (it returns false); `sent` says whether it did.
+  inline std::function<bool()> signal_ranks_when(const std::string &pids, const std::function<bool()> &ready,
+                                                 const int signal, bool &sent)
+  {
+    return [pids, ready, signal, &sent] {
+      const std::string ids[2] = {pids + "/0", pids + "/1"};
+      if (sent || access(ids[0].c_str(), R_OK) != 0 || access(ids[1].c_str(), R_OK) != 0 || !ready())
+        return false;
+      for (const std::string &id : ids)
+        {
+          std::ifstream in(id);
+          long pid = 0;
+          if (in >> pid && pid > 0)
+            ::kill(static_cast<pid_t>(pid), signal);
+        }
+      sent = true;
+      return false;
+    };
   }
 } // namespace beamslider::testing

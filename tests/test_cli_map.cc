@@ -177,23 +177,12 @@ TEST(MapCommand, TwoRanksStoppedBySigtermAndRunAgainGiveTheRowsOfOneProcess)
   const std::vector<std::string> reference = sorted_lines(one / "map.csv");
   ASSERT_EQ(reference.size(), 1u + 15 * 2);
   std::filesystem::create_directories(pids);
-  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe", "sh", "-c",
-                                   "echo $$ > '" + pids.string() + "'/$OMPI_COMM_WORLD_RANK; exec \"$@\"", "sh"};
-  for (const auto &a : map(two))
-    args.push_back(a);
+  const std::vector<std::string> args = beamslider::testing::two_ranks_recording_pids(pids.string(), map(two));
   const auto rows = [&] { return std::filesystem::exists(two / "map.csv") ? sorted_lines(two / "map.csv").size() : 0; };
   // The signal once two cells are in map.csv, a second into a run of five.
   bool sent = false;
-  const auto stop_ranks_after_two_cells = [&] {
-    if (!sent && std::filesystem::exists(pids / "0") && std::filesystem::exists(pids / "1") && rows() >= 1 + 2 * 2)
-      for (const char *rank : {"0", "1"})
-        {
-          ::kill(std::stoi(read_file(pids / rank)), SIGTERM);
-          sent = true;
-        }
-    return false;
-  };
-  EXPECT_EQ(run_program(args, stop_ranks_after_two_cells), 143);
+  const auto two_cells = [&] { return rows() >= 1 + 2 * 2; };
+  EXPECT_EQ(run_program(args, beamslider::testing::signal_ranks_when(pids.string(), two_cells, SIGTERM, sent)), 143);
   ASSERT_TRUE(sent);
   const std::string record = read_file(two / "run.txt");
   EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;

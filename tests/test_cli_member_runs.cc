@@ -220,25 +220,12 @@ TEST(MemberRuns, TwoRanksStoppedBySigtermAndRunAgainGiveTheMembersOfOneProcess)
   };
   ASSERT_EQ(run_program(ensemble(one)), 0);
   fs::create_directories(pids);
-  // Each rank's process id in pids/<rank>.
-  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe", "sh", "-c",
-                                   "echo $$ > '" + pids.string() + "'/$OMPI_COMM_WORLD_RANK; exec \"$@\"", "sh"};
-  for (const auto &a : ensemble(two))
-    args.push_back(a);
+  const std::vector<std::string> args = beamslider::testing::two_ranks_recording_pids(pids.string(), ensemble(two));
   // The signal once two members are in member_runs.csv (after its key line
   // and header), about a second into a run of six.
   bool sent = false;
-  const auto stop_ranks_after_two = [&] {
-    if (!sent && fs::exists(pids / "0") && fs::exists(pids / "1") && fs::exists(two / "member_runs.csv") &&
-        lines(two / "member_runs.csv").size() >= 4)
-      for (const char *rank : {"0", "1"})
-        {
-          ::kill(std::stoi(read_file(pids / rank)), SIGTERM);
-          sent = true;
-        }
-    return false;
-  };
-  EXPECT_EQ(run_program(args, stop_ranks_after_two), 143);
+  const auto two_done = [&] { return fs::exists(two / "member_runs.csv") && lines(two / "member_runs.csv").size() >= 4; };
+  EXPECT_EQ(run_program(args, beamslider::testing::signal_ranks_when(pids.string(), two_done, SIGTERM, sent)), 143);
   ASSERT_TRUE(sent);
   const std::string record = read_file(two / "run.txt");
   EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;

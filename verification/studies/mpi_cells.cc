@@ -108,6 +108,20 @@ namespace beamslider
     private:
       unsigned long polls_ = 0;
     };
+
+    // Completes `request` (an Isend, an Ibcast) by testing and sleeping,
+    // watching that rank 0 still lives meanwhile.
+    void wait_watching_rank_zero(MPI_Request &request)
+    {
+      PatientWait wait;
+      for (int done = 0;;)
+        {
+          check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+          if (done)
+            return;
+          wait.pause({0});
+        }
+    }
   } // namespace
 
   bool a_rank_was_lost() { return lost_rank >= 0; }
@@ -351,19 +365,13 @@ namespace beamslider
           MPI_Request sent;
           check(MPI_Isend(message.data(), message.size(), MPI_CHAR, 0, tag_result, MPI_COMM_WORLD, &sent),
                 "MPI_Isend");
-          PatientWait wait;
-          for (int done = 0;;)
-            {
-              check(MPI_Test(&sent, &done, MPI_STATUS_IGNORE), "MPI_Test");
-              if (done)
-                break;
-              wait.pause({0});
-            }
+          wait_watching_rank_zero(sent);
           // Waiting by probing and sleeping, not in a blocking receive (which
           // Open MPI spins in): the answer may be long in coming when rank 0
           // does other work first (verify's sections before the ladder), and
           // the core is rank 0's meanwhile.
           MPI_Status status;
+          PatientWait wait;
           for (int flag = 0; !flag;)
             {
               check(MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
@@ -413,14 +421,7 @@ namespace beamslider
         // Waited for as the cells are, so that a dead rank 0 is seen.
         MPI_Request request;
         check(MPI_Ibcast(&mask, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request), "MPI_Ibcast");
-        PatientWait wait;
-        for (int done = 0;;)
-          {
-            check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
-            if (done)
-              break;
-            wait.pause({0});
-          }
+        wait_watching_rank_zero(request);
       }
     if (mpi.rank() == 0 && mask == 0)
       {
