@@ -193,10 +193,11 @@ TEST(FaultsUnderMpi, ARankThatDiesMidRunEndsTheJobWithAMessageNamingIt)
         if (!pid.empty())
           ::kill(std::stoi(pid), SIGKILL);
       });
-      // Forty members of 60 s (about a second each): a minute were the job
-      // left alone; the survivor ends a second or two after the kill.
+      // Forty members of 20 s (about half a second each, five under the
+      // sanitizers): ten seconds and more were the job left alone; the
+      // survivor ends about a member after the kill.
       const auto start = std::chrono::steady_clock::now();
-      const CliRun run = run_beamslider({"ensemble", "--members", "40", "--end-time", "60", "--quiet", "--output",
+      const CliRun run = run_beamslider({"ensemble", "--members", "40", "--end-time", "20", "--quiet", "--output",
                                          out.string()},
                                         CliLimits().timeout(60).launched_by(launcher));
       std::cout << "rank " << victim << " killed: the job ended after "
