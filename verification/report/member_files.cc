@@ -20,6 +20,9 @@ namespace beamslider
 {
   namespace
   {
+    // A check round's file: member_runs.csv → member_runs.check-<round>.csv.
+    constexpr const char *check_infix = ".check-";
+
     // The records of a CSV text: lines, except that a line break inside a
     // quoted cell belongs to the cell. A last record without its '\n' (a
     // write cut short) is returned too; its checks reject it.
@@ -110,7 +113,7 @@ namespace beamslider
     const std::string stem = dir + "/" + file.substr(0, file.rfind(".csv"));
     return [stem, progress_prefix, on_progress](const unsigned int round) {
       // member_runs.csv → member_runs.check-1.csv, …
-      return member_file_store(round == 0 ? stem : stem + ".check-" + std::to_string(round), progress_prefix,
+      return member_file_store(round == 0 ? stem : stem + check_infix + std::to_string(round), progress_prefix,
                                on_progress);
     };
   }
@@ -130,7 +133,7 @@ namespace beamslider
   {
     if (dir.empty())
       return;
-    const std::string head = file.substr(0, file.rfind(".csv")) + ".check-", tail = ".csv";
+    const std::string head = file.substr(0, file.rfind(".csv")) + check_infix, tail = ".csv";
     std::vector<std::filesystem::path> unreached;
     std::error_code ec;
     for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))

@@ -54,7 +54,8 @@ namespace beamslider
       std::int64_t pid   = 0;
     };
     std::vector<Peer> peers;
-    std::atomic<int> lost_rank{-1};
+    std::uint64_t own_host = 0; // this rank's, as gathered
+    std::atomic<bool> rank_lost{false};
 
     std::uint64_t this_host()
     {
@@ -83,9 +84,9 @@ namespace beamslider
     // ends the job when a rank dies there).
     void require_alive(const unsigned int rank)
     {
-      if (rank >= peers.size() || peers[rank].host != this_host() || !process_ended(peers[rank].pid))
+      if (rank >= peers.size() || peers[rank].host != own_host || !process_ended(peers[rank].pid))
         return;
-      lost_rank = static_cast<int>(rank);
+      rank_lost = true;
       throw RankLost("rank " + std::to_string(rank) + " (process " + std::to_string(peers[rank].pid) +
                      ") ended in the middle of the run, so the job ends; the rows finished before are kept in the "
                      "output folder (run the command again to compute the rest)");
@@ -124,7 +125,7 @@ namespace beamslider
     }
   } // namespace
 
-  bool a_rank_was_lost() { return lost_rank >= 0; }
+  bool a_rank_was_lost() { return rank_lost; }
 
   // distribute_cells counts itself on the session (MpiSession::n_distributions).
   class DistributionCount
@@ -210,7 +211,8 @@ namespace beamslider
     size_       = size;
     serialized_ = provided >= MPI_THREAD_SERIALIZED;
     active_session = this;
-    const Peer me{this_host(), static_cast<std::int64_t>(::getpid())};
+    own_host = this_host();
+    const Peer me{own_host, static_cast<std::int64_t>(::getpid())};
     peers.assign(size_, Peer{});
     check(MPI_Allgather(&me, sizeof(Peer), MPI_BYTE, peers.data(), sizeof(Peer), MPI_BYTE, MPI_COMM_WORLD),
           "MPI_Allgather");
