@@ -5,9 +5,9 @@
 // the set-up of a whole reduced-order run. Only the SLEPc eigensolver (large
 // meshes, fem/fe_modes.cc) needs it, so the program does not start MPI in
 // main(); require_petsc() does, once per process, the first time it is
-// called. MPI, PETSc and SLEPc are finalised at program exit. A program
-// that started them itself (an mpirun-launched command, the test mains with
-// deal.II's MPI_InitFinalize) is left alone.
+// called (or an mpirun-launched command's MpiSession, at its start). MPI,
+// PETSc and SLEPc are finalised at program exit. A program that started them
+// itself (the test mains with deal.II's MPI_InitFinalize) is left alone.
 #pragma once
 
 namespace beamslider

@@ -193,3 +193,32 @@ TEST(MapCommand, TwoRanksStoppedBySigtermAndRunAgainGiveTheRowsOfOneProcess)
   for (const auto &d : {one, two, pids})
     std::filesystem::remove_all(d);
 }
+
+// Ctrl-C to `mpirun` itself: Open MPI passes SIGTERM to the ranks and kills
+// them a second later. run.txt still records the interruption (the ranks
+// write it before MPI is finalised); mpirun's own status is the launcher's.
+// Run again, the folder ends with the rows of one uninterrupted process.
+TEST(MapCommand, MpirunStoppedByCtrlCRecordsTheInterruptionAndRunsAgainToTheRowsOfOneProcess)
+{
+  const auto one = fresh("launcher_one"), two = fresh("launcher_two");
+  const auto map = [](const std::filesystem::path &out) {
+    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:2.5", "--acceleration",
+                                    "10:14:2", "--members", "2", "--end-time", "10", "--output", out.string()};
+  };
+  ASSERT_EQ(run_program(map(one)), 0);
+  const std::vector<std::string> reference = sorted_lines(one / "map.csv");
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe"};
+  const std::vector<std::string> program = map(two);
+  args.insert(args.end(), program.begin(), program.end());
+  const auto rows = [&] { return std::filesystem::exists(two / "map.csv") ? sorted_lines(two / "map.csv").size() : 0; };
+  const auto two_cells = [&] { return rows() >= 1 + 2 * 2; };
+  EXPECT_NE(beamslider::testing::run_clean_mpi_program(args, two_cells, SIGINT), 0);
+  const std::string record = read_file(two / "run.txt");
+  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+  EXPECT_LT(rows(), reference.size()) << "the run ended before the signal";
+  EXPECT_EQ((rows() - 1) % 2, 0u) << "a cell's rows are written together";
+  ASSERT_EQ(run_program(args), 0);
+  EXPECT_EQ(sorted_lines(two / "map.csv"), reference);
+  for (const auto &d : {one, two})
+    std::filesystem::remove_all(d);
+}

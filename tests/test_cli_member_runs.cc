@@ -240,6 +240,38 @@ TEST(MemberRuns, TwoRanksStoppedBySigtermAndRunAgainGiveTheMembersOfOneProcess)
     fs::remove_all(d);
 }
 
+// The same stop through the launcher: SIGTERM (or Ctrl-C) to `mpirun`
+// itself, which passes SIGTERM to the ranks and kills them a second later.
+// The ranks record the interruption before MPI is finalised (MPI_Finalize
+// does not return while mpirun ends the job), so run.txt says so; mpirun's
+// own status is its own (1 in Open MPI 4.1), not the ranks'. Run again, the
+// folder ends with the members of one uninterrupted process.
+TEST(MemberRuns, MpirunStoppedBySigtermRecordsTheInterruptionAndRunsAgainToTheMembersOfOneProcess)
+{
+  const fs::path one = fresh("launcher_one"), two = fresh("launcher_two");
+  const auto ensemble = [](const fs::path &out) {
+    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "ensemble", "--members", "12", "--end-time", "20",
+                                    "--output", out.string()};
+  };
+  ASSERT_EQ(run_program(ensemble(one)), 0);
+  std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe"};
+  const std::vector<std::string> program = ensemble(two);
+  args.insert(args.end(), program.begin(), program.end());
+  const auto two_done = [&] { return fs::exists(two / "member_runs.csv") && lines(two / "member_runs.csv").size() >= 4; };
+  EXPECT_NE(run_program(args, two_done, SIGTERM), 0);
+  const std::string record = read_file(two / "run.txt");
+  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+  const std::size_t kept = lines(two / "member_runs.csv").size() - 2;
+  EXPECT_GE(kept, 2u);
+  EXPECT_LT(kept, 12u) << "the run ended before the signal";
+  ASSERT_EQ(run_program(args), 0);
+  EXPECT_EQ(lines(two / "member_runs.csv").size() - 2, 12u);
+  EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
+  EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+  for (const auto &d : {one, two})
+    fs::remove_all(d);
+}
+
 // A folder holds the files of the command beside it: the check rounds'
 // member files (member_runs.check-r.csv) of an earlier run that went
 // further than this one are removed once this one ends; files of other

@@ -4,9 +4,8 @@
 #include "meshes/scene.h"
 #include "verification/studies/parallel_for.h"
 
-#include "numerics/kept_signal_dispositions.h"
+#include "fem/petsc_session.h"
 
-#include <deal.II/base/mpi.h>
 
 #include <mpi.h>
 
@@ -185,24 +184,11 @@ namespace beamslider
                            "verify, and modes, statics and coefficients of a solid scene");
   }
 
-  struct MpiSession::Impl
-  {
-    int argc            = 1;
-    char name[16]       = "beamslider";
-    char *argv_store[2] = {name, nullptr};
-    char **argv         = argv_store;
-    std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  };
-
   MpiSession::MpiSession(const bool use_mpi)
   {
     if (!use_mpi)
       return;
-    impl_ = std::make_unique<Impl>();
-    {
-      const KeptSignalDispositions kept; // MPI and PETSc would take SIGTERM and SIGINT
-      impl_->mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(impl_->argc, impl_->argv, 1);
-    }
+    require_petsc(); // keeps this process's SIGTERM and SIGINT handlers
     int rank = 0, size = 1, provided = MPI_THREAD_SINGLE;
     check(MPI_Comm_rank(MPI_COMM_WORLD, &rank), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &size), "MPI_Comm_size");

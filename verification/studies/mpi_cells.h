@@ -53,8 +53,11 @@ namespace beamslider
   // into the same folder. Names the commands that use MPI.
   void require_one_process(const std::string &command);
 
-  // MPI for the lifetime of the object (deal.II's MPI_InitFinalize, which
-  // also starts PETSc/SLEPc), or nothing when `use_mpi` is false.
+  // The ranks of an MPI launch, or nothing when `use_mpi` is false. MPI (and
+  // PETSc/SLEPc with it) is started once for the process (require_petsc) and
+  // finalised at exit, not when the session ends: the run's `ended:` record is
+  // written after the command returns, and MPI_Finalize under an mpirun that
+  // is ending the job (a signal to mpirun) does not return.
   class MpiSession
   {
   public:
@@ -74,8 +77,6 @@ namespace beamslider
     unsigned int n_distributions() const { return n_distributions_; }
 
   private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
     unsigned int rank_ = 0, size_ = 1;
     bool serialized_   = true;
     mutable unsigned int n_distributions_ = 0;
