@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <string>
@@ -82,7 +83,15 @@ namespace
           std::smatch m;
           for (int line = 1; std::getline(in, text); ++line)
             if (std::regex_search(text, m, include_line))
-              found.push_back({file, line, m[1]});
+              {
+                // A relative include ("../cli/commands.h") is ranked by the
+                // file it reaches, as one from the source tree is.
+                std::string target = m[1];
+                const fs::path beside = entry.path().parent_path() / target;
+                if (!fs::exists(root / target) && fs::exists(beside))
+                  target = fs::relative(fs::weakly_canonical(beside), fs::weakly_canonical(root)).generic_string();
+                found.push_back({file, line, target});
+              }
         }
     return found;
   }
@@ -121,6 +130,66 @@ TEST(Architecture, EveryIncludeLooksDown)
   EXPECT_GT(model_includes, 100u);
   EXPECT_GT(between_layers, 200u);
   EXPECT_TRUE(cli_includes_studies);
+}
+
+namespace
+{
+  // The project's libraries and their layer's rank (as `layers` above); the
+  // Python module (beamslider_python) and the executables are front ends.
+  const std::map<std::string, int> library_ranks = {
+    {"beamslider_numerics", 0}, {"beamslider_io", 0},     {"beamslider_scene", 0},      {"beamslider_contact", 1},
+    {"beamslider_reduced", 2},  {"beamslider_fem", 3},    {"beamslider_fem_output", 4}, {"beamslider_runs", 4},
+    {"beamslider_studies", 5},  {"beamslider_report", 6}, {"beamslider_cli", 7}};
+
+  // "A links B" for every target_link_libraries(A ... B ...) of a library
+  // in `cmake` (the text of CMakeLists.txt files) whose B ranks above A.
+  std::vector<std::string> upward_links(const std::string &cmake)
+  {
+    const std::regex link_call(R"re(target_link_libraries\s*\(\s*([A-Za-z0-9_]+)([^)]*)\))re");
+    const std::regex word(R"re([A-Za-z0-9_]+)re");
+    std::vector<std::string> upward;
+    for (std::sregex_iterator m(cmake.begin(), cmake.end(), link_call), end; m != end; ++m)
+      {
+        const auto from = library_ranks.find((*m)[1]);
+        if (from == library_ranks.end())
+          continue;
+        const std::string linked = (*m)[2];
+        for (std::sregex_iterator w(linked.begin(), linked.end(), word); w != end; ++w)
+          if (const auto to = library_ranks.find(w->str()); to != library_ranks.end() && to->second > from->second)
+            upward.push_back(from->first + " links " + to->first);
+      }
+    return upward;
+  }
+
+  std::string cmake_files_text()
+  {
+    std::string text;
+    for (const auto &entry : fs::recursive_directory_iterator(BEAMSLIDER_SOURCE_DIR))
+      if (entry.is_regular_file() && entry.path().filename() == "CMakeLists.txt" &&
+          entry.path().string().find("/build") == std::string::npos)
+        {
+          std::ifstream in(entry.path());
+          text += std::string(std::istreambuf_iterator<char>(in), {}) + "\n";
+        }
+    return text;
+  }
+} // namespace
+
+// The libraries are the layers: none links one above it (a study cannot
+// reach the report or the command line even through the linker). The check
+// sees the tree's links, and it fails on a planted upward link.
+TEST(Architecture, EveryLibraryLinksOnlyTheLayersBelowIt)
+{
+  const std::string cmake = cmake_files_text();
+  for (const auto &[library, rank] : library_ranks)
+    EXPECT_NE(cmake.find("add_library(" + library + " "), std::string::npos) << library << " is not a library";
+  EXPECT_NE(cmake.find("target_link_libraries(beamslider_cli beamslider_report"), std::string::npos);
+  for (const std::string &link : upward_links(cmake))
+    ADD_FAILURE() << link << ", a layer above its own (doc/architecture.md)";
+  const std::vector<std::string> planted =
+    upward_links(cmake + "\ntarget_link_libraries(beamslider_studies\n  beamslider_fem beamslider_cli)\n");
+  ASSERT_EQ(planted.size(), 1u);
+  EXPECT_EQ(planted.front(), "beamslider_studies links beamslider_cli");
 }
 
 // README.md and doc/ name only files and folders that exist: a path of the
