@@ -78,6 +78,40 @@ namespace beamslider
       return std::to_string(k + 1) + ". " + section_titles()[k];
     }
 
+    // This program's path, for the child processes verify starts ("" and
+    // `ec` set when the system does not say).
+    std::string this_program(std::error_code &ec)
+    {
+      return std::filesystem::read_symlink("/proc/self/exe", ec).string();
+    }
+
+    // Section 6's strong scaling: `beamslider map` as this program, alone
+    // and under mpirun, each a child process started with an argument vector.
+    TimedMap time_map_program(const unsigned int ranks, const std::vector<std::string> &arguments,
+                              const std::string &output)
+    {
+      std::error_code ec;
+      const std::string self = this_program(ec);
+      if (ec)
+        return {0, "the path of this executable is unknown (" + ec.message() + ")"};
+      std::vector<std::string> argv;
+      if (ranks > 1)
+        argv = {"mpirun", "-np", std::to_string(ranks)};
+      argv.push_back(self);
+      argv.insert(argv.end(), arguments.begin(), arguments.end());
+      argv.insert(argv.end(), {"--output", output});
+      const auto start = std::chrono::steady_clock::now();
+      // Under `mpirun -n K beamslider verify` this process is an MPI launch's
+      // rank: its children must not inherit that launch.
+      const ChildResult result = run_child(argv, ChildEnvironment::without_mpi_launch);
+      const double wall        = elapsed_seconds(start);
+      if (!result.succeeded())
+        return {wall, result.error + (ranks > 1 ? " (is Open MPI's mpirun on PATH? As root it needs "
+                                                  "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)"
+                                                : "")};
+      return {wall, ""};
+    }
+
     // Starts `beamslider verify --section <section>` into `dir` with the
     // scene and options of this run; nullptr when this executable's path is
     // unknown (the section then runs in this process).
@@ -85,7 +119,7 @@ namespace beamslider
                                                           const VerifyOptions &options)
     {
       std::error_code ec;
-      const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+      const std::string self = this_program(ec);
       if (ec)
         return nullptr;
       // Absolute paths: a relative one that starts with '-' would read as an option.
@@ -200,7 +234,7 @@ namespace beamslider
               [&v, &scene] { add_backbone_section(v.report, scene, v.options.full); },
               [&v, &scene] { add_contact_section(v.report, scene, v.options.full, v.run_case); },
               [&v, &scene] { add_fe_rom_section(v.report, scene, v.options.full); },
-              [&v, &scene] { add_map_section(v.report, scene, v.options.full); },
+              [&v, &scene] { add_map_section(v.report, scene, v.options.full, time_map_program); },
               [&v, &scene] { add_system1_section(v.report, scene, v.options.full); },
               [&v, &scene] { add_solid_section(v.report, scene, v.options.full); }};
     }

@@ -9,6 +9,7 @@
 #include "verification/studies/simulation_cases.h"
 
 #include <sstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,8 +53,19 @@ namespace beamslider
   // failure chart (report_fe_rom.cc).
   void add_fe_rom_section(Report &report, const Scene &scene, bool full);
   // Section 6: the operating range, a map of the adaptation over frequency ×
-  // level with the published cases (--full only; report_map.cc).
-  void add_map_section(Report &report, const Scene &scene, bool full);
+  // level with the published cases (--full only; report_map.cc). Its
+  // strong-scaling table times `beamslider map` as programs on 1 and 2
+  // ranks: `time_map` (the command line's) runs the map of `arguments` on
+  // `ranks` processes into `output` and returns its wall time [s] and, if it
+  // failed, why.
+  struct TimedMap
+  {
+    double wall_seconds = 0;
+    std::string failure; // empty: it ran
+  };
+  using MapTimer = std::function<TimedMap(unsigned int ranks, const std::vector<std::string> &arguments,
+                                          const std::string &output)>;
+  void add_map_section(Report &report, const Scene &scene, bool full, const MapTimer &time_map);
   // Section 7: the seed's System 1 facts, each run once on the scene with
   // its verdict (system1 only; report_system1.cc).
   void add_system1_section(Report &report, const Scene &scene, bool full);

@@ -51,18 +51,16 @@ namespace beamslider
     }
 
     // Strong scaling of `beamslider map` on MPI. The same small map (24
-    // ROM cells of 10 s) run by this executable as one process and under
-    // `mpirun -np 2`, each as a child process started with an argument
-    // vector; wall time around the whole command, start-up included.
+    // ROM cells of 10 s) run as one process and under `mpirun -np 2` by
+    // `time_map` (programs started by the command line); wall time around
+    // the whole command, start-up included.
     std::string scaling_subsection(const std::string &dir, const std::string &scene_file,
-                                   const std::vector<std::string> &overrides)
+                                   const std::vector<std::string> &overrides, const MapTimer &time_map)
     {
-      std::error_code ec;
-      const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
-      if (ec)
-        return "Strong scaling not measured: the path of this executable is unknown (" + ec.message() + ").\n\n";
-      const std::vector<std::string> map = {"map", scene_file, "--frequency", "100:135:5", "--acceleration", "8:18:5",
-                                            "--end-time", "10", "--quiet"};
+      std::vector<std::string> map = {"map", scene_file, "--frequency", "100:135:5", "--acceleration", "8:18:5",
+                                      "--end-time", "10", "--quiet"};
+      for (const std::string &o : overrides)
+        map.insert(map.end(), {"--set", o});
       const std::string machine = machine_description();
       std::ostringstream md;
       CsvWriter csv(dir + "/scaling.csv", {"ranks", "cells", "wall_s", "cells_per_s", "machine"});
@@ -72,34 +70,18 @@ namespace beamslider
       for (const unsigned int ranks : {1u, 2u})
         {
           const std::string out = dir + "/ranks_" + std::to_string(ranks);
+          std::error_code ec;
           std::filesystem::remove_all(out, ec);
-          std::vector<std::string> argv;
-          if (ranks > 1)
-            argv = {"mpirun", "-np", std::to_string(ranks)};
-          argv.push_back(self);
-          argv.insert(argv.end(), map.begin(), map.end());
-          for (const std::string &o : overrides)
-            argv.insert(argv.end(), {"--set", o});
-          argv.insert(argv.end(), {"--output", out});
           console() << "    scaling: " << ranks << " rank(s)" << std::endl;
-          const auto start         = std::chrono::steady_clock::now();
-          // Under `mpirun -n K beamslider verify` this process is an MPI launch's
-          // rank: its children must not inherit that launch.
-          const ChildResult result = run_child(argv, ChildEnvironment::without_mpi_launch);
-          const double wall = elapsed_seconds(start);
-          if (!result.succeeded())
+          const TimedMap timed = time_map(ranks, map, out);
+          if (!timed.failure.empty())
             {
-              failures += " " + std::to_string(ranks) + " rank(s): " +
-                          result.error +
-                          (ranks > 1 ? " (is Open MPI's mpirun on PATH? As root it needs "
-                                       "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)"
-                                     : "") +
-                          ".";
+              failures += " " + std::to_string(ranks) + " rank(s): " + timed.failure + ".";
               continue;
             }
-          points.emplace_back(ranks, wall);
-          csv.row({CsvWriter::cell(ranks), CsvWriter::cell(n_cells), CsvWriter::cell(wall, 6),
-                   CsvWriter::cell(n_cells / wall, 6), machine});
+          points.emplace_back(ranks, timed.wall_seconds);
+          csv.row({CsvWriter::cell(ranks), CsvWriter::cell(n_cells), CsvWriter::cell(timed.wall_seconds, 6),
+                   CsvWriter::cell(n_cells / timed.wall_seconds, 6), machine});
         }
       csv.close();
       md << "### Strong scaling on MPI\n\nThe same map of " << n_cells
@@ -331,7 +313,7 @@ namespace beamslider
     return std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores, " + model;
   }
 
-  void add_map_section(Report &report, const Scene &scene, const bool full)
+  void add_map_section(Report &report, const Scene &scene, const bool full, const MapTimer &time_map)
   {
     std::ostringstream &md = report.text;
     md << "## 6. Operating range\n\n";
@@ -375,6 +357,6 @@ namespace beamslider
 
     const std::string scaling_dir = report.dir + "/map_scaling";
     std::filesystem::create_directories(scaling_dir);
-    md << scaling_subsection(scaling_dir, report.scene_file, report.overrides);
+    md << scaling_subsection(scaling_dir, report.scene_file, report.overrides, time_map);
   }
 } // namespace beamslider
