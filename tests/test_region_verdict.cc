@@ -269,3 +269,45 @@ TEST(RegionVerdict, ThePublishedCasesCountTheClassesTheirFileHolds)
       << md;
   std::filesystem::remove_all(dir);
 }
+
+// A model is alike with the reference only when its majority class is the
+// reference's and its end positions end alike. Members that end near the
+// reference's but mostly in another class (120/9: the FE's relax, most of
+// N = 20's make the signature move) are not alike; an even split decides no
+// class; a model whose end positions part is not alike in the same class.
+TEST(RegionVerdict, AlikeNeedsTheReferencesMajorityClassAndItsEndState)
+{
+  const auto members = [](const double centre, const std::vector<AdaptationClass> &outcomes) {
+    std::vector<EnsembleMember> m = ending_at(centre, static_cast<unsigned int>(outcomes.size()));
+    for (std::size_t i = 0; i < m.size(); ++i)
+      m[i].analysis.outcome = outcomes[i];
+    return m;
+  };
+  const auto sig = AdaptationClass::signature_move, none = AdaptationClass::no_adaptation;
+  const std::vector<EnsembleMember> reference = members(0.380, {none, none, none, none});
+  const std::vector<EnsembleMember> same      = members(0.3803, {none, none, none, sig});
+  const std::vector<EnsembleMember> other     = members(0.3803, {sig, sig, sig, none});
+  const std::vector<EnsembleMember> split     = members(0.3803, {sig, sig, none, none});
+  const std::vector<EnsembleMember> apart     = members(0.420, {none, none, none, none});
+  const auto final_positions = [](const std::vector<EnsembleMember> &ms) {
+    return outcome_samples(ms).final_position;
+  };
+  const auto alike = [&](const std::vector<EnsembleMember> &model) {
+    return alike_with_reference(compare_samples(final_positions(model), final_positions(reference)),
+                                class_counts(model), class_counts(reference));
+  };
+  // Every close model ends alike by its end positions alone ...
+  for (const auto *m : {&same, &other, &split})
+    EXPECT_TRUE(ends_alike(compare_samples(final_positions(*m), final_positions(reference))));
+  // ... but only the one in the reference's class is alike.
+  EXPECT_TRUE(alike(same));
+  EXPECT_FALSE(alike(other));
+  EXPECT_FALSE(alike(split));
+  EXPECT_FALSE(alike(apart));
+  EXPECT_EQ(majority_class(class_counts(split)), "split");
+  EXPECT_EQ(majority_class(class_counts(other)), to_string(sig));
+  EXPECT_EQ(majority_class({}), "–");
+  // A reference split evenly decides no class: nothing is alike with it.
+  EXPECT_FALSE(alike_with_reference(compare_samples(final_positions(same), final_positions(split)),
+                                    class_counts(same), class_counts(split)));
+}

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -26,7 +27,7 @@ namespace beamslider
       ModelSetting model;
       OutcomeStatistics position, amplitude;
       SampleComparison to_reference; // n_a = 0 for the reference
-      std::map<std::string, unsigned int> classes;
+      ClassCounts classes;
       bool moved = false; // its check at Δt/2 did not end alike
       double wall_ratio = NAN; // wall time per member over the published ROM's at the same point
     };
@@ -40,9 +41,7 @@ namespace beamslider
       c.amplitude            = statistics("final amplitude [h]", s.final_amplitude);
       if (reference && !s.final_position.empty() && !reference->final_position.empty())
         c.to_reference = compare_samples(s.final_position, reference->final_position);
-      for (const EnsembleMember &m : members)
-        if (m.analysis.valid)
-          ++c.classes[to_string(m.analysis.outcome)];
+      c.classes = class_counts(members);
       return c;
     }
 
@@ -107,32 +106,43 @@ namespace beamslider
       return l.refinement_check(l.reference);
     }
 
-    void write_region_csv(const std::string &dir, const RegionStudy &study)
+    // One row per site and model (region.csv, published_cases.csv): the
+    // site's own columns first (`site_header`, `site_cells(p)`), then the
+    // model, its members' end state and classes, its W₁ to the site's
+    // reference and whether it is alike there (region_verdict.h); the
+    // reference's row says whether it converged in Δt.
+    void write_sites_csv(const std::string &path, const std::vector<std::string> &site_header,
+                         const std::function<std::vector<std::string>(std::size_t)> &site_cells,
+                         const std::vector<LadderStudy> &ladders)
     {
-      CsvWriter csv(dir + "/region.csv",
-                    {"frequency_hz", "acceleration_m_s2", "model", "time_step_s", "n_modes", "members", "final_x_median",
-                     "final_x_min", "final_x_max", "final_amplitude_median", "w1", "w1_low", "w1_high", "spread",
-                     "distinguishable", "classes", "reference_convergence"});
-      for (std::size_t p = 0; p < study.points.size(); ++p)
+      std::vector<std::string> header = site_header;
+      header.insert(header.end(),
+                    {"model", "time_step_s", "n_modes", "static_corrections", "members", "final_x_median", "final_x_min",
+                     "final_x_max", "final_amplitude_median", "w1", "w1_low", "w1_high", "spread", "distinguishable",
+                     "classes", "majority_class", "alike", "moves_at_half_step", "reference_convergence"});
+      CsvWriter csv(path, header);
+      for (std::size_t p = 0; p < ladders.size(); ++p)
         {
-          const LadderStudy &l         = study.ladders[p];
-          const ConvergenceCheck *in_t = reference_check(l);
-          for (const Column &c : point_columns(l))
+          const ConvergenceCheck *in_t = reference_check(ladders[p]);
+          const std::vector<Column> cs = point_columns(ladders[p]);
+          for (const Column &c : cs)
             {
-              const bool is_reference = c.to_reference.n_a == 0 && c.name == l.rungs[l.reference].rung.name;
-              const bool compared     = c.to_reference.n_a > 0;
+              const bool compared = c.to_reference.n_a > 0;
               const auto maybe = [compared](const double x) { return compared ? CsvWriter::cell(x) : std::string(); };
-              std::string status;
-              if (is_reference && in_t)
-                status = in_t->converged ? "converged" : "not converged";
-              csv.row({CsvWriter::cell(study.points[p].frequency_hz), CsvWriter::cell(study.points[p].acceleration_m_s2),
-                       c.name, CsvWriter::cell(c.model.time_step), CsvWriter::cell(c.model.n_modes),
-                       CsvWriter::cell(c.position.n), CsvWriter::cell(c.position.median),
-                       CsvWriter::cell(c.position.min), CsvWriter::cell(c.position.max),
-                       CsvWriter::cell(c.amplitude.median), maybe(c.to_reference.wasserstein),
-                       maybe(c.to_reference.interval_low), maybe(c.to_reference.interval_high),
-                       maybe(c.to_reference.spread), compared ? (c.to_reference.distinguishable ? "1" : "0") : "",
-                       classes(c.classes), status});
+              const auto flag  = [compared](const bool b) { return compared ? std::string(b ? "1" : "0") : std::string(); };
+              std::vector<std::string> row = site_cells(p);
+              row.insert(row.end(),
+                         {c.name, CsvWriter::cell(c.model.time_step), CsvWriter::cell(c.model.n_modes),
+                          CsvWriter::cell(c.model.n_static_corrections), CsvWriter::cell(c.position.n),
+                          CsvWriter::cell(c.position.median), CsvWriter::cell(c.position.min),
+                          CsvWriter::cell(c.position.max), CsvWriter::cell(c.amplitude.median),
+                          maybe(c.to_reference.wasserstein), maybe(c.to_reference.interval_low),
+                          maybe(c.to_reference.interval_high), maybe(c.to_reference.spread),
+                          flag(c.to_reference.distinguishable), classes(c.classes), majority_class(c.classes),
+                          flag(alike_with_reference(c.to_reference, c.classes, cs.back().classes)),
+                          c.moved ? "1" : "0",
+                          !compared && in_t ? (in_t->converged ? "converged" : "not converged") : ""});
+              csv.row(row);
             }
         }
       csv.close();
@@ -183,7 +193,9 @@ namespace beamslider
   {
     std::ostringstream md;
     const std::size_t n_points = study.points.size();
-    std::map<std::string, std::vector<const Column *>> by_model;
+    // Each model's column at each point, with whether it is alike there
+    // (region_verdict.h: the same majority class, and end states alike).
+    std::map<std::string, std::vector<std::pair<const Column *, bool>>> by_model;
     std::vector<std::vector<Column>> columns;
     for (const LadderStudy &l : study.ladders)
       columns.push_back(point_columns(l));
@@ -194,7 +206,7 @@ namespace beamslider
           {
             if (!by_model.count(c.name))
               order.push_back(c.name);
-            by_model[c.name].push_back(&c);
+            by_model[c.name].emplace_back(&c, alike_with_reference(c.to_reference, c.classes, points.back().classes));
           }
     unsigned int converged = 0;
     for (const LadderStudy &l : study.ladders)
@@ -204,26 +216,31 @@ namespace beamslider
       }
     md << "**Across the region** (" << n_points << " points): the FE reference converged in Δt at " << converged
        << " of " << n_points << " points" << (converged < n_points ? " (**not at every point**: see below)" : "")
-       << ". W₁ to the reference, smallest and largest over the points, and where the model ends alike "
-          "(indistinguishable, or closer than "
-       << fixed(convergence_resolution, 3) << " L):";
+       << ". W₁ to the reference, smallest and largest over the points, and where the model ends alike (most "
+          "of its members in the class most of the reference's take, and its end positions indistinguishable, or "
+          "closer than "
+       << fixed(convergence_resolution, 3) << " L; members split evenly between classes decide no class):";
     std::string first_everywhere;
     for (const std::string &name : order)
       {
         const auto &cs = by_model[name];
         double lo = INFINITY, hi = 0, ratio_lo = INFINITY, ratio_hi = 0;
-        unsigned int alike = 0, moved = 0;
-        for (const Column *c : cs)
+        unsigned int alike = 0, moved = 0, other_class = 0;
+        for (const auto &[c, is_alike] : cs)
           {
             lo = std::min(lo, c->to_reference.wasserstein);
             hi = std::max(hi, c->to_reference.wasserstein);
             if (std::isfinite(c->wall_ratio))
               ratio_lo = std::min(ratio_lo, c->wall_ratio), ratio_hi = std::max(ratio_hi, c->wall_ratio);
-            alike += ends_alike(c->to_reference);
+            alike += is_alike;
+            other_class += ends_alike(c->to_reference) && !is_alike; // close end states, other or no class
             moved += c->moved;
           }
         md << " " << name << " " << fixed(lo, 4) << "–" << fixed(hi, 4) << " L (alike at " << alike << " of "
-           << cs.size() << (moved ? "; moves at Δt/2 at " + std::to_string(moved) : std::string())
+           << cs.size()
+           << (other_class ? "; ends near but in another or no majority class at " + std::to_string(other_class)
+                           : std::string())
+           << (moved ? "; moves at Δt/2 at " + std::to_string(moved) : std::string())
            << (ratio_hi > 0 ? "; " + fixed(ratio_lo, 1) + "–" + fixed(ratio_hi, 1) + "× the published ROM's wall time"
                             : std::string())
            << ");";
@@ -239,20 +256,6 @@ namespace beamslider
 
   namespace
   {
-    // The class most members of a column took, "split" on a tie.
-    std::string majority(const std::map<std::string, unsigned int> &counts)
-    {
-      std::string best;
-      unsigned int n = 0;
-      bool tie       = false;
-      for (const auto &[name, k] : counts)
-        if (k > n)
-          best = name, n = k, tie = false;
-        else if (k == n)
-          tie = true;
-      return n == 0 ? "–" : tie ? "split" : best;
-    }
-
     // The published cases' table: a row per case, its checked reference and
     // each model's classes, end state and W₁; then per model the cases where
     // its majority class is the reference's.
@@ -278,7 +281,7 @@ namespace beamslider
              << classes(ref.classes) << " |";
           for (std::size_t i = 0; i + 1 < cs.size(); ++i)
             {
-              const bool same_class = majority(cs[i].classes) == majority(ref.classes);
+              const bool same_class = majority_class(cs[i].classes) == majority_class(ref.classes);
               (same_class && !cs[i].moved ? held : missed)[cs[i].name].push_back(sites[p].label);
               md << " " << classes(cs[i].classes) << "; " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference)
                  << (cs[i].moved ? " **moves at Δt/2**" : "") << (same_class ? "" : " **other class**") << " |";
@@ -304,31 +307,6 @@ namespace beamslider
       return md.str();
     }
 
-    void write_cases_csv(const std::string &dir, const std::vector<StudySite> &sites,
-                         const std::vector<LadderStudy> &ladders)
-    {
-      CsvWriter csv(dir + "/published_cases.csv",
-                    {"case", "model", "time_step_s", "n_modes", "static_corrections", "members", "final_x_median",
-                     "final_x_min", "final_x_max", "w1", "w1_low", "w1_high", "spread", "classes", "majority_class",
-                     "moves_at_half_step", "reference_convergence"});
-      for (std::size_t p = 0; p < sites.size(); ++p)
-        {
-          const ConvergenceCheck *in_t = reference_check(ladders[p]);
-          for (const Column &c : point_columns(ladders[p]))
-            {
-              const bool compared = c.to_reference.n_a > 0;
-              const auto maybe = [compared](const double x) { return compared ? CsvWriter::cell(x) : std::string(); };
-              csv.row({sites[p].label, c.name, CsvWriter::cell(c.model.time_step), CsvWriter::cell(c.model.n_modes),
-                       CsvWriter::cell(c.model.n_static_corrections), CsvWriter::cell(c.position.n),
-                       CsvWriter::cell(c.position.median), CsvWriter::cell(c.position.min),
-                       CsvWriter::cell(c.position.max), maybe(c.to_reference.wasserstein),
-                       maybe(c.to_reference.interval_low), maybe(c.to_reference.interval_high),
-                       maybe(c.to_reference.spread), classes(c.classes), majority(c.classes), c.moved ? "1" : "0",
-                       !compared && in_t ? (in_t->converged ? "converged" : "not converged") : ""});
-            }
-        }
-      csv.close();
-    }
   } // namespace
 
   std::string run_and_describe_region(const std::string &dir, const Scene &scene, const RegionRunSettings &settings)
@@ -344,7 +322,12 @@ namespace beamslider
       share_fe_members(runs, settings.shared_members_root); // the FE references the cases and the ladder may run too
     const RegionStudy study = run_region(scene, points, settings.end_time, settings.members, member_runs_runner(runs),
                                          check_rounds_runner(runs), round_sharer(runs.mpi));
-    write_region_csv(dir, study);
+    write_sites_csv(dir + "/region.csv", {"frequency_hz", "acceleration_m_s2"},
+                    [&points](const std::size_t p) {
+                      return std::vector<std::string>{CsvWriter::cell(points[p].frequency_hz),
+                                                      CsvWriter::cell(points[p].acceleration_m_s2)};
+                    },
+                    study.ladders);
     std::vector<ConvergenceCheck> all_checks;
     for (const LadderStudy &l : study.ladders)
       all_checks.insert(all_checks.end(), l.checks.begin(), l.checks.end());
@@ -390,14 +373,16 @@ namespace beamslider
           md << "–";
         md << " |";
         for (std::size_t i = 0; i + 1 < cs.size(); ++i)
-          md << " " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference)
-             << (cs[i].moved ? " **moves at Δt/2**" : "") << " |";
+          md << " " << classes(cs[i].classes) << "; " << end_state(cs[i]) << ", W₁ " << w1(cs[i].to_reference)
+             << (cs[i].moved ? " **moves at Δt/2**" : "")
+             << (majority_class(cs[i].classes) != majority_class(ref.classes) ? " **other class**" : "") << " |";
         for (std::size_t i = cs.size(); i < first.size(); ++i)
           md << " – |"; // a model this point's ladder lacks
         md << " " << classes(ref.classes) << " |\n";
       }
-    md << "\nEach ROM cell: end x_C/L median [min, max], W₁ of its final positions to the point's reference [90 % "
-          "interval]. The checks' evidence (every trial, its end state and W₁ to the next):\n\n"
+    md << "\nEach ROM cell: its members' outcome classes; end x_C/L median [min, max], W₁ of its final positions to "
+          "the point's reference [90 % interval]; **other class** where its majority class is not the reference's. "
+          "The checks' evidence (every trial, its end state and W₁ to the next):\n\n"
        << describe_convergence(all_checks)
        << "\nFiles: region.csv, region_convergence.csv; member_runs.region.csv (and .check-1.csv, …) hold every "
           "member as it finished. This study took "
@@ -418,7 +403,8 @@ namespace beamslider
       share_fe_members(runs, settings.shared_members_root);
     const std::vector<LadderStudy> ladders = run_sites(sites, case_rungs, settings.members, member_runs_runner(runs),
                                                        check_rounds_runner(runs), round_sharer(runs.mpi));
-    write_cases_csv(dir, sites, ladders);
+    write_sites_csv(dir + "/published_cases.csv", {"case"},
+                    [&sites](const std::size_t p) { return std::vector<std::string>{sites[p].label}; }, ladders);
     std::vector<ConvergenceCheck> all_checks;
     for (const LadderStudy &l : ladders)
       all_checks.insert(all_checks.end(), l.checks.begin(), l.checks.end());

@@ -5,11 +5,9 @@
 // state and W₁ to that reference. Files written into the report folder:
 //   member_runs.region.csv, member_runs.region.check-1.csv, …
 //                     every finished member (the resume record)
-//   region.csv        one row per point and model: point, model, step,
-//                     members, final x_C/L median/min/max, final amplitude
-//                     median, W₁ to the reference with its interval and the
-//                     spread, distinguishable, outcome classes, and for the
-//                     reference the convergence status
+//   region.csv        one row per point and model: point (frequency,
+//                     acceleration), then the columns published_cases.csv
+//                     has after its case (below; one writer for both)
 //   region_convergence.csv  every point's checks (report_convergence.h)
 #pragma once
 
@@ -51,10 +49,11 @@ namespace beamslider
   // their Markdown: a row per case with the classes of every model and of
   // the checked reference, and per model the cases whose class it takes.
   // Files: published_cases.csv (one row per case and model: step, modes,
-  // corrections, members, final x_C/L median/min/max, W₁ to the reference
-  // with interval and spread, classes, majority class, whether it moved at
-  // Δt/2, the reference's convergence), published_cases_convergence.csv,
-  // member_runs.cases.csv.
+  // corrections, members, final x_C/L median/min/max, final amplitude
+  // median, W₁ to the reference with interval and spread, distinguishable,
+  // classes, majority class, alike (region_verdict.h's
+  // alike_with_reference), whether it moved at Δt/2, the reference's
+  // convergence), published_cases_convergence.csv, member_runs.cases.csv.
   std::string run_and_describe_cases(const std::string &dir, const std::vector<StudySite> &sites,
                                      const RegionRunSettings &settings);
   void work_on_case_members(const std::vector<StudySite> &sites, const RegionRunSettings &settings);

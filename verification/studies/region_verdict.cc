@@ -210,4 +210,34 @@ namespace beamslider
       sites.push_back({c.name, read_case_scene(scene_file, c, overrides)});
     return sites;
   }
+
+  ClassCounts class_counts(const std::vector<EnsembleMember> &members)
+  {
+    ClassCounts counts;
+    for (const EnsembleMember &m : members)
+      if (m.analysis.valid)
+        ++counts[to_string(m.analysis.outcome)];
+    return counts;
+  }
+
+  std::string majority_class(const ClassCounts &counts)
+  {
+    std::string best;
+    unsigned int n = 0;
+    bool tie       = false;
+    for (const auto &[name, k] : counts)
+      if (k > n)
+        best = name, n = k, tie = false;
+      else if (k == n)
+        tie = true;
+    return n == 0 ? "–" : tie ? "split" : best;
+  }
+
+  bool alike_with_reference(const SampleComparison &end_positions, const ClassCounts &model,
+                            const ClassCounts &reference)
+  {
+    const std::string a = majority_class(model), b = majority_class(reference);
+    const bool decided  = a != "–" && a != "split" && b != "–" && b != "split";
+    return decided && a == b && ends_alike(end_positions);
+  }
 } // namespace beamslider

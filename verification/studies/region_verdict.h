@@ -18,9 +18,11 @@
 #pragma once
 
 #include "meshes/scene.h"
+#include "verification/studies/convergence_check.h"
 #include "verification/studies/error_ladder.h"
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -76,6 +78,25 @@ namespace beamslider
   // static corrections, each also at Δt/2) and the FE reference, proving
   // itself, last.
   std::vector<LadderRung> case_rungs(const Scene &scene, std::size_t &reference);
+
+  // How many of a model's members took each outcome class (the trace
+  // analysis's names; members without a valid analysis count for none).
+  using ClassCounts = std::map<std::string, unsigned int>;
+  ClassCounts class_counts(const std::vector<EnsembleMember> &members);
+
+  // The class most members took; "split" when two classes tie for most, "–"
+  // with no member.
+  std::string majority_class(const ClassCounts &counts);
+
+  // Whether a model ends alike with the reference at a point: both have a
+  // majority class, the same one, and their end positions end alike
+  // (convergence_check.h's ends_alike: indistinguishable, or closer than the
+  // resolution). A model or reference whose members split evenly is not
+  // alike: its class is undecided with these members. End positions alone
+  // would call a model alike whose members relax where the reference's make
+  // the signature move, when both classes end near the same x_C.
+  bool alike_with_reference(const SampleComparison &end_positions, const ClassCounts &model,
+                            const ClassCounts &reference);
 
   struct RegionStudy
   {
