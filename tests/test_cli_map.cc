@@ -161,6 +161,37 @@ TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
 }
 
 
+namespace
+{
+  // The map the stop tests stop: 5 × 3 cells of 2 members over 10 s, about
+  // 0.3 s a member.
+  std::vector<std::string> stopped_map(const std::filesystem::path &out)
+  {
+    return {BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:2.5", "--acceleration", "10:14:2", "--members", "2",
+            "--end-time", "10", "--output", out.string()};
+  }
+
+  // The lines of `dir`/map.csv so far (0 before it exists).
+  std::size_t rows_of(const std::filesystem::path &dir)
+  {
+    return std::filesystem::exists(dir / "map.csv") ? sorted_lines(dir / "map.csv").size() : 0;
+  }
+
+  // After `args` (stopped_map into `two`) was stopped under mpirun:
+  // run.txt says interrupted (143), map.csv holds whole cells but not all;
+  // run again, it holds the `reference` rows of an uninterrupted run.
+  void expect_stopped_then_completed(const std::vector<std::string> &args, const std::vector<std::string> &reference,
+                                     const std::filesystem::path &two)
+  {
+    const std::string record = read_file(two / "run.txt");
+    EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+    EXPECT_LT(rows_of(two), reference.size()) << "the run ended before the signal";
+    EXPECT_EQ((rows_of(two) - 1) % 2, 0u) << "a cell's rows are written together";
+    ASSERT_EQ(run_program(args), 0);
+    EXPECT_EQ(sorted_lines(two / "map.csv"), reference);
+  }
+} // namespace
+
 // A map on two ranks stopped by SIGTERM to its ranks ends as interrupted
 // (exit 143 in run.txt) with whole cells in map.csv; run again into its
 // folder, it computes only the cells not done and ends with the rows of one
@@ -168,28 +199,17 @@ TEST(MapCommand, TwoRanksUnderMpirunGiveTheRowsOfOneProcess)
 TEST(MapCommand, TwoRanksStoppedBySigtermAndRunAgainGiveTheRowsOfOneProcess)
 {
   const auto one = fresh("stopped_one"), two = fresh("stopped_two"), pids = fresh("stopped_pids");
-  // 5 × 3 cells of 2 members over 10 s: about 0.3 s a member.
-  const auto map = [](const std::filesystem::path &out) {
-    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:2.5", "--acceleration",
-                                    "10:14:2", "--members", "2", "--end-time", "10", "--output", out.string()};
-  };
-  ASSERT_EQ(run_program(map(one)), 0);
+  ASSERT_EQ(run_program(stopped_map(one)), 0);
   const std::vector<std::string> reference = sorted_lines(one / "map.csv");
   ASSERT_EQ(reference.size(), 1u + 15 * 2);
   std::filesystem::create_directories(pids);
-  const std::vector<std::string> args = beamslider::testing::two_ranks_recording_pids(pids.string(), map(two));
-  const auto rows = [&] { return std::filesystem::exists(two / "map.csv") ? sorted_lines(two / "map.csv").size() : 0; };
+  const std::vector<std::string> args = beamslider::testing::two_ranks_recording_pids(pids.string(), stopped_map(two));
   // The signal once two cells are in map.csv, a second into a run of five.
   bool sent = false;
-  const auto two_cells = [&] { return rows() >= 1 + 2 * 2; };
+  const auto two_cells = [&] { return rows_of(two) >= 1 + 2 * 2; };
   EXPECT_EQ(run_program(args, beamslider::testing::signal_ranks_when(pids.string(), two_cells, SIGTERM, sent)), 143);
   ASSERT_TRUE(sent);
-  const std::string record = read_file(two / "run.txt");
-  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
-  EXPECT_LT(rows(), reference.size()) << "the run ended before the signal";
-  EXPECT_EQ((rows() - 1) % 2, 0u) << "a cell's rows are written together";
-  ASSERT_EQ(run_program(args), 0);
-  EXPECT_EQ(sorted_lines(two / "map.csv"), reference);
+  expect_stopped_then_completed(args, reference, two);
   for (const auto &d : {one, two, pids})
     std::filesystem::remove_all(d);
 }
@@ -201,24 +221,14 @@ TEST(MapCommand, TwoRanksStoppedBySigtermAndRunAgainGiveTheRowsOfOneProcess)
 TEST(MapCommand, MpirunStoppedByCtrlCRecordsTheInterruptionAndRunsAgainToTheRowsOfOneProcess)
 {
   const auto one = fresh("launcher_one"), two = fresh("launcher_two");
-  const auto map = [](const std::filesystem::path &out) {
-    return std::vector<std::string>{BEAMSLIDER_EXECUTABLE, "map", "--frequency", "115:125:2.5", "--acceleration",
-                                    "10:14:2", "--members", "2", "--end-time", "10", "--output", out.string()};
-  };
-  ASSERT_EQ(run_program(map(one)), 0);
+  ASSERT_EQ(run_program(stopped_map(one)), 0);
   const std::vector<std::string> reference = sorted_lines(one / "map.csv");
   std::vector<std::string> args = {"mpirun", "-np", "2", "--oversubscribe"};
-  const std::vector<std::string> program = map(two);
+  const std::vector<std::string> program = stopped_map(two);
   args.insert(args.end(), program.begin(), program.end());
-  const auto rows = [&] { return std::filesystem::exists(two / "map.csv") ? sorted_lines(two / "map.csv").size() : 0; };
-  const auto two_cells = [&] { return rows() >= 1 + 2 * 2; };
+  const auto two_cells = [&] { return rows_of(two) >= 1 + 2 * 2; };
   EXPECT_NE(beamslider::testing::run_clean_mpi_program(args, two_cells, SIGINT), 0);
-  const std::string record = read_file(two / "run.txt");
-  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
-  EXPECT_LT(rows(), reference.size()) << "the run ended before the signal";
-  EXPECT_EQ((rows() - 1) % 2, 0u) << "a cell's rows are written together";
-  ASSERT_EQ(run_program(args), 0);
-  EXPECT_EQ(sorted_lines(two / "map.csv"), reference);
+  expect_stopped_then_completed(args, reference, two);
   for (const auto &d : {one, two})
     std::filesystem::remove_all(d);
 }

@@ -206,6 +206,26 @@ TEST(MemberRuns, TwoRanksUnderMpirunGiveTheMembersOfOneProcess)
     fs::remove_all(d);
 }
 
+namespace
+{
+  // After `args` (a 12-member ensemble into `two`) was stopped by SIGTERM
+  // under mpirun: run.txt says interrupted (143) and member_runs.csv keeps
+  // some members but not all; run again, the folder ends with the members
+  // of `one`, the same ensemble run by one process uninterrupted.
+  void expect_stopped_then_completed(const std::vector<std::string> &args, const fs::path &one, const fs::path &two)
+  {
+    const std::string record = read_file(two / "run.txt");
+    EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
+    const std::size_t kept = lines(two / "member_runs.csv").size() - 2;
+    EXPECT_GE(kept, 2u);
+    EXPECT_LT(kept, 12u) << "the run ended before the signal";
+    ASSERT_EQ(run_program(args), 0);
+    EXPECT_EQ(lines(two / "member_runs.csv").size() - 2, 12u);
+    EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
+    EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+  }
+} // namespace
+
 // An ensemble on two ranks stopped by SIGTERM to its ranks (a scheduler's
 // stop, or `kill` of the job's processes) ends as interrupted, exit 143 in
 // run.txt, keeping the members finished; run again into its folder, it
@@ -227,15 +247,7 @@ TEST(MemberRuns, TwoRanksStoppedBySigtermAndRunAgainGiveTheMembersOfOneProcess)
   const auto two_done = [&] { return fs::exists(two / "member_runs.csv") && lines(two / "member_runs.csv").size() >= 4; };
   EXPECT_EQ(run_program(args, beamslider::testing::signal_ranks_when(pids.string(), two_done, SIGTERM, sent)), 143);
   ASSERT_TRUE(sent);
-  const std::string record = read_file(two / "run.txt");
-  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
-  const std::size_t kept = lines(two / "member_runs.csv").size() - 2;
-  EXPECT_GE(kept, 2u);
-  EXPECT_LT(kept, 12u) << "the run ended before the signal";
-  ASSERT_EQ(run_program(args), 0);
-  EXPECT_EQ(lines(two / "member_runs.csv").size() - 2, 12u);
-  EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
-  EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+  expect_stopped_then_completed(args, one, two);
   for (const auto &d : {one, two, pids})
     fs::remove_all(d);
 }
@@ -259,15 +271,7 @@ TEST(MemberRuns, MpirunStoppedBySigtermRecordsTheInterruptionAndRunsAgainToTheMe
   args.insert(args.end(), program.begin(), program.end());
   const auto two_done = [&] { return fs::exists(two / "member_runs.csv") && lines(two / "member_runs.csv").size() >= 4; };
   EXPECT_NE(run_program(args, two_done, SIGTERM), 0);
-  const std::string record = read_file(two / "run.txt");
-  EXPECT_NE(record.find("interrupted (exit 143)"), std::string::npos) << record;
-  const std::size_t kept = lines(two / "member_runs.csv").size() - 2;
-  EXPECT_GE(kept, 2u);
-  EXPECT_LT(kept, 12u) << "the run ended before the signal";
-  ASSERT_EQ(run_program(args), 0);
-  EXPECT_EQ(lines(two / "member_runs.csv").size() - 2, 12u);
-  EXPECT_EQ(without_column(two / "members.csv", "wall_s"), without_column(one / "members.csv", "wall_s"));
-  EXPECT_EQ(read_file(two / "statistics.csv"), read_file(one / "statistics.csv"));
+  expect_stopped_then_completed(args, one, two);
   for (const auto &d : {one, two})
     fs::remove_all(d);
 }
