@@ -20,7 +20,7 @@ namespace beamslider
     sigaction(SIGTERM, &action, nullptr);
     std::signal(SIGXFSZ, SIG_IGN);
     // A chart process that died early must not kill the run when the run
-    // writes its arguments to it (verification/studies/child_process.h): the write
+    // writes its arguments to it (runtime/child_process.h): the write
     // fails with EPIPE instead, and the failure is reported.
     std::signal(SIGPIPE, SIG_IGN);
   }

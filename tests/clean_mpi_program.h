@@ -5,7 +5,7 @@
 // opt-in for root (CI runs as root in a container).
 #pragma once
 
-#include "verification/studies/child_process.h"
+#include "runtime/child_process.h"
 
 #include <chrono>
 #include <csignal>

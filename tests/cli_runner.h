@@ -13,7 +13,7 @@
 
 #include "tests/fresh_folder.h"
 #include "tests/read_text_file.h"
-#include "verification/studies/child_process.h"
+#include "runtime/child_process.h"
 
 #include <algorithm>
 #include <atomic>

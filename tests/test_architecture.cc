@@ -3,8 +3,8 @@
 // doc/architecture.md's:
 //   numerics (Newton, a state's bytes, the stop request), io (files),
 //   meshes (the Scene) ← contact (the contact step) ← reduced ← fem
-//   ← fem/output (the FE model's files), runs (runs and traces)
-//   ← verification/studies ← verification/report ← the front ends:
+//   ← fem/output (the FE model's files), runs (runs and traces), runtime
+//   (child processes, MPI ranks, threads, the build) ← verification/studies ← verification/report ← the front ends:
 //   verification/cli, python and verification/benchmarks.
 // The models (contact/, reduced/, fem/) do not include io/: they write no
 // file; what they save for a checkpoint goes through numerics/state_bytes.h.
@@ -32,7 +32,7 @@ namespace
   const int studies_rank = 5;
   const std::vector<std::pair<std::string, int>> layers = {
     {"numerics", 0}, {"io", 0}, {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"fem/output", 4},
-    {"runs", 4}, {"verification/studies", studies_rank}, {"verification/report", 6}, {"verification/cli", 7},
+    {"runs", 4}, {"runtime", 4}, {"verification/studies", studies_rank}, {"verification/report", 6}, {"verification/cli", 7},
     {"python", 7}, {"verification/benchmarks", 7}};
 
   bool is_model(const std::string &path)
@@ -139,7 +139,7 @@ namespace
   const std::map<std::string, int> library_ranks = {
     {"beamslider_numerics", 0}, {"beamslider_io", 0},     {"beamslider_scene", 0},      {"beamslider_contact", 1},
     {"beamslider_reduced", 2},  {"beamslider_fem", 3},    {"beamslider_fem_output", 4}, {"beamslider_runs", 4},
-    {"beamslider_studies", 5},  {"beamslider_report", 6}, {"beamslider_cli", 7}};
+    {"beamslider_runtime", 4},  {"beamslider_studies", 5},  {"beamslider_report", 6}, {"beamslider_cli", 7}};
 
   // "A links B" for every target_link_libraries(A ... B ...) of a library
   // in `cmake` (the text of CMakeLists.txt files) whose B ranks above A.
@@ -202,7 +202,7 @@ TEST(Architecture, TheDocsNameOnlyPathsThatExist)
 {
   const fs::path root = BEAMSLIDER_SOURCE_DIR;
   const std::regex path_in_text(
-    R"re((^|[^A-Za-z0-9_/.-])((numerics|io|runs|contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
+    R"re((^|[^A-Za-z0-9_/.-])((numerics|io|runs|runtime|contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
   std::vector<fs::path> docs = {root / "README.md"};
   for (const auto &entry : fs::directory_iterator(root / "doc"))
     if (entry.path().extension() == ".md")

@@ -3,7 +3,7 @@ issue 74): killed with it, so that a run killed with kill -9 while its
 chart is drawn leaves no writer behind in a folder the next run may take,
 and never started once its run is gone. The "run" here is a process that
 starts a chart the way beamslider does (BEAMSLIDER_PARENT_PID in the
-environment: verification/studies/child_process.cc) and is then killed."""
+environment: runtime/child_process.cc) and is then killed."""
 import os
 import signal
 import subprocess

@@ -5,7 +5,7 @@
 // written costs the parent neither a SIGPIPE nor a hang, only a reported
 // failure.
 #include "io/interruption.h"
-#include "verification/studies/child_process.h"
+#include "runtime/child_process.h"
 #include "tests/read_text_file.h"
 
 #include <gtest/gtest.h>

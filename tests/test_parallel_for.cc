@@ -1,9 +1,9 @@
-// verification/studies/parallel_for.h: every item runs exactly once on any
+// runtime/parallel_for.h: every item runs exactly once on any
 // number of threads, items start in ascending order, no more run at once
 // than asked for, and an item that throws ends the loop with that exception
 // in the caller (all threads joined, every started item finished) instead
 // of std::terminate.
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "verification/studies/coefficient_methods.h"
 #include "io/console.h"
 

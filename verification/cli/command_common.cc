@@ -5,7 +5,7 @@
 #include "verification/cli/commands.h"
 #include "verification/report/member_files.h"
 #include "verification/studies/simulation.h"
-#include "verification/studies/build_info.h"
+#include "runtime/build_info.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <ctime>

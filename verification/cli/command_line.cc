@@ -14,7 +14,7 @@
 #include "meshes/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "io/console.h"
 #include "verification/studies/fe_rom_study.h"
 

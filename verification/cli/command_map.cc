@@ -2,7 +2,7 @@
 // A:B:STEP [--start A:B:STEP] [--axis "Section/Name=A:B:STEP"]... [--members K]
 // [--model rom|fe] [--end-time S]`: the adaptation on every cell of a grid
 // (verification/studies/operating_map.h), spread over MPI ranks
-// (verification/studies/mpi_cells.h); map.csv is written and read back by
+// (runtime/mpi_cells.h); map.csv is written and read back by
 // verification/report/map_files.h.
 //
 // Writes into the output folder:
@@ -29,7 +29,7 @@
 #include "verification/cli/study_results.h"
 #include "verification/report/map_files.h"
 #include "numerics/elapsed.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "io/console.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/operating_map.h"

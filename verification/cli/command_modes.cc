@@ -8,7 +8,7 @@
 #include "meshes/scene.h"
 #include "reduced/beam_backbone.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "io/console.h"
 
 #include <chrono>

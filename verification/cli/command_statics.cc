@@ -27,7 +27,7 @@
 #include "meshes/scene.h"
 #include "numerics/elapsed.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "io/console.h"
 
 #include <chrono>

@@ -6,7 +6,7 @@
 #include "io/input_file.h"
 #include "io/output_file.h"
 #include "numerics/state_bytes.h"
-#include "verification/studies/build_info.h"
+#include "runtime/build_info.h"
 #include "verification/studies/model_choice.h"
 
 #include <algorithm>

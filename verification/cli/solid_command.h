@@ -7,7 +7,7 @@
 #include "fem/petsc_session.h"
 #include "meshes/scene.h"
 #include "verification/cli/commands.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 
 #include <deal.II/base/mpi.h>
 

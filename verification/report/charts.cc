@@ -2,7 +2,7 @@
 
 #include "fem/petsc_session.h"
 #include "meshes/source_directory.h"
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 
 #include <iostream>
 

@@ -4,7 +4,7 @@
 // a command end with status 1.
 #pragma once
 
-#include "verification/studies/child_process.h"
+#include "runtime/child_process.h"
 
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 #include "numerics/elapsed.h"
 
 #include "contact/beam_system.h"
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 
 #include "verification/studies/ensemble.h"
 #include "verification/studies/fe_rom_study.h"
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 
 #include <algorithm>
 #include <stdexcept>

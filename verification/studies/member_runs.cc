@@ -2,7 +2,7 @@
 #include "verification/studies/member_runs.h"
 
 #include "numerics/stop_request.h"
-#include "verification/studies/build_info.h"
+#include "runtime/build_info.h"
 #include "numerics/elapsed.h"
 #include "verification/studies/model_choice.h"
 #include "verification/studies/simulation_cases.h"

@@ -16,7 +16,7 @@
 // on_progress.
 #pragma once
 
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 

@@ -4,7 +4,7 @@
 #include "runs/adaptation_run.h"
 #include "contact/beam_system.h"
 #include "numerics/stop_request.h"
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 #include "verification/studies/simulation_cases.h"
 
 #include <cctype>

@@ -14,7 +14,7 @@
 #include "reduced/resonance_curve.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/studies/number_text.h"
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 
 #include <chrono>
 #include <cmath>

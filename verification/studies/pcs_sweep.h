@@ -10,7 +10,7 @@
 // its points) and show progress. The files of a sweep and their columns are
 // verification/report/pcs_files.h's. The two branches and the free run are
 // independent runs and go on the machine's cores at once
-// (verification/studies/parallel_for.h): each branch's points reach the
+// (runtime/parallel_for.h): each branch's points reach the
 // observer in its own order, the two branches' points interleaved.
 #pragma once
 

@@ -3,7 +3,7 @@
 // more threads than items). Items are taken in ascending order as threads
 // become free, so items of very different cost keep every thread busy.
 // Used by ensembles (members) and maps (cells) within one process; across
-// processes a map uses MPI (verification/studies/mpi_cells.h).
+// processes a map uses MPI (runtime/mpi_cells.h).
 //
 // If an item throws, no further items are started, the items already running
 // finish, every thread is joined, and the first exception is rethrown to the

@@ -1,5 +1,5 @@
 // posix_spawn with an argument vector, see child_process.h.
-#include "verification/studies/child_process.h"
+#include "runtime/child_process.h"
 
 #include <cerrno>
 #include <csignal>

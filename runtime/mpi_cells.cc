@@ -1,8 +1,8 @@
 // Manager–worker distribution of cells over MPI, see mpi_cells.h.
-#include "verification/studies/mpi_cells.h"
+#include "runtime/mpi_cells.h"
 
 #include "meshes/scene.h"
-#include "verification/studies/parallel_for.h"
+#include "runtime/parallel_for.h"
 
 #include "fem/petsc_session.h"
 

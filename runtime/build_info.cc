@@ -1,4 +1,4 @@
-#include "verification/studies/build_info.h"
+#include "runtime/build_info.h"
 
 #include "build_info_values.h" // generated: version, revision, instruction set
 
