@@ -9,9 +9,9 @@ runs twice takes 5-7 min each on 2 cores): in a fresh working folder,
   2. one digit of a number in the cached table is changed;
   3. `simulate --model auto` again: the cache is refused with a notice, the
      ladder is run again, the same model is picked, and the new cache holds
-     the rows of the first: the same rungs and flags, the numbers equal to
-     1e-6 (the second run may take FE members from the store the first kept,
-     whose numbers are written to 10 digits).
+     the rows of the first (compared to 1e-6; the title line, which names
+     the build, is not compared: rebuild nothing while this runs, or give it
+     a copy of the executable).
 
 Prints each run's wall time and exits 1 if a check fails. Usage:
 
