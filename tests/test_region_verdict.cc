@@ -15,6 +15,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 
 using namespace beamslider;
@@ -224,7 +225,7 @@ TEST(RegionVerdict, ThePublishedCasesCountTheClassesTheirFileHolds)
   const std::filesystem::path dir = beamslider::testing::fresh_folder("published_cases");
   const std::vector<StudySite> sites = published_case_sites(mueller, {"Time stepping/End time=0.3"});
   RegionRunSettings settings;
-  settings.members       = 2;
+  settings.members       = 4; // 4 of 4 in one class decide it (2 of 2 would grow to 6)
   const std::string md   = run_and_describe_cases(dir.string(), sites, settings);
 
   std::ifstream file(dir / "published_cases.csv");
@@ -310,4 +311,127 @@ TEST(RegionVerdict, AlikeNeedsTheReferencesMajorityClassAndItsEndState)
   // A reference split evenly decides no class: nothing is alike with it.
   EXPECT_FALSE(alike_with_reference(compare_samples(final_positions(same), final_positions(split)),
                                     class_counts(same), class_counts(split)));
+}
+
+// The sign test's p-values against the binomial sums written out:
+// P(X ≥ k | n, ½) = Σ_{j ≥ k} C(n, j) / 2ⁿ.
+TEST(RegionVerdict, AMajorityClassIsDecidedByTheSignTest)
+{
+  const std::string a = "signature move", b = "no adaptation";
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 4}}), 1. / 16);
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 3}, {b, 1}}), (4. + 1) / 16);
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 1}, {b, 7}}), (8. + 1) / 256);
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 6}, {b, 2}}), (28. + 8 + 1) / 256);
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 9}, {b, 3}}), (220. + 66 + 12 + 1) / 4096);
+  EXPECT_DOUBLE_EQ(majority_p_value({{a, 2}, {b, 2}}), 1.); // a tie decides nothing
+  EXPECT_DOUBLE_EQ(majority_p_value({}), 1.);
+  EXPECT_TRUE(majority_decided({{a, 4}}));
+  EXPECT_FALSE(majority_decided({{a, 3}, {b, 1}}));
+  EXPECT_TRUE(majority_decided({{a, 7}, {b, 1}}));
+  EXPECT_FALSE(majority_decided({{a, 6}, {b, 2}}));
+}
+
+// Members whose classes split get more members, round by round: at the
+// second point N = 20's members 0–3 split 2–2 and every later one makes the
+// signature move (decided at 12: 10 of 12); at the third point the
+// reference's split 3–1 (decided at 8: 7 of 8); at the fourth N = 10's
+// members alternate, so it stops at the ceiling, still split. Every other
+// rung keeps its 4 members, and nothing else reruns.
+TEST(RegionVerdict, ASplitRungGainsMembersUntilItsClassIsDecided)
+{
+  const Scene scene                        = read_scene(mueller);
+  const std::vector<OperatingPoint> points = signature_move_region(scene);
+  const double dt = scene.time_stepping.time_step, fe_dt = scene.time_stepping.fe_time_step;
+  const auto sig = AdaptationClass::signature_move, none = AdaptationClass::no_adaptation;
+  const auto at = [&](const MemberGroup &g, const std::size_t p) {
+    return g.scene.excitation.frequency_hz == points[p].frequency_hz &&
+           g.scene.excitation.acceleration_amplitude == points[p].acceleration_m_s2;
+  };
+  const auto outcome = [&](const MemberGroup &g, const unsigned int index) {
+    if (at(g, 1) && g.model.family == "rom" && g.model.n_modes == 20)
+      return index >= 4 || index < 2 ? sig : none;
+    if (at(g, 2) && g.model.family == "fe" && g.model.time_step == fe_dt)
+      return index == 1 ? none : sig;
+    if (at(g, 3) && g.model.family == "rom" && g.model.n_modes == 10 && g.model.time_step == dt / 2)
+      return index % 2 ? none : sig;
+    return sig;
+  };
+  std::vector<std::size_t> round_sizes;
+  std::vector<unsigned int> first_members;
+  // Each group as the ranks name it, and what rank 0 shares with the others.
+  const auto signature = [](const MemberGroup &g) {
+    return g.name + " | " + g.model.label() + " | " + std::to_string(g.first_member) + "+" +
+           std::to_string(g.n_members);
+  };
+  std::vector<std::string> rank0_groups, other_rank_groups;
+  std::vector<unsigned long> shared;
+  const auto share = [&](const unsigned long x) {
+    shared.push_back(x);
+    return x;
+  };
+  const MemberGroupRunner fabricate = [&](const std::vector<MemberGroup> &groups) {
+    round_sizes.push_back(groups.size());
+    std::vector<std::vector<EnsembleMember>> out;
+    for (const MemberGroup &g : groups)
+      {
+        rank0_groups.push_back(signature(g));
+        if (g.first_member > 0)
+          first_members.push_back(g.first_member);
+        std::vector<EnsembleMember> members = ending_at(0.40, g.n_members);
+        for (unsigned int m = 0; m < g.n_members; ++m)
+          {
+            members[m].index            = g.first_member + m;
+            members[m].analysis.outcome = outcome(g, members[m].index);
+          }
+        out.push_back(members);
+      }
+    return out;
+  };
+  const RegionStudy study = run_region(scene, points, 40., 4, fabricate, fabricate, share);
+  EXPECT_EQ(round_sizes, (std::vector<std::size_t>{13 * points.size(), 3, 2, 1}));
+  EXPECT_EQ(first_members, (std::vector<unsigned int>{4, 4, 4, 8, 8, 12}));
+
+  // The other MPI ranks, told only what rank 0 shared, compute the same
+  // groups in the same rounds (they never see a member).
+  std::size_t next = 0;
+  work_on_region(
+    scene, points, 40., 4,
+    [&](const std::vector<MemberGroup> &groups) {
+      for (const MemberGroup &g : groups)
+        other_rank_groups.push_back(signature(g));
+    },
+    [&](unsigned long) { return next < shared.size() ? shared[next++] : ~0ul; });
+  EXPECT_EQ(next, shared.size());
+  EXPECT_EQ(other_rank_groups, rank0_groups);
+
+  const auto rung_of = [&](const std::size_t p, const std::function<bool(const ModelSetting &)> &is) {
+    const LadderStudy &l = study.ladders[p];
+    for (const LadderRungResult &r : l.rungs)
+      if (is(r.rung.model))
+        return &r;
+    return static_cast<const LadderRungResult *>(nullptr);
+  };
+  const LadderRungResult *n20  = rung_of(1, [](const ModelSetting &m) { return m.family == "rom" && m.n_modes == 20; });
+  const LadderRungResult *ref  = &study.ladders[2].rungs[study.ladders[2].reference];
+  const LadderRungResult *n10  = rung_of(3, [&](const ModelSetting &m) { return m.n_modes == 10 && m.family == "rom"; });
+  ASSERT_TRUE(n20 && n10);
+  EXPECT_EQ(n20->members.size(), 12u);
+  EXPECT_EQ(class_counts(n20->members), (ClassCounts{{to_string(sig), 10}, {to_string(none), 2}}));
+  EXPECT_TRUE(majority_decided(class_counts(n20->members)));
+  EXPECT_EQ(n20->outcome_classes.at(to_string(sig)), 10u); // the ladder assembled again with them
+  EXPECT_EQ(ref->members.size(), 8u);
+  EXPECT_EQ(majority_class(class_counts(ref->members)), to_string(sig));
+  EXPECT_EQ(n10->members.size(), std::size_t(class_members_ceiling));
+  EXPECT_EQ(majority_class(class_counts(n10->members)), "split");
+  for (std::size_t m = 0; m < n10->members.size(); ++m)
+    EXPECT_EQ(n10->members[m].index, m);
+  std::size_t grown = 0;
+  for (const LadderStudy &l : study.ladders)
+    {
+      EXPECT_EQ(l.members, 4u);
+      for (const LadderRungResult &r : l.rungs)
+        grown += r.members.size() != 4;
+      EXPECT_TRUE(l.proven());
+    }
+  EXPECT_EQ(grown, 3u);
 }

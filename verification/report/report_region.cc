@@ -111,6 +111,19 @@ namespace beamslider
     // model, its members' end state and classes, its W₁ to the site's
     // reference and whether it is alike there (region_verdict.h); the
     // reference's row says whether it converged in Δt.
+    // How the members of a model whose classes split are added to.
+    std::string class_rounds_sentence()
+    {
+      std::ostringstream s;
+      s << "A model (or reference) whose members do not decide its outcome class runs " << class_members_step
+        << " more members at a time, up to " << class_members_ceiling
+        << ": decided means the sign test puts the majority class above a coin's toss with "
+        << std::lround(100 * (1 - class_decision_level))
+        << " % confidence (4 of 4, 7 of 8, 9 of 12, 12 of 16); its class counts say how many members it ran, and "
+           "its end state and W₁ are over all of them (the convergence checks are judged on the first members).";
+      return s.str();
+    }
+
     void write_sites_csv(const std::string &path, const std::vector<std::string> &site_header,
                          const std::function<std::vector<std::string>(std::size_t)> &site_cells,
                          const std::vector<LadderStudy> &ladders)
@@ -343,7 +356,8 @@ namespace beamslider
        << reference_max_halvings
        << " times) until two steps end alike; the ROM with N = 20 is checked against N = 30 the same way, and "
           "its members are the N = 30 column; every other ROM runs at half its step too, once, and a cell says "
-          "where that moved it.\n\n"
+          "where that moved it. "
+       << class_rounds_sentence() << "\n\n"
        << region_summary(study);
     // The header from the first point's columns: every point has the same models.
     const std::vector<Column> first = point_columns(study.ladders.front());
@@ -415,7 +429,8 @@ namespace beamslider
           "published cases (section 4)? Each case runs as `ensemble --case` runs it, "
        << settings.members
        << " members over the case's end time, with the published ROM, the front's candidates of the quick ladder "
-          "(each also at half its step) and the FE reference, which proves itself as in 5.0.\n\n"
+          "(each also at half its step) and the FE reference, which proves itself as in 5.0. "
+       << class_rounds_sentence() << "\n\n"
        << describe_cases(sites, ladders) << "The checks' evidence:\n\n"
        << describe_convergence(all_checks)
        << "\nFiles: published_cases.csv, published_cases_convergence.csv, member_runs.cases.csv (and its "

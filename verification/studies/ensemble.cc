@@ -228,7 +228,8 @@ namespace beamslider
     std::mutex report;
     parallel_for(order.size(), n_threads, [&](const std::size_t i) {
       const auto [g, m]     = group_and_member(groups, order[i]);
-      EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
+      EnsembleMember member =
+        run_member(groups[g].scene, groups[g].model, groups[g].first_member + m, groups[g].perturbation);
       const std::lock_guard<std::mutex> lock(report);
       members[g][m] = std::move(member);
       if (on_member)

@@ -58,8 +58,13 @@ namespace beamslider
     ModelSetting model;
     unsigned int n_members = 0;
     double perturbation    = 0; // ε [-]
+    // Member m of the group is member first_member + m of its ensemble
+    // (start x_C/L + (first_member + m)·ε): more members of an ensemble
+    // that ran members 0 … first_member − 1 before.
+    unsigned int first_member = 0;
   };
-  // Member m of group g is run number offset(g) + m of the list.
+  // Member m of group g is run number offset(g) + m of the list (m counts
+  // from 0 in every group; its member index is first_member + m).
   std::size_t n_runs(const std::vector<MemberGroup> &groups);
   std::pair<std::size_t, unsigned int> group_and_member(const std::vector<MemberGroup> &groups, std::size_t run);
   // The runs longest first by the stated cost model (cost_per_simulated_second

@@ -69,7 +69,7 @@ namespace beamslider
             throw InputError("--members 0: an ensemble needs at least one member");
           Scene s = g.scene;
           validate_scene(s);
-          s.initial.slider_position_over_L += (g.n_members - 1) * g.perturbation;
+          s.initial.slider_position_over_L += (g.first_member + g.n_members - 1) * g.perturbation;
           if (!(s.initial.slider_position_over_L <= 1.))
             throw InputError("--perturbation " + std::to_string(g.perturbation) +
                              " moves the last member's start beyond the beam");
@@ -105,10 +105,13 @@ namespace beamslider
             std::size_t g = 0;
             std::string name;
             EnsembleMember m = member_from_record(cells, thresholds[g0], g, name);
-            if (g != g0 || name != groups[g].name || m.index >= groups[g].n_members || have[g][m.index])
+            if (g != g0 || name != groups[g].name || m.index < groups[g].first_member)
               return false;
-            have[g][m.index]    = true;
-            members[g][m.index] = std::move(m);
+            const unsigned int k = m.index - groups[g].first_member;
+            if (k >= groups[g].n_members || have[g][k])
+              return false;
+            have[g][k]    = true;
+            members[g][k] = std::move(m);
             return true;
           }
         catch (const std::invalid_argument &)
@@ -225,7 +228,7 @@ namespace beamslider
         for (const std::size_t run : table.todo())
           {
             const auto [g, m] = group_and_member(groups, run);
-            std::optional<std::vector<std::string>> record = settings.cached(groups[g], member_cache_key(groups[g], m));
+            std::optional<std::vector<std::string>> record = settings.cached(groups[g], member_cache_key(groups[g], groups[g].first_member + m));
             if (!record || record->size() != member_record_columns().size())
               continue;
             (*record)[0] = std::to_string(g); // this study's group and its name
@@ -252,11 +255,11 @@ namespace beamslider
           if (store.append)
             store.append(cells);
           if (settings.remember)
-            settings.remember(groups[g], member_cache_key(groups[g], m), cells);
+            settings.remember(groups[g], member_cache_key(groups[g], groups[g].first_member + m), cells);
           table.members[g][m] = std::move(member);
           table.have[g][m]    = true;
           ++n_done;
-          progress.finished(m, name, n_done + n_kept, n_total, rank, table.members[g][m]);
+          progress.finished(table.members[g][m].index, name, n_done + n_kept, n_total, rank, table.members[g][m]);
         },
         [] { return interruption_requested(); }, settings.n_threads);
       if (store.close)
@@ -276,7 +279,8 @@ namespace beamslider
       const MpiSession &mpi = settings.mpi ? *settings.mpi : single;
       const CellWork work   = [&groups](const std::size_t run) {
         const auto [g, m]           = group_and_member(groups, run);
-        const EnsembleMember member = run_member(groups[g].scene, groups[g].model, m, groups[g].perturbation);
+        const EnsembleMember member =
+          run_member(groups[g].scene, groups[g].model, groups[g].first_member + m, groups[g].perturbation);
         if (member.result.status == RunStatus::interrupted)
           return std::string(); // not a result: run again on the next start
         return packed(member_record(g, groups[g].name, member));
@@ -301,6 +305,8 @@ namespace beamslider
             << scene_content_key(r.scene) << ", " << r.model.label() << " (dt " << exact(r.model.time_step)
             << "), end time " << exact(r.scene.time_stepping.end_time) << " s, " << r.n_members
             << " members, perturbation " << exact(r.perturbation);
+        if (r.first_member > 0) // absent for the first members: the key of a study that grows none is as before
+          key << ", from member " << r.first_member;
       }
     return key_on_one_line(key.str());
   }

@@ -3,6 +3,7 @@
 
 #include "verification/studies/simulation_cases.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <sstream>
@@ -16,9 +17,10 @@ namespace beamslider
     // rank 0 and the other ranks both build them.
     struct SitePlan
     {
-      std::vector<Scene> scenes; // per site, its end time set
+      std::vector<std::string> labels; // per site
+      std::vector<Scene> scenes;       // per site, its end time set
       std::vector<std::vector<LadderRung>> rungs;
-      std::size_t reference = 0;
+      std::vector<std::size_t> references;      // per site: its reference rung
       std::vector<LadderChecks> checks;         // per site
       std::vector<std::size_t> first_group;     // per site: its first group in `groups`
       std::vector<MemberGroup> groups;          // every site's rungs and first refinements
@@ -33,8 +35,9 @@ namespace beamslider
         {
           const Scene &s                = site.scene;
           const double end_time         = s.time_stepping.end_time;
-          std::vector<LadderRung> rungs = rungs_of(s, plan.reference);
-          LadderChecks checks           = ladder_checks(s, rungs, plan.reference);
+          std::size_t reference         = 0;
+          std::vector<LadderRung> rungs = rungs_of(s, reference);
+          LadderChecks checks           = ladder_checks(s, rungs, reference);
           for (RefinementPlan &c : checks.plans)
             c.name = site.label + ": " + c.name;
           plan.first_group.push_back(plan.groups.size());
@@ -49,8 +52,10 @@ namespace beamslider
               plan.check_plans.push_back(c);
               plan.check_scenes.push_back(s);
             }
+          plan.labels.push_back(site.label);
           plan.scenes.push_back(s);
           plan.rungs.push_back(rungs);
+          plan.references.push_back(reference);
           plan.checks.push_back(checks);
         }
       return plan;
@@ -67,6 +72,160 @@ namespace beamslider
           sites.push_back({p.label(), s});
         }
       return sites;
+    }
+
+    using Share = std::function<unsigned long(unsigned long)>;
+    unsigned long shared(const Share &share, const unsigned long x) { return share ? share(x) : x; }
+
+    // Where a site's reference check took its reference: the index of the
+    // accepted trial's model among the check's models, so that the other
+    // ranks, which never see the trials, grow the same model (the models'
+    // count when the reference is the rung's own model).
+    unsigned long accepted_trial(const SitePlan &plan, const std::size_t p, const LadderStudy &ladder)
+    {
+      const ModelSetting &taken = ladder.rungs[ladder.reference].rung.model;
+      for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
+        if (plan.checks[p].rung[c] == plan.references[p])
+          {
+            const std::vector<ModelSetting> &models = plan.checks[p].plans[c].models;
+            for (std::size_t k = 0; k < models.size(); ++k)
+              if (models[k].time_step == taken.time_step && models[k].label() == taken.label())
+                return k;
+          }
+      return ~0ul;
+    }
+
+    // The class rounds as every rank sees them: each site's rung models
+    // (the reference at the step its check took) and how many members each
+    // has run.
+    struct ClassRounds
+    {
+      std::vector<std::vector<ModelSetting>> models;
+      std::vector<std::vector<unsigned int>> counts;
+      std::vector<std::pair<std::size_t, std::size_t>> grown; // the (site, rung) of each group of the last round
+
+      ClassRounds(const SitePlan &plan, const unsigned int members, const std::vector<unsigned long> &accepted)
+      {
+        for (std::size_t p = 0; p < plan.rungs.size(); ++p)
+          {
+            models.emplace_back();
+            counts.emplace_back();
+            for (const LadderRung &rung : plan.rungs[p])
+              {
+                models.back().push_back(rung.model);
+                counts.back().push_back(rung_members(rung, members));
+              }
+            for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
+              if (plan.checks[p].rung[c] == plan.references[p] && accepted[p] < plan.checks[p].plans[c].models.size())
+                models.back()[plan.references[p]] = plan.checks[p].plans[c].models[accepted[p]];
+          }
+      }
+
+      // More members of every (site, rung) whose bit is set in masks[site].
+      std::vector<MemberGroup> groups(const SitePlan &plan, const std::vector<unsigned long> &masks)
+      {
+        std::vector<MemberGroup> out;
+        grown.clear();
+        for (std::size_t p = 0; p < masks.size(); ++p)
+          for (std::size_t i = 0; i < models[p].size(); ++i)
+            if (masks[p] >> i & 1)
+              {
+                MemberGroup g;
+                g.first_member = counts[p][i];
+                g.n_members    = class_members_step;
+                g.model        = models[p][i];
+                g.name         = plan.labels[p] + ": " + g.model.label() + " (members " +
+                         std::to_string(g.first_member) + "–" + std::to_string(g.first_member + g.n_members - 1) + ")";
+                g.scene        = plan.scenes[p];
+                g.perturbation = EnsembleSettings().perturbation;
+                counts[p][i] += g.n_members;
+                out.push_back(std::move(g));
+                grown.emplace_back(p, i);
+              }
+        return out;
+      }
+    };
+
+    // Which rungs of each site need more members: those whose classified
+    // members do not decide their majority class, while the ceiling allows.
+    std::vector<unsigned long> undecided(const std::vector<LadderStudy> &ladders, const ClassRounds &rounds)
+    {
+      std::vector<unsigned long> masks(ladders.size(), 0);
+      for (std::size_t p = 0; p < ladders.size(); ++p)
+        for (std::size_t i = 0; i < ladders[p].rungs.size(); ++i)
+          {
+            const ClassCounts counts = class_counts(ladders[p].rungs[i].members);
+            if (!counts.empty() && !majority_decided(counts) &&
+                rounds.counts[p][i] + class_members_step <= class_members_ceiling)
+              masks[p] |= 1ul << i;
+          }
+      return masks;
+    }
+
+    // Rank 0's class rounds (see region_verdict.h, majority_decided): more
+    // members where a rung's class is undecided, each site's ladder
+    // assembled again with them; its checks stay as judged.
+    void decide_classes(const SitePlan &plan, const unsigned int members, std::vector<LadderStudy> &ladders,
+                        const MemberGroupRunner &runner, const Share &share)
+    {
+      std::vector<unsigned long> accepted;
+      for (std::size_t p = 0; p < ladders.size(); ++p)
+        accepted.push_back(shared(share, accepted_trial(plan, p, ladders[p])));
+      ClassRounds rounds(plan, members, accepted);
+      for (;;)
+        {
+          std::vector<unsigned long> masks = undecided(ladders, rounds);
+          const bool any = std::any_of(masks.begin(), masks.end(), [](const unsigned long m) { return m != 0; });
+          if (!shared(share, any))
+            return;
+          for (unsigned long &m : masks)
+            m = shared(share, m);
+          const std::vector<MemberGroup> groups = rounds.groups(plan, masks);
+          std::vector<std::vector<EnsembleMember>> more = runner ? runner(groups) : run_groups_in_threads(groups);
+          std::vector<bool> changed(ladders.size(), false);
+          for (std::size_t j = 0; j < groups.size(); ++j)
+            {
+              const auto [p, i]                   = rounds.grown[j];
+              std::vector<EnsembleMember> &grown = ladders[p].rungs[i].members;
+              grown.insert(grown.end(), std::make_move_iterator(more[j].begin()), std::make_move_iterator(more[j].end()));
+              changed[p] = true;
+            }
+          for (std::size_t p = 0; p < ladders.size(); ++p)
+            if (changed[p])
+              {
+                LadderStudy &l = ladders[p];
+                std::vector<LadderRung> rungs;
+                std::vector<std::vector<EnsembleMember>> member_sets;
+                for (LadderRungResult &r : l.rungs)
+                  {
+                    rungs.push_back(r.rung);
+                    member_sets.push_back(std::move(r.members));
+                  }
+                LadderStudy again = assemble_ladder(plan.scenes[p], rungs, l.reference, l.end_time, std::move(member_sets));
+                again.members     = l.members;
+                again.checks      = std::move(l.checks);
+                again.check_rungs = std::move(l.check_rungs);
+                l                 = std::move(again);
+              }
+        }
+    }
+
+    // The other ranks' part of decide_classes: the same rounds, told by
+    // rank 0's masks, each computing what rank 0 hands out by `work`.
+    void work_on_classes(const SitePlan &plan, const unsigned int members,
+                         const std::function<void(const std::vector<MemberGroup> &)> &work, const Share &share)
+    {
+      std::vector<unsigned long> accepted;
+      for (std::size_t p = 0; p < plan.scenes.size(); ++p)
+        accepted.push_back(share(0));
+      ClassRounds rounds(plan, members, accepted);
+      while (share(0))
+        {
+          std::vector<unsigned long> masks(plan.scenes.size());
+          for (unsigned long &m : masks)
+            m = share(0);
+          work(rounds.groups(plan, masks));
+        }
     }
   } // namespace
 
@@ -150,10 +309,11 @@ namespace beamslider
         std::vector<ConvergenceCheck> checks_p(checks.begin() + next_check,
                                                checks.begin() + next_check + plan.checks[p].plans.size());
         next_check += plan.checks[p].plans.size();
-        ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.reference,
+        ladders.push_back(assemble_ladder(plan.scenes[p], plan.rungs[p], plan.references[p],
                                           plan.scenes[p].time_stepping.end_time, std::move(site_members[p]),
                                           std::move(checks_p), plan.checks[p]));
       }
+    decide_classes(plan, members, ladders, rounds ? rounds : runner, share);
     return ladders;
   }
 
@@ -168,6 +328,7 @@ namespace beamslider
       n_first.push_back(first_round_size(c));
     work_on_convergence_checks(plan.check_scenes, plan.check_plans, n_first, members,
                                EnsembleSettings().perturbation, work, share);
+    work_on_classes(plan, members, work, share);
   }
 
   RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
@@ -232,6 +393,29 @@ namespace beamslider
         tie = true;
     return n == 0 ? "–" : tie ? "split" : best;
   }
+
+  double majority_p_value(const ClassCounts &counts)
+  {
+    unsigned int n = 0;
+    for (const auto &[name, k] : counts)
+      n += k;
+    const std::string majority = majority_class(counts);
+    if (n == 0 || majority == "split")
+      return 1;
+    const unsigned int k = counts.at(majority);
+    // P(X ≥ k) = Σ_{j ≥ k} C(n, j) / 2ⁿ, the binomial coefficients by
+    // their recurrence (n is a few dozen members at most).
+    double c = 1, tail = 0; // C(n, j) from j = 0
+    for (unsigned int j = 0; j <= n; ++j)
+      {
+        if (j >= k)
+          tail += c;
+        c = c * (n - j) / (j + 1);
+      }
+    return tail / std::pow(2., n);
+  }
+
+  bool majority_decided(const ClassCounts &counts) { return majority_p_value(counts) < class_decision_level; }
 
   bool alike_with_reference(const SampleComparison &end_positions, const ClassCounts &model,
                             const ClassCounts &reference)

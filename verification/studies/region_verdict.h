@@ -61,6 +61,10 @@ namespace beamslider
   // Every site's rungs (`rungs_of`) and checks as one list of member runs
   // (`runner`, or threads), then the checks' rounds (`rounds`, in step over
   // the ranks by `share`; run_convergence_checks): a checked ladder per site.
+  // Then the class rounds, by `rounds` too: every rung (the reference at the
+  // step its check took) whose members do not decide its majority class
+  // (majority_decided) gets more members, round by round, up to the
+  // ceiling; the checks are judged on the first members.
   std::vector<LadderStudy> run_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of,
                                      unsigned int members, const MemberGroupRunner &runner = {},
                                      const MemberGroupRunner &rounds = {},
@@ -87,6 +91,22 @@ namespace beamslider
   // The class most members took; "split" when two classes tie for most, "–"
   // with no member.
   std::string majority_class(const ClassCounts &counts);
+
+  // Whether a model's members decide its majority class: the exact one-sided
+  // binomial (sign) test of "the majority class is taken with probability at
+  // most ½". Its p-value is P(X ≥ k | n, ½) for k of the n classified
+  // members in the majority class (1 with no member, or two classes tied);
+  // decided when it is below class_decision_level, i.e. with 90 %
+  // confidence that the class is more than a coin's toss: 4 of 4 decide it
+  // (p = 1/16), 3 of 4 do not (5/16), 7 of 8 do (0.035), 6 of 8 do not
+  // (0.145), 9 of 12 do (0.073), 11 of 16 do not (0.105).
+  double majority_p_value(const ClassCounts &counts);
+  constexpr double class_decision_level = 0.1;
+  bool majority_decided(const ClassCounts &counts);
+  // A rung whose members do not decide its class (run_sites) runs
+  // class_members_step more members (the next indices, start x_C/L + m·ε)
+  // at a time, until they do or it has class_members_ceiling.
+  constexpr unsigned int class_members_step = 4, class_members_ceiling = 16;
 
   // Whether a model ends alike with the reference at a point: both have a
   // majority class, the same one, and their end positions end alike
