@@ -8,7 +8,7 @@
 // every gap depends explicitly on time through w0.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <cmath>
 #include <limits>

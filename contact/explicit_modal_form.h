@@ -13,7 +13,7 @@
 #pragma once
 
 #include "contact/base_excitation.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 namespace beamslider
 {

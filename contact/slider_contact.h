@@ -28,7 +28,7 @@
 
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <Eigen/Dense>
 

@@ -8,7 +8,7 @@
 //   base load  -(∫ ρA δw dx + Σ_bodies m δw(x_p)) ẅ0 .
 //
 // EA, EI and ρA are those of each element's section: constant along a
-// uniform beam, per physical tag on a beam read from a mesh (meshes/beam_mesh.h).
+// uniform beam, per physical tag on a beam read from a mesh (scene/beam_mesh.h).
 // Point bodies (Point masses in the scene) add their mass and rotary inertia
 // at their position.
 //
@@ -33,7 +33,7 @@
 #pragma once
 
 #include "contact/hermite_shape.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>

@@ -5,7 +5,7 @@
 
 namespace beamslider
 {
-  // The scene's Solvers defaults (meshes/scene.h) are the FE step's own.
+  // The scene's Solvers defaults (scene/scene.h) are the FE step's own.
   static_assert(SolverData{}.newton_relative_tolerance == FETransientSettings{}.relative_tolerance &&
                   SolverData{}.newton_absolute_tolerance == FETransientSettings{}.absolute_tolerance &&
                   SolverData{}.newton_iterations == FETransientSettings{}.max_iterations,

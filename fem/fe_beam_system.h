@@ -5,7 +5,7 @@
 #pragma once
 
 #include "contact/beam_system.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <memory>
 #include <optional>

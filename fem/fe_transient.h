@@ -92,7 +92,7 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modal_damping.h"
 #include "fem/fe_modes.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>

@@ -1,9 +1,9 @@
 #include "fem/solid_mesh.h"
 
-#include "meshes/beam_mesh.h"
-#include "meshes/deal_ii_message.h"
-#include "meshes/number_with_digits.h"
-#include "meshes/printable.h"
+#include "scene/beam_mesh.h"
+#include "scene/deal_ii_message.h"
+#include "scene/number_with_digits.h"
+#include "scene/printable.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>

@@ -16,7 +16,7 @@
 // (faces in no group get 0) and cells theirs as material id.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/base/types.h>
 #include <deal.II/grid/tria.h>

@@ -18,7 +18,7 @@
 
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/modal_basis.h"
 
 namespace beamslider

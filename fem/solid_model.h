@@ -35,7 +35,7 @@
 #pragma once
 
 #include "fem/solid_mesh.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature.h>

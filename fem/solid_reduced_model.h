@@ -20,7 +20,7 @@
 // model builds its own.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/modal_basis.h"
 #include "reduced/rom_operator.h"
 

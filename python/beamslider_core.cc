@@ -17,7 +17,7 @@
 //                        message).
 //   scene_parameters(path, overrides)
 //                        the same scene as {"Section/Name": text}, read by
-//                        the one scene reader (meshes/scene_parameters_read.cc).
+//                        the one scene reader (scene/scene_parameters_read.cc).
 //   resolve_scene(name)  a scene name of meshes/ or a path, as the CLI
 //                        resolves it.
 //   Run, FEBeam, ReducedModel
@@ -25,7 +25,7 @@
 //                        run_binding.cc, model_bindings.cc); __init__.py's
 //                        classes of the same names are the part users read.
 #include "io/interruption.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/command_line.h"
 #include "verification/cli/commands.h"
 #include "io/console.h"

@@ -3,7 +3,7 @@
 // of objects to the module (run_binding.cc, model_bindings.cc).
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_operator.h"
 
 #include <pybind11/numpy.h>

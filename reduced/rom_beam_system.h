@@ -19,7 +19,7 @@
 #include "contact/base_excitation.h"
 #include "contact/beam_system.h"
 #include "contact/explicit_modal_form.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_operator.h"
 
 namespace beamslider

@@ -33,7 +33,7 @@ namespace beamslider
     return "unknown";
   }
 
-  // The scene's Solvers defaults (meshes/scene.h) are the solver's own.
+  // The scene's Solvers defaults (scene/scene.h) are the solver's own.
   static_assert(SolverData{}.contact_tolerance == ProxSolverSettings{}.tolerance &&
                   SolverData{}.contact_sweeps == ProxSolverSettings{}.max_iterations,
                 "the default scene's contact-solver settings differ from ProxSolverSettings' defaults");

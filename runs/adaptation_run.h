@@ -23,7 +23,7 @@
 #include "io/checkpoint.h"
 #include "io/csv_writer.h"
 #include "contact/moreau_stepper.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <array>
 #include <functional>

@@ -29,7 +29,7 @@
 
 #include "contact/beam_system.h"
 #include "contact/moreau_stepper.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "numerics/periodic_orbits.h"
 
 #include <string>

@@ -22,7 +22,7 @@
 
 #include "runs/adaptation_run.h"
 #include "contact/beam_system.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <functional>
 #include <optional>

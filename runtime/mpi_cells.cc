@@ -1,7 +1,7 @@
 // Manager–worker distribution of cells over MPI, see mpi_cells.h.
 #include "runtime/mpi_cells.h"
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "runtime/parallel_for.h"
 
 #include "fem/petsc_session.h"

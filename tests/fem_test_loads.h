@@ -2,7 +2,7 @@
 #pragma once
 
 #include "fem/fe_beam.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/lac/vector.h>
 

@@ -2,8 +2,8 @@
 // sources names a layer at or below the including file's. The order is
 // doc/architecture.md's:
 //   numerics (Newton, a state's bytes, the stop request), io (files),
-//   meshes (the Scene) ← contact (the contact step) ← reduced ← fem
-//   ← fem/output (the FE model's files), runs (runs and traces), runtime
+//   scene (the Scene and its files) ← contact (the contact step) ← reduced ← fem
+//   ← output (the FE model's files), runs (runs and traces), runtime
 //   (child processes, MPI ranks, threads, the build) ← verification/studies ← verification/report ← the front ends:
 //   verification/cli, python and verification/benchmarks.
 // The models (contact/, reduced/, fem/) do not include io/: they write no
@@ -21,6 +21,7 @@
 #include <iterator>
 #include <map>
 #include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,14 +32,14 @@ namespace
   // Layer folders and their rank, lowest first; a front end is rank 7.
   const int studies_rank = 5;
   const std::vector<std::pair<std::string, int>> layers = {
-    {"numerics", 0}, {"io", 0}, {"meshes", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"fem/output", 4},
+    {"numerics", 0}, {"io", 0}, {"scene", 0}, {"contact", 1}, {"reduced", 2}, {"fem", 3}, {"output", 4},
     {"runs", 4}, {"runtime", 4}, {"verification/studies", studies_rank}, {"verification/report", 6}, {"verification/cli", 7},
     {"python", 7}, {"verification/benchmarks", 7}};
 
   bool is_model(const std::string &path)
   {
     for (const std::string folder : {"contact/", "reduced/", "fem/"})
-      if (path.rfind(folder, 0) == 0 && path.rfind("fem/output/", 0) != 0)
+      if (path.rfind(folder, 0) == 0)
         return true;
     return false;
   }
@@ -138,7 +139,7 @@ namespace
   // Python module (beamslider_python) and the executables are front ends.
   const std::map<std::string, int> library_ranks = {
     {"beamslider_numerics", 0}, {"beamslider_io", 0},     {"beamslider_scene", 0},      {"beamslider_contact", 1},
-    {"beamslider_reduced", 2},  {"beamslider_fem", 3},    {"beamslider_fem_output", 4}, {"beamslider_runs", 4},
+    {"beamslider_reduced", 2},  {"beamslider_fem", 3},    {"beamslider_output", 4}, {"beamslider_runs", 4},
     {"beamslider_runtime", 4},  {"beamslider_studies", 5},  {"beamslider_report", 6}, {"beamslider_cli", 7}};
 
   // "A links B" for every target_link_libraries(A ... B ...) of a library
@@ -192,6 +193,29 @@ TEST(Architecture, EveryLibraryLinksOnlyTheLayersBelowIt)
   EXPECT_EQ(planted.front(), "beamslider_studies links beamslider_cli");
 }
 
+// The folders of the source tree are the folders doc/architecture.md's
+// table names (§2, a row "| `folder/` |" each), no more and no fewer: the
+// layout a reader learns there is the tree's. Build folders (build*,
+// ignored by git) and hidden ones are not the project's layout.
+TEST(Architecture, TheTopLevelFoldersAreTheOnesTheArchitectureNames)
+{
+  const fs::path root = BEAMSLIDER_SOURCE_DIR;
+  std::set<std::string> named, present;
+  std::ifstream in(root / "doc" / "architecture.md");
+  const std::regex row(R"re(^\| `([a-z_]+)/` \|)re");
+  for (std::string line; std::getline(in, line);)
+    if (std::smatch m; std::regex_search(line, m, row))
+      named.insert(m[1]);
+  for (const auto &entry : fs::directory_iterator(root))
+    {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_directory() && name[0] != '.' && name.rfind("build", 0) != 0)
+        present.insert(name);
+    }
+  EXPECT_GE(named.size(), 10u); // the table was found
+  EXPECT_EQ(named, present);
+}
+
 // README.md and doc/ name only files and folders that exist: a path of the
 // project's folders in the text (`fem/fe_modes.h`, `scripts/setup.sh`) is
 // there; one without an extension names a module (its .h or .cc is there).
@@ -202,7 +226,7 @@ TEST(Architecture, TheDocsNameOnlyPathsThatExist)
 {
   const fs::path root = BEAMSLIDER_SOURCE_DIR;
   const std::regex path_in_text(
-    R"re((^|[^A-Za-z0-9_/.-])((numerics|io|runs|runtime|contact|reduced|fem|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
+    R"re((^|[^A-Za-z0-9_/.-])((numerics|io|runs|runtime|contact|reduced|fem|output|scene|meshes|verification|tests|scripts|python|doc|reports)/[A-Za-z0-9_./-]*[A-Za-z0-9_])([*<]?))re");
   std::vector<fs::path> docs = {root / "README.md"};
   for (const auto &entry : fs::directory_iterator(root / "doc"))
     if (entry.path().extension() == ".md")

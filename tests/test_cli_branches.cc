@@ -3,7 +3,7 @@
 // linear steady state (an independent path to the same orbit), the probes
 // cover the range, and bad input is refused before any run.
 #include "reduced/attached_slider_model.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "tests/cli_runner.h"
 #include "verification/studies/fe_rom_study.h"
 

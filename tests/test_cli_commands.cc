@@ -2,7 +2,7 @@
 // the default scene (the scene argument may be left out), the CSV columns
 // the README names, and determinism (two runs, the same bytes).
 #include "tests/cli_runner.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/ladder_cache.h"
 #include "verification/studies/model_choice.h"
 

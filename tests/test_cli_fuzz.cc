@@ -2,7 +2,7 @@
 // `--set Section/Name=value`. Deterministic (std::mt19937, fixed seeds), so a
 // failure is reproduced by running the test again.
 //
-// The contract under test (meshes/scene.h): read_scene either returns a scene
+// The contract under test (scene/scene.h): read_scene either returns a scene
 // that satisfies validate_scene, or throws InputError with a message; never
 // another exception, never a crash or a hang. Thousands of mutated inputs go
 // through the reader in this process (a start of the program costs ~1 s, the
@@ -16,8 +16,8 @@
 // same short run through the library: 0 if it completes or the slider
 // reaches a support, 1 if it fails.
 #include "runs/adaptation_run.h"
-#include "meshes/printable.h"
-#include "meshes/scene.h"
+#include "scene/printable.h"
+#include "scene/scene.h"
 #include "tests/cli_runner.h"
 #include "verification/cli/commands.h"
 #include "verification/studies/fe_rom_study.h"

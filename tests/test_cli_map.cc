@@ -1,7 +1,7 @@
 // `beamslider map` end to end: the grid parser, restart after a kill (the
 // same rows as an uninterrupted run), and a 2-rank run under mpirun giving
 // the same rows as one process.
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/report/map_files.h"
 #include "verification/report/report.h"
 #include "verification/studies/operating_map.h"

@@ -1,6 +1,6 @@
 // Beams from Gmsh meshes, end to end: the gallery's stepped beam through
 // `coefficients --method ice` and `simulate`, and every kind of bad mesh a
-// clear error with exit status 2 (meshes/beam_mesh.h lists them).
+// clear error with exit status 2 (scene/beam_mesh.h lists them).
 #include "cli_runner.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The animation files (fem/output/vtk_animation, `beamslider animate`) parse as
+// The animation files (output/vtk_animation, `beamslider animate`) parse as
 // ParaView would read them: the .pvd's time steps and parts, and every frame
 // read back with VTK's XML readers, checking point counts, time values, the
 // magnification and the drawn geometry against the state it came from.
@@ -8,8 +8,8 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_transient.h"
-#include "fem/output/vtk_animation.h"
-#include "meshes/scene.h"
+#include "output/vtk_animation.h"
+#include "scene/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/cli/commands.h"
 #include "tests/read_text_file.h"

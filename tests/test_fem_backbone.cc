@@ -18,7 +18,7 @@
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 

@@ -6,7 +6,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/fe_statics.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/cubic_fit.h"
 #include "reduced/rom_operator.h"
 #include "verification/studies/coefficient_methods.h"

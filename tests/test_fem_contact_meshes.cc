@@ -47,7 +47,7 @@
 #include "contact/base_excitation.h"
 #include "fem/fe_beam.h"
 #include "fem/fe_transient.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/fe_rom_study.h"
 #include "verification/studies/impact_mass.h"

@@ -10,7 +10,7 @@
 #include "fem/fe_modes.h"
 #include "fem/mode_table_basis.h"
 #include "contact/hermite_shape.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/coefficient_methods.h"
 
 #include <gtest/gtest.h>

@@ -45,7 +45,7 @@
 #include "fem/fe_modes.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_statics.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/report/report.h"
 #include "verification/studies/coefficient_methods.h"

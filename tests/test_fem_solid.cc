@@ -8,10 +8,10 @@
 #include "fem/solid_modal_basis.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "fem/output/solid_rom_animation.h"
+#include "output/solid_rom_animation.h"
 #include "fem/solid_statics.h"
 #include "fem/fe_modal_basis.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_operator.h"
 #include "tests/solid_tangent_check.h"
 

@@ -8,7 +8,7 @@
 #include "fem/solid_mesh.h"
 #include "fem/solid_modes.h"
 #include "fem/solid_statics.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/cubic_fit.h"
 #include "tests/solid_tangent_check.h"
 

@@ -8,7 +8,7 @@
 #include "fem/fe_beam.h"
 #include "fem/fe_modes.h"
 #include "fem/static_corrections.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_operator.h"
 #include "verification/studies/fe_rom_study.h"
 

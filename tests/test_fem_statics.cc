@@ -9,7 +9,7 @@
 // code's assembly, quadrature or Newton solver.
 #include "fem/fe_beam.h"
 #include "fem/fe_statics.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <gtest/gtest.h>
 

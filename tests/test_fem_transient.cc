@@ -14,7 +14,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_statics.h"
 #include "fem/fe_transient.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_beam_system.h"
 
 #include <Eigen/Dense>

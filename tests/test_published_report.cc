@@ -5,7 +5,7 @@
 // within the interval the report publishes for that rung. A change of the
 // physics, the model or the trace analysis that moves the published model's
 // end state fails here; then the report is run again and committed.
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/report/report_ladder.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/error_ladder.h"

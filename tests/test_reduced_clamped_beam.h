@@ -14,7 +14,7 @@
 // E = 210 GPa, ρ = 7683 kg/m³; Müller, Beck & Krack, MSSP 2023).
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/modal_basis.h"
 
 #include <Eigen/Dense>

@@ -7,7 +7,7 @@
 // trajectories of this chaotic system part after a few dozen periods, so
 // the comparison stops well before).
 #include "contact/moreau_stepper.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -5,7 +5,7 @@
 // at a period's end — an Eigen temporary of dynamic size, a std::function, a
 // string — shows up here. The trace is not written (no output stream).
 #include "runs/adaptation_run.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/benchmarks/heap_counter.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -1,6 +1,6 @@
 // Scene files: the shipped scenes parse, and every class of bad input is
 // rejected with a message that names the parameter, its value and the range.
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include "verification/studies/system1_facts.h"
 
 #include "runs/trace_analysis.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include "tests/synthetic_periods.h"
 

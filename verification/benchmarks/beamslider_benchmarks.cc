@@ -14,7 +14,7 @@
 #include "fem/fe_transient.h"
 #include "fem/static_corrections.h"
 #include "fem/solid_model.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_beam_system.h"
 #include "reduced/rom_implicit_beam_system.h"

@@ -2,13 +2,13 @@
 // scene (default 0.2 s) with the shared contact code (runs/adaptation_run)
 // on the FE beam (fem/fe_transient) or on the ROM (N modes, analytic
 // coefficients from the FE modes) and writes a ParaView time series
-// (fem/output/vtk_animation.h): animation.pvd with beam, slider and contact forces at
+// (output/vtk_animation.h): animation.pvd with beam, slider and contact forces at
 // `--frame-rate` frames per simulated second from `--start-time`, plus
 // trace.csv (the ROM's columns), frames.csv and frames.png (a strip of stills
 // drawn by scripts/plot_frames.py).
 // On a scene with a Solid, `--model rom` runs the reduced model built from
 // the solid, and the run is also drawn on the solid itself
-// (fem/output/solid_rom_animation.h): solid.pvd, one .pvtu per frame with the
+// (output/solid_rom_animation.h): solid.pvd, one .pvtu per frame with the
 // displacement w0 e_z + Σ q_n φ_n of the whole strip.
 #include "runs/adaptation_run.h"
 #include "io/interruption.h"
@@ -16,9 +16,9 @@
 #include "fem/fe_beam_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
-#include "fem/output/solid_rom_animation.h"
-#include "fem/output/vtk_animation.h"
-#include "meshes/scene.h"
+#include "output/solid_rom_animation.h"
+#include "output/vtk_animation.h"
+#include "scene/scene.h"
 #include "reduced/rom_beam_system.h"
 #include "numerics/elapsed.h"
 #include "verification/cli/commands.h"

@@ -26,7 +26,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/static_corrections.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/beam_backbone.h"
 #include "reduced/rom_operator.h"
 #include "numerics/elapsed.h"

@@ -5,7 +5,7 @@
 // (scripts/plot_branches.py).
 #include "io/console.h"
 #include "io/output_file.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "numerics/stop_request.h"
 #include "verification/cli/commands.h"
 #include "verification/report/charts.h"

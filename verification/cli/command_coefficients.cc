@@ -8,7 +8,7 @@
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_modes.h"
 #include "fem/static_corrections.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/coefficient_files.h"
 #include "verification/cli/commands.h"
 #include "runtime/mpi_cells.h"

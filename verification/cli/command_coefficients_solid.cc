@@ -17,7 +17,7 @@
 #include "fem/solid_coefficients.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/cubic_fit.h"
 #include "numerics/elapsed.h"
 #include "verification/cli/coefficient_files.h"

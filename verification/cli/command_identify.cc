@@ -21,7 +21,7 @@
 #include "io/csv_writer.h"
 #include "io/interruption.h"
 #include "io/output_file.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/report/map_files.h"
 #include "numerics/elapsed.h"

@@ -7,7 +7,7 @@
 // members run on P ranks; stopped and started again the same way into the
 // same folder, it runs only the members not yet in member_runs.csv
 // (verification/studies/member_runs.h).
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/study_results.h"
 #include "numerics/elapsed.h"

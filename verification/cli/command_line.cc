@@ -10,8 +10,8 @@
 #include "io/input_file.h"
 #include "io/output_file.h"
 #include "fem/petsc_session.h"
-#include "meshes/printable.h"
-#include "meshes/scene.h"
+#include "scene/printable.h"
+#include "scene/scene.h"
 #include "verification/cli/cli_validators.h"
 #include "verification/cli/commands.h"
 #include "runtime/mpi_cells.h"
@@ -503,7 +503,7 @@ int run_beamslider(int argc, char **argv, std::ostream &errors, StudyHandover *h
   // once. Another rank keeps its message where rank 0 meets the same error:
   // bad input (every rank reads the same), an interruption (mpirun passes
   // the signal to all), or any error of a command that runs on MPI (an
-  // error that arises on some ranks only is shared, fem/output/collective_failure.h).
+  // error that arises on some ranks only is shared, output/collective_failure.h).
   // A command without MPI runs on each rank alone, so that rank's own error
   // (its folder in use by the other rank) is said, with its rank.
   const unsigned int rank = launch_rank();

@@ -23,7 +23,7 @@
 #include "io/interruption.h"
 #include "io/input_file.h"
 #include "io/output_file.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/ladder_cache.h"
 #include "verification/cli/study_results.h"

@@ -3,7 +3,7 @@
 // free-slider run overlaid; files and columns in verification/report/pcs_files.h.
 #include "io/output_file.h"
 #include "io/input_file.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/commands.h"
 #include "verification/cli/study_results.h"
 #include "verification/report/pcs_files.h"

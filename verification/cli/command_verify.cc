@@ -14,7 +14,7 @@
 #include "io/interruption.h"
 #include "io/input_file.h"
 #include "io/output_file.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "runtime/child_process.h"
 #include "verification/cli/commands.h"
 #include "numerics/elapsed.h"

@@ -12,7 +12,7 @@
 //          refined_alike
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <optional>

@@ -4,7 +4,7 @@
 #include "io/input_file.h"
 #include "io/output_file.h"
 #include "io/console.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "numerics/elapsed.h"
 #include "runs/adaptation_run.h"
 #include "verification/cli/commands.h"

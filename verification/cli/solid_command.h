@@ -3,9 +3,9 @@
 // output folder prepared by rank 0 and known to every rank.
 #pragma once
 
-#include "fem/output/collective_failure.h"
+#include "output/collective_failure.h"
 #include "fem/petsc_session.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/cli/commands.h"
 #include "runtime/mpi_cells.h"
 

@@ -4,7 +4,7 @@
 // hold them (python/study_bindings.cc).
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/ensemble.h"

@@ -1,7 +1,7 @@
 #include "verification/report/charts.h"
 
 #include "fem/petsc_session.h"
-#include "meshes/source_directory.h"
+#include "scene/source_directory.h"
 #include "runtime/mpi_cells.h"
 
 #include <iostream>

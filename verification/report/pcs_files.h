@@ -36,7 +36,7 @@
 //                   caller's: scripts/plot_pcs_compare.py)
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/pcs_comparison.h"
 #include "verification/studies/pcs_sweep.h"
 

@@ -3,7 +3,7 @@
 // ...) together with its CSV files and PNG charts in the same folder.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/number_text.h"
 #include "verification/studies/pcs_sweep.h"
 #include "verification/studies/simulation_cases.h"

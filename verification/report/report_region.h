@@ -11,7 +11,7 @@
 //   region_convergence.csv  every point's checks (report_convergence.h)
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/region_verdict.h"
 
 #include <string>

@@ -16,7 +16,7 @@
 //                      points, period doublings and tori met on the branch.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/slow_manifold.h"
 
 #include <string>

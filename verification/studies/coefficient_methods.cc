@@ -4,7 +4,7 @@
 #include "fem/fe_conservative_system.h"
 #include "fem/fe_modal_basis.h"
 #include "fem/fe_statics.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "reduced/harmonic_balance.h"
 #include "reduced/rom_operator.h"
 

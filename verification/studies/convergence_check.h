@@ -45,7 +45,7 @@
 // commands run trial 1 beside it, in the same list of member runs.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -13,7 +13,7 @@
 
 #include "runs/adaptation_run.h"
 #include "runs/trace_analysis.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <functional>

@@ -17,7 +17,7 @@
 // (model_choice.h) format or use them.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/ensemble.h"
 #include "verification/studies/fe_rom_study.h"

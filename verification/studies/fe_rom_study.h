@@ -21,7 +21,7 @@
 #include "reduced/rom_operator.h"
 #include "runs/adaptation_run.h"
 #include "runs/trace_analysis.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <functional>
 #include <memory>

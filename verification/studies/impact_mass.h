@@ -8,7 +8,7 @@
 // report section 5.6); it costs a factorisation a setting.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <string>
 #include <vector>

@@ -43,7 +43,7 @@ namespace beamslider
       return cells;
     }
 
-    // A key on one line, breaks as spaces (a scene's name may hold one; meshes/printable.h's one_line escapes them instead, which would change the keys of existing files).
+    // A key on one line, breaks as spaces (a scene's name may hold one; scene/printable.h's one_line escapes them instead, which would change the keys of existing files).
     std::string key_on_one_line(std::string text)
     {
       for (char &c : text)

@@ -10,7 +10,7 @@
 // so that the choice on a known scene runs nothing.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/error_ladder.h"
 #include "verification/studies/fe_rom_study.h"
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "runs/trace_analysis.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/fe_rom_study.h"
 
 #include <cstddef>

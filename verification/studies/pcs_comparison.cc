@@ -1,7 +1,7 @@
 // Two prescribed-position sweeps compared, see pcs_comparison.h.
 #include "verification/studies/pcs_comparison.h"
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <cmath>

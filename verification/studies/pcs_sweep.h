@@ -15,7 +15,7 @@
 #pragma once
 
 #include "runs/prescribed_position_sweep.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <cstddef>
 #include <functional>

@@ -17,7 +17,7 @@
 // (verification/report/report_region.h formats them).
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "verification/studies/convergence_check.h"
 #include "verification/studies/error_ladder.h"
 

@@ -14,7 +14,7 @@
 // The study writes and prints nothing; the observer sees each result.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 #include "numerics/periodic_orbits.h"
 #include "runs/held_slider_map.h"
 

@@ -5,7 +5,7 @@
 #include "verification/studies/system1_fact_table.h"
 
 #include "numerics/stop_request.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <algorithm>
 #include <chrono>

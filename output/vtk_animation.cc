@@ -1,8 +1,8 @@
 // ParaView animation of a beam–slider run, see vtk_animation.h.
-#include "fem/output/vtk_animation.h"
+#include "output/vtk_animation.h"
 
 #include "io/output_file.h"
-#include "fem/output/vtk_xml_file.h"
+#include "output/vtk_xml_file.h"
 
 #include <deal.II/base/data_out_base.h>
 

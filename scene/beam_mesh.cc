@@ -1,11 +1,11 @@
 // Beam meshes from Gmsh: deal.II's GridIn reads the file into a line mesh in
 // 3D space (so that a node off the x axis shows up instead of being dropped);
 // the checks below turn what a beam mesh must be into clear errors.
-#include "meshes/beam_mesh.h"
+#include "scene/beam_mesh.h"
 
 #include "io/input_file.h"
-#include "meshes/number_with_digits.h"
-#include "meshes/printable.h"
+#include "scene/number_with_digits.h"
+#include "scene/printable.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/grid/grid_in.h>

@@ -1,9 +1,9 @@
 // The text of a scene file: a bounded regular file of scene lines, its
 // `include` lines replaced by the files they name, each parameter set once.
 #include "io/input_file.h"
-#include "meshes/printable.h"
-#include "meshes/scene.h"
-#include "meshes/scene_parameters_internal.h"
+#include "scene/printable.h"
+#include "scene/scene.h"
+#include "scene/scene_parameters_internal.h"
 
 #include <algorithm>
 #include <cctype>

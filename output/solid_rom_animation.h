@@ -20,7 +20,7 @@
 // seconds on the 3D strip.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <Eigen/Dense>
 

@@ -1,9 +1,9 @@
 // One failure for all ranks, see collective_failure.h.
-#include "fem/output/collective_failure.h"
+#include "output/collective_failure.h"
 
 #include "io/output_file.h"
 #include "fem/petsc_session.h"
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <deal.II/base/mpi.h>
 

@@ -1,7 +1,7 @@
 // Writing scenes with deal.II's ParameterHandler: the template, a scene's
 // parameter file and its values, and a command's settings in the same format.
-#include "meshes/scene.h"
-#include "meshes/scene_parameters_internal.h"
+#include "scene/scene.h"
+#include "scene/scene_parameters_internal.h"
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -1,9 +1,9 @@
 // The checks of a scene that its entries' patterns cannot express: strict
 // ranges, relations between parameters, text that parameters.prm can record
 // and a generated strip that fits in memory (validate_scene).
-#include "meshes/printable.h"
-#include "meshes/scene.h"
-#include "meshes/scene_parameters_internal.h"
+#include "scene/printable.h"
+#include "scene/scene.h"
+#include "scene/scene_parameters_internal.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 // scene_validation.cc, the writing in scene_parameters_write.cc.
 #include "scene.h"
 
-#include "meshes/scene_parameters_internal.h"
+#include "scene/scene_parameters_internal.h"
 
 #include <deal.II/base/parameter_handler.h>
 

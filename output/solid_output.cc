@@ -1,7 +1,7 @@
-#include "fem/output/solid_output.h"
+#include "output/solid_output.h"
 
 #include "io/output_file.h"
-#include "fem/output/collective_failure.h"
+#include "output/collective_failure.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/numerics/data_component_interpretation.h>

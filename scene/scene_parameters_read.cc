@@ -1,11 +1,11 @@
 // Reading a scene: its file and the --set overrides through the bound
 // entries into a Scene, the beam completed from its tables or mesh file.
 #include "io/input_file.h"
-#include "meshes/beam_mesh.h"
-#include "meshes/deal_ii_message.h"
-#include "meshes/printable.h"
-#include "meshes/scene.h"
-#include "meshes/scene_parameters_internal.h"
+#include "scene/beam_mesh.h"
+#include "scene/deal_ii_message.h"
+#include "scene/printable.h"
+#include "scene/scene.h"
+#include "scene/scene_parameters_internal.h"
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>

@@ -1,4 +1,4 @@
-#include "meshes/source_directory.h"
+#include "scene/source_directory.h"
 
 namespace beamslider
 {

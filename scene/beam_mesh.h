@@ -3,7 +3,7 @@
 // x = 0 to x = L, each with the physical tag of its section.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <string>
 #include <vector>

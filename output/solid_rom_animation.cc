@@ -1,12 +1,12 @@
 // The animation of a solid-derived reduced model on the solid, see
 // solid_rom_animation.h.
-#include "fem/output/solid_rom_animation.h"
+#include "output/solid_rom_animation.h"
 
 #include "io/output_file.h"
 #include "fem/petsc_session.h"
 #include "fem/solid_model.h"
 #include "fem/solid_modes.h"
-#include "fem/output/solid_output.h"
+#include "output/solid_output.h"
 #include "fem/solid_statics.h"
 
 #include <deal.II/base/data_out_base.h>

@@ -1,9 +1,9 @@
-// What the files that read, check and write scenes (meshes/scene_*.cc) share:
+// What the files that read, check and write scenes (scene/scene_*.cc) share:
 // the bound entry declarations, a scene's text with its includes and the
 // check that text parameters are recordable. Internal to beamslider_scene.
 #pragma once
 
-#include "meshes/scene.h"
+#include "scene/scene.h"
 
 #include <map>
 #include <set>

@@ -1,6 +1,6 @@
-#include "fem/output/vtk_beam_output.h"
+#include "output/vtk_beam_output.h"
 
-#include "fem/output/vtk_xml_file.h"
+#include "output/vtk_xml_file.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
