@@ -435,3 +435,89 @@ TEST(RegionVerdict, ASplitRungGainsMembersUntilItsClassIsDecided)
     }
   EXPECT_EQ(grown, 3u);
 }
+
+// Where N = 20 and N = 30 both end apart from the FE (the second point),
+// two ROMs run beside it: every mode of the mesh stepped as the FE is, and
+// N = 30 at its own step with the FE's θ. Fabricated so that both land on
+// the FE while the explicit N = 30 does not, the summary puts the gap on
+// the scheme's damping, not on the model's form; the other ranks, told
+// what rank 0 shared, run the same probes.
+TEST(RegionVerdict, WhereMoreModesDoNotReachTheFETheProbesNameWhatDoes)
+{
+  const Scene scene                        = read_scene(mueller);
+  const std::vector<OperatingPoint> points = signature_move_region(scene);
+  const double fe_dt = scene.time_stepping.fe_time_step, theta = scene.time_stepping.fe_theta;
+  const unsigned int all_modes = fe_bending_modes(scene);
+  std::vector<MemberGroup> probes;
+  std::vector<std::string> rank0_groups, other_rank_groups;
+  std::vector<unsigned long> shared;
+  const MemberGroupRunner fabricate = [&](const std::vector<MemberGroup> &groups) {
+    std::vector<std::vector<EnsembleMember>> out;
+    for (const MemberGroup &g : groups)
+      {
+        rank0_groups.push_back(g.name + " | " + g.model.label());
+        const bool second = g.scene.excitation.frequency_hz == points[1].frequency_hz &&
+                            g.scene.excitation.acceleration_amplitude == points[1].acceleration_m_s2;
+        const bool implicit = g.model.family == "rom" && g.model.integrator == "implicit";
+        if (implicit)
+          probes.push_back(g);
+        double end = 0.40;
+        if (g.model.family == "rom" && g.model.n_modes < 20)
+          end = 0.30;
+        else if (g.model.family == "rom" && second && !implicit)
+          end = 0.35;
+        out.push_back(ending_at(end, g.n_members));
+      }
+    return out;
+  };
+  const auto share = [&](const unsigned long x) {
+    shared.push_back(x);
+    return x;
+  };
+  const RegionStudy study = run_region(scene, points, 40., 4, fabricate, fabricate, share);
+
+  ASSERT_EQ(study.model_form.size(), 1u);
+  EXPECT_EQ(study.model_form.front().first, 1u);
+  ASSERT_EQ(probes.size(), 2u);
+  const LadderStudy &second = study.ladders[1];
+  const auto n_check = std::find_if(second.checks.begin(), second.checks.end(),
+                                    [](const ConvergenceCheck &c) { return c.parameter == "N"; });
+  ASSERT_NE(n_check, second.checks.end());
+  const ModelSetting &n30 = n_check->trials[1].model;
+  EXPECT_EQ(probes[0].model.n_modes, all_modes);
+  EXPECT_DOUBLE_EQ(probes[0].model.time_step, fe_dt);
+  EXPECT_EQ(probes[0].model.damped_modes, scene.discretisation.n_modes);
+  EXPECT_EQ(probes[1].model.n_modes, 30u);
+  EXPECT_DOUBLE_EQ(probes[1].model.time_step, n30.time_step);
+  EXPECT_LT(probes[1].model.time_step, fe_dt);
+  EXPECT_EQ(probes[1].model.damped_modes, n30.damped_modes);
+  for (const MemberGroup &g : probes)
+    {
+      EXPECT_DOUBLE_EQ(g.model.theta, theta);
+      EXPECT_EQ(g.n_members, 4u);
+    }
+  const LadderStudy &l = study.model_form.front().second;
+  EXPECT_NEAR(l.rungs[l.reference].final_position.median, 0.40 + 1.5e-4, 1e-12);
+  EXPECT_NEAR(l.rungs[1].position_to_reference.wasserstein, 0., 1e-12);
+
+  const std::string summary = region_summary(study);
+  EXPECT_NE(summary.find("The model's form (no axial inertia, the cubic membrane, the contact on the modal sum) "
+                         "does not separate ROM and FE there."),
+            std::string::npos)
+    << summary;
+  EXPECT_NE(summary.find("lands on the FE: the scheme's numerical damping of the modes that ring after each impact, "
+                         "not the basis, separates"),
+            std::string::npos)
+    << summary;
+
+  std::size_t next = 0;
+  work_on_region(
+    scene, points, 40., 4,
+    [&](const std::vector<MemberGroup> &groups) {
+      for (const MemberGroup &g : groups)
+        other_rank_groups.push_back(g.name + " | " + g.model.label());
+    },
+    [&](unsigned long) { return next < shared.size() ? shared[next++] : ~0ul; });
+  EXPECT_EQ(next, shared.size());
+  EXPECT_EQ(other_rank_groups, rank0_groups);
+}

@@ -185,7 +185,7 @@ namespace beamslider
             return nullptr;
           };
           const Column *a = find(rung->rung.name), *b = find(more);
-          if (!a || !b || ends_alike(a->to_reference) || ends_alike(b->to_reference))
+          if (!a || !b || !basis_gap(l))
             continue;
           converged = rung->rung.name;
           larger    = more;
@@ -197,6 +197,39 @@ namespace beamslider
       return " At " + where + ", " + converged + ", converged in N, and " + larger +
              ", its check, both end apart from the reference: more modes do not bring the ROM to the FE there, so "
              "what separates them is not the modal basis, and no cheaper basis can be expected to land there.";
+    }
+
+    // What the model-form probes found where more modes do not reach the
+    // reference (region_verdict.h, model_form_probes).
+    std::string model_form_finding(const RegionStudy &study)
+    {
+      std::ostringstream s;
+      for (const auto &[p, l] : study.model_form)
+        {
+          const LadderRungResult &all = l.rungs[0], &basis = l.rungs[1], &ref = l.rungs[l.reference];
+          const bool form_alike   = ends_alike(all.position_to_reference);
+          const bool scheme_alike = ends_alike(basis.position_to_reference);
+          s << " Which difference separates them at " << study.points[p].label() << ": " << all.rung.name
+            << " (Δt = " << all.rung.model.time_step << " s, damping the scene's N modes) ends at "
+            << fixed(all.final_position.median, 4) << ", W₁ " << w1(all.position_to_reference) << " to the reference, "
+            << (form_alike ? "alike" : "apart") << "; " << basis.rung.name << " at its own step ("
+            << basis.rung.model.time_step << " s) ends at " << fixed(basis.final_position.median, 4) << ", W₁ "
+            << w1(basis.position_to_reference) << ", " << (scheme_alike ? "alike" : "apart") << ".";
+          s << (form_alike ? " The model's form (no axial inertia, the cubic membrane, the contact on the modal sum) "
+                             "does not separate ROM and FE there."
+                           : " The model's form (no axial inertia, the cubic membrane, the contact on the modal sum) "
+                             "separates ROM and FE there: with every mode of the mesh and the FE's step the ROM "
+                             "still ends apart.");
+          if (scheme_alike)
+            s << " The same basis stepped with the reference's θ = " << ref.rung.model.theta
+              << " lands on the FE: the scheme's numerical damping of the modes that ring after each impact, "
+                 "not the basis, separates the region's ROM from the FE reference there (a property of the "
+                 "reference's θ, doc/verification.md §6).";
+          else
+            s << " Stepped with the reference's θ the larger basis still ends apart: the scheme's damping does "
+                 "not close the gap either.";
+        }
+      return s.str();
     }
   } // namespace
 
@@ -263,7 +296,7 @@ namespace beamslider
     md << (first_everywhere.empty()
              ? " no reduced model tried meets the reference at every point."
              : " the first model in this list that meets the reference at every point is " + first_everywhere + ".")
-       << basis_limit(study, columns) << "\n\n";
+       << basis_limit(study, columns) << model_form_finding(study) << "\n\n";
     return md.str();
   }
 
@@ -341,6 +374,21 @@ namespace beamslider
                                                       CsvWriter::cell(points[p].acceleration_m_s2)};
                     },
                     study.ladders);
+    std::vector<LadderStudy> probes;
+    std::vector<std::size_t> probe_points;
+    for (const auto &[p, l] : study.model_form)
+      {
+        probe_points.push_back(p);
+        probes.push_back(l);
+      }
+    if (!probes.empty())
+      write_sites_csv(dir + "/region_model_form.csv", {"frequency_hz", "acceleration_m_s2"},
+                      [&](const std::size_t j) {
+                        const OperatingPoint &point = points[probe_points[j]];
+                        return std::vector<std::string>{CsvWriter::cell(point.frequency_hz),
+                                                        CsvWriter::cell(point.acceleration_m_s2)};
+                      },
+                      probes);
     std::vector<ConvergenceCheck> all_checks;
     for (const LadderStudy &l : study.ladders)
       all_checks.insert(all_checks.end(), l.checks.begin(), l.checks.end());
@@ -398,7 +446,9 @@ namespace beamslider
           "the point's reference [90 % interval]; **other class** where its majority class is not the reference's. "
           "The checks' evidence (every trial, its end state and W₁ to the next):\n\n"
        << describe_convergence(all_checks)
-       << "\nFiles: region.csv, region_convergence.csv; member_runs.region.csv (and .check-1.csv, …) hold every "
+       << "\nFiles: region.csv, region_convergence.csv"
+       << (probes.empty() ? "" : ", region_model_form.csv (the model-form probes, the point's reference last)")
+       << "; member_runs.region.csv (and .check-1.csv, …) hold every "
           "member as it finished. This study took "
        << seconds_since(start) << ".\n\n";
     return md.str();

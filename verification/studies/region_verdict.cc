@@ -95,6 +95,17 @@ namespace beamslider
       return ~0ul;
     }
 
+    // Site p's reference model: its check's model `accepted` (accepted_trial),
+    // or the rung's own.
+    ModelSetting reference_model(const SitePlan &plan, const std::size_t p, const unsigned long accepted)
+    {
+      const std::size_t r = plan.references[p];
+      for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
+        if (plan.checks[p].rung[c] == r && accepted < plan.checks[p].plans[c].models.size())
+          return plan.checks[p].plans[c].models[accepted];
+      return plan.rungs[p][r].model;
+    }
+
     // The class rounds as every rank sees them: each site's rung models
     // (the reference at the step its check took) and how many members each
     // has run.
@@ -115,9 +126,7 @@ namespace beamslider
                 models.back().push_back(rung.model);
                 counts.back().push_back(rung_members(rung, members));
               }
-            for (std::size_t c = 0; c < plan.checks[p].plans.size(); ++c)
-              if (plan.checks[p].rung[c] == plan.references[p] && accepted[p] < plan.checks[p].plans[c].models.size())
-                models.back()[plan.references[p]] = plan.checks[p].plans[c].models[accepted[p]];
+            models.back()[plan.references[p]] = reference_model(plan, p, accepted[p]);
           }
       }
 
@@ -227,6 +236,88 @@ namespace beamslider
           work(rounds.groups(plan, masks));
         }
     }
+
+    // The larger basis of site p's check in N (⌈1.5 N⌉ modes at its step).
+    ModelSetting larger_basis(const SitePlan &plan, const std::size_t p)
+    {
+      for (const RefinementPlan &c : plan.checks[p].plans)
+        if (c.parameter == "N" && c.models.size() > 1)
+          return c.models[1];
+      throw std::logic_error("larger_basis: site " + plan.labels[p] + " has no check in N");
+    }
+
+    // The model-form probes of the sites rank 0 flags (basis_gap), as every
+    // rank builds them: rank 0 shares per site the flag and, if set, where
+    // its reference check took its reference (accepted_trial).
+    struct ProbeRound
+    {
+      std::vector<std::size_t> sites;
+      std::vector<std::vector<LadderRung>> probes; // per flagged site
+      std::vector<MemberGroup> groups;             // every probe's members, in order
+
+      ProbeRound(const SitePlan &plan, const unsigned int members, const std::function<unsigned long(std::size_t)> &flag,
+                 const std::function<unsigned long(std::size_t)> &accepted)
+      {
+        for (std::size_t p = 0; p < plan.scenes.size(); ++p)
+          {
+            if (!flag(p))
+              continue;
+            const ModelSetting reference = reference_model(plan, p, accepted(p));
+            sites.push_back(p);
+            probes.push_back(model_form_probes(plan.scenes[p], reference, larger_basis(plan, p)));
+            for (const LadderRung &r : probes.back())
+              groups.push_back({plan.labels[p] + ": " + r.name, plan.scenes[p], r.model, members,
+                                EnsembleSettings().perturbation});
+          }
+      }
+    };
+
+    // Rank 0's probes: run where basis_gap holds, each with the site's
+    // reference as its last rung.
+    std::vector<std::pair<std::size_t, LadderStudy>> probe_model_form(const SitePlan &plan, const unsigned int members,
+                                                                      const std::vector<LadderStudy> &ladders,
+                                                                      const MemberGroupRunner &runner, const Share &share)
+    {
+      const ProbeRound round(
+        plan, members, [&](const std::size_t p) { return shared(share, basis_gap(ladders[p]) ? 1 : 0); },
+        [&](const std::size_t p) { return shared(share, accepted_trial(plan, p, ladders[p])); });
+      if (round.groups.empty())
+        return {};
+      std::vector<std::vector<EnsembleMember>> results = runner ? runner(round.groups) : run_groups_in_threads(round.groups);
+      std::vector<std::pair<std::size_t, LadderStudy>> out;
+      std::size_t next = 0;
+      for (std::size_t j = 0; j < round.sites.size(); ++j)
+        {
+          const std::size_t p            = round.sites[j];
+          const LadderRungResult &ref    = ladders[p].rungs[ladders[p].reference];
+          std::vector<LadderRung> rungs = round.probes[j];
+          std::vector<std::vector<EnsembleMember>> member_sets;
+          for (std::size_t k = 0; k < rungs.size(); ++k)
+            member_sets.push_back(std::move(results[next++]));
+          rungs.push_back(ref.rung);
+          member_sets.push_back(ref.members);
+          out.emplace_back(p, assemble_ladder(plan.scenes[p], rungs, rungs.size() - 1, ladders[p].end_time,
+                                              std::move(member_sets)));
+        }
+      return out;
+    }
+
+    // The other ranks' part of probe_model_form.
+    void work_on_probes(const SitePlan &plan, const unsigned int members,
+                        const std::function<void(const std::vector<MemberGroup> &)> &work, const Share &share)
+    {
+      const ProbeRound round(
+        plan, members, [&](std::size_t) { return share(0); }, [&](std::size_t) { return share(0); });
+      if (!round.groups.empty())
+        work(round.groups);
+    }
+
+    // run_sites on a plan made already (run_region needs it after).
+    std::vector<LadderStudy> run_planned_sites(const SitePlan &plan, const unsigned int members,
+                                               const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
+                                               const Share &share);
+    void work_on_planned_sites(const SitePlan &plan, const unsigned int members,
+                               const std::function<void(const std::vector<MemberGroup> &)> &work, const Share &share);
   } // namespace
 
   std::string OperatingPoint::label() const
@@ -280,14 +371,23 @@ namespace beamslider
   {
     if (sites.empty())
       throw std::invalid_argument("run_sites: no site");
-    const SitePlan plan = site_plan(sites, rungs_of, members);
+    return run_planned_sites(site_plan(sites, rungs_of, members), members, runner, rounds, share);
+  }
+
+  namespace
+  {
+  std::vector<LadderStudy> run_planned_sites(const SitePlan &plan, const unsigned int members,
+                                             const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
+                                             const Share &share)
+  {
+    const std::size_t n_sites = plan.scenes.size();
     std::vector<std::vector<EnsembleMember>> results = runner ? runner(plan.groups) : run_groups_in_threads(plan.groups);
 
     // Each site's rungs and its checks' first trials (the rung's members and
     // the trials ladder_groups_with_checks puts after the rungs), split as
     // the ladder splits its own (first_check_trials).
-    std::vector<std::vector<std::vector<EnsembleMember>>> done, site_members(sites.size());
-    for (std::size_t p = 0; p < sites.size(); ++p)
+    std::vector<std::vector<std::vector<EnsembleMember>>> done, site_members(n_sites);
+    for (std::size_t p = 0; p < n_sites; ++p)
       {
         const std::size_t first = plan.first_group[p], n_rungs = plan.rungs[p].size();
         std::size_t n_groups = n_rungs;
@@ -304,7 +404,7 @@ namespace beamslider
 
     std::vector<LadderStudy> ladders;
     std::size_t next_check = 0;
-    for (std::size_t p = 0; p < sites.size(); ++p)
+    for (std::size_t p = 0; p < n_sites; ++p)
       {
         std::vector<ConvergenceCheck> checks_p(checks.begin() + next_check,
                                                checks.begin() + next_check + plan.checks[p].plans.size());
@@ -316,12 +416,20 @@ namespace beamslider
     decide_classes(plan, members, ladders, rounds ? rounds : runner, share);
     return ladders;
   }
+  } // namespace
 
   void work_on_sites(const std::vector<StudySite> &sites, const SiteRungs &rungs_of, const unsigned int members,
                      const std::function<void(const std::vector<MemberGroup> &)> &work,
                      const std::function<unsigned long(unsigned long)> &share)
   {
-    const SitePlan plan = site_plan(sites, rungs_of, members);
+    work_on_planned_sites(site_plan(sites, rungs_of, members), members, work, share);
+  }
+
+  namespace
+  {
+  void work_on_planned_sites(const SitePlan &plan, const unsigned int members,
+                             const std::function<void(const std::vector<MemberGroup> &)> &work, const Share &share)
+  {
     work(plan.groups);
     std::vector<std::size_t> n_first;
     for (const RefinementPlan &c : plan.check_plans)
@@ -330,6 +438,7 @@ namespace beamslider
                                EnsembleSettings().perturbation, work, share);
     work_on_classes(plan, members, work, share);
   }
+  } // namespace
 
   RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, const double end_time,
                          const unsigned int members, const MemberGroupRunner &runner, const MemberGroupRunner &rounds,
@@ -338,8 +447,10 @@ namespace beamslider
     if (points.empty())
       throw std::invalid_argument("run_region: no operating point");
     RegionStudy study;
-    study.points  = points;
-    study.ladders = run_sites(region_sites(scene, points, end_time), region_rungs, members, runner, rounds, share);
+    study.points          = points;
+    const SitePlan plan   = site_plan(region_sites(scene, points, end_time), region_rungs, members);
+    study.ladders         = run_planned_sites(plan, members, runner, rounds, share);
+    study.model_form      = probe_model_form(plan, members, study.ladders, rounds ? rounds : runner, share);
     return study;
   }
 
@@ -347,7 +458,9 @@ namespace beamslider
                       const unsigned int members, const std::function<void(const std::vector<MemberGroup> &)> &work,
                       const std::function<unsigned long(unsigned long)> &share)
   {
-    work_on_sites(region_sites(scene, points, end_time), region_rungs, members, work, share);
+    const SitePlan plan = site_plan(region_sites(scene, points, end_time), region_rungs, members);
+    work_on_planned_sites(plan, members, work, share);
+    work_on_probes(plan, members, work, share);
   }
 
   std::vector<LadderRung> case_rungs(const Scene &scene, std::size_t &reference)
@@ -392,6 +505,46 @@ namespace beamslider
       else if (k == n)
         tie = true;
     return n == 0 ? "–" : tie ? "split" : best;
+  }
+
+  bool basis_gap(const LadderStudy &l)
+  {
+    const auto rung  = std::find_if(l.rungs.begin(), l.rungs.end(),
+                                    [](const LadderRungResult &r) { return r.rung.converged_in_n; });
+    const auto check = std::find_if(l.checks.begin(), l.checks.end(),
+                                    [](const ConvergenceCheck &c) { return c.parameter == "N" && c.trials.size() > 1; });
+    if (rung == l.rungs.end() || check == l.checks.end())
+      return false;
+    const std::vector<double> ref = outcome_samples(l.rungs[l.reference].members).final_position;
+    const std::vector<double> a   = outcome_samples(rung->members).final_position;
+    const std::vector<double> b   = outcome_samples(check->trials[1].members).final_position;
+    if (ref.empty() || a.empty() || b.empty())
+      return false;
+    return !ends_alike(compare_samples(a, ref)) && !ends_alike(compare_samples(b, ref));
+  }
+
+  std::vector<LadderRung> model_form_probes(const Scene &scene, const ModelSetting &reference,
+                                            const ModelSetting &larger_basis)
+  {
+    ModelSetting all = scene_model(scene, "rom");
+    all.n_modes      = fe_bending_modes(scene);
+    all.integrator   = "implicit";
+    all.theta        = reference.theta;
+    all.time_step    = reference.time_step;
+    all.damped_modes = scene.discretisation.n_modes;
+    ModelSetting basis = larger_basis;
+    basis.integrator   = "implicit";
+    basis.theta        = reference.theta;
+    std::ostringstream theta;
+    theta << reference.theta;
+    return {{"ROM all " + std::to_string(all.n_modes) + " modes at the reference's step and θ",
+             "every bending mode of the FE mesh, stepped as the reference (implicit, its θ and Δt), damping the "
+             "scene's N: the FE's dynamics in the ROM's form",
+             all},
+            {"ROM N=" + std::to_string(basis.n_modes) + " with θ=" + theta.str(),
+             "the N check's larger basis at its own step, stepped with the reference's θ instead of the explicit "
+             "midpoint rule",
+             basis}};
   }
 
   double majority_p_value(const ClassCounts &counts)

@@ -118,13 +118,36 @@ namespace beamslider
   bool alike_with_reference(const SampleComparison &end_positions, const ClassCounts &model,
                             const ClassCounts &reference);
 
+  // Whether the rung converged in N and its check's larger basis (N = 30)
+  // both end apart from the reference (ends_alike): more modes do not bring
+  // the ROM to the reference at this site.
+  bool basis_gap(const LadderStudy &ladder);
+
+  // Which difference between ROM and FE moves the end state where
+  // basis_gap holds, by two ROMs run beside them:
+  //   - every bending mode of the FE mesh, stepped as the site's reference
+  //     is (implicit, its θ and Δt), damping the scene's N modes as the FE
+  //     does: it differs from the FE only in its form (no axial inertia, the
+  //     quasi-static cubic membrane, the contact on the modal sum);
+  //   - the N check's larger basis (`larger_basis`, N = 30 at its own
+  //     explicit step) stepped with the reference's θ instead of the
+  //     explicit midpoint rule: it differs from the region's N = 30 only in
+  //     the scheme's numerical damping of the modes that ring after each
+  //     impact (θ > ½ damps a resolved mode by about (θ − ½)ωΔt).
+  std::vector<LadderRung> model_form_probes(const Scene &scene, const ModelSetting &reference,
+                                            const ModelSetting &larger_basis);
+
   struct RegionStudy
   {
     std::vector<OperatingPoint> points;
     std::vector<LadderStudy> ladders; // one per point, with its checks
+    // At each point where basis_gap holds (its index first): the two
+    // model_form_probes and the point's reference, the reference last.
+    std::vector<std::pair<std::size_t, LadderStudy>> model_form;
   };
 
-  // run_sites at the points, each with the region_rungs.
+  // run_sites at the points, each with the region_rungs, then the
+  // model_form_probes where basis_gap holds (by `rounds`, as a later round).
   RegionStudy run_region(const Scene &scene, const std::vector<OperatingPoint> &points, double end_time,
                          unsigned int members, const MemberGroupRunner &runner = {},
                          const MemberGroupRunner &rounds = {},
