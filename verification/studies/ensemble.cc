@@ -97,6 +97,11 @@ namespace beamslider
     return member;
   }
 
+  EnsembleMember run_member(const MemberGroup &group, const unsigned int m)
+  {
+    return run_member(group.scene, group.model, group.first_member + m, group.perturbation);
+  }
+
   std::size_t n_runs(const std::vector<MemberGroup> &groups)
   {
     std::size_t n = 0;
@@ -228,8 +233,7 @@ namespace beamslider
     std::mutex report;
     parallel_for(order.size(), n_threads, [&](const std::size_t i) {
       const auto [g, m]     = group_and_member(groups, order[i]);
-      EnsembleMember member =
-        run_member(groups[g].scene, groups[g].model, groups[g].first_member + m, groups[g].perturbation);
+      EnsembleMember member = run_member(groups[g], m);
       const std::lock_guard<std::mutex> lock(report);
       members[g][m] = std::move(member);
       if (on_member)

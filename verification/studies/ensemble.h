@@ -63,6 +63,9 @@ namespace beamslider
     // that ran members 0 … first_member − 1 before.
     unsigned int first_member = 0;
   };
+  // Member m of a group (counting from 0 in the group): member
+  // group.first_member + m of its ensemble.
+  EnsembleMember run_member(const MemberGroup &group, unsigned int m);
   // Member m of group g is run number offset(g) + m of the list (m counts
   // from 0 in every group; its member index is first_member + m).
   std::size_t n_runs(const std::vector<MemberGroup> &groups);

@@ -279,8 +279,7 @@ namespace beamslider
       const MpiSession &mpi = settings.mpi ? *settings.mpi : single;
       const CellWork work   = [&groups](const std::size_t run) {
         const auto [g, m]           = group_and_member(groups, run);
-        const EnsembleMember member =
-          run_member(groups[g].scene, groups[g].model, groups[g].first_member + m, groups[g].perturbation);
+        const EnsembleMember member = run_member(groups[g], m);
         if (member.result.status == RunStatus::interrupted)
           return std::string(); // not a result: run again on the next start
         return packed(member_record(g, groups[g].name, member));

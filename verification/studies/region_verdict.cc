@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -119,6 +120,11 @@ namespace beamslider
       {
         for (std::size_t p = 0; p < plan.rungs.size(); ++p)
           {
+            // A round's mask holds one bit a rung.
+            if (plan.rungs[p].size() > std::numeric_limits<unsigned long>::digits)
+              throw std::logic_error("class rounds: site " + plan.labels[p] + " has " +
+                                     std::to_string(plan.rungs[p].size()) + " rungs, more than a mask's " +
+                                     std::to_string(std::numeric_limits<unsigned long>::digits) + " bits");
             models.emplace_back();
             counts.emplace_back();
             for (const LadderRung &rung : plan.rungs[p])
