@@ -89,6 +89,14 @@ namespace beamslider
         m << "restitution e_N = " << law_.restitution << " is outside [0, 1]";
         throw std::invalid_argument(m.str());
       }
+    if (!(law_.normal_stiffness >= 0. && law_.normal_damping >= 0.) || !std::isfinite(law_.normal_stiffness) ||
+        !std::isfinite(law_.normal_damping))
+      {
+        std::ostringstream m;
+        m << "normal stiffness k_N = " << law_.normal_stiffness << " N/m and damping c_N = " << law_.normal_damping
+          << " N s/m must be finite and >= 0";
+        throw std::invalid_argument(m.str());
+      }
     for (auto &p : warm_)
       p.setZero();
     const Eigen::Index n = beam_.n_dofs();
@@ -298,15 +306,44 @@ namespace beamslider
     auto P                = P_.head(m2);
     for (unsigned int i = 0; i < m; ++i)
       {
-        c[2 * i] += law_.restitution * gamma_B[2 * i];
+        if (!law_.compliant())
+          c[2 * i] += law_.restitution * gamma_B[2 * i];
         P.segment<2>(2 * i) = warm_[active[i]];
         mu_[i]              = law_.friction_coefficient;
       }
-    const ProxSolverResult result = solver_.solve(G_.topLeftCorner(m2, m2), c, mu_.head(m), P);
+    if (law_.compliant())
+      add_compliant_terms(active, m, gamma_B);
+    // The step's forms read G_ after the solve as the beam's and slider's
+    // Delassus matrix; the compliant law solves on a copy.
+    const auto G                  = law_.compliant() ? G_compliant_.topLeftCorner(m2, m2) : G_.topLeftCorner(m2, m2);
+    const ProxSolverResult result = solver_.solve(G, c, mu_.head(m), P);
     report_.iterations            = result.iterations;
     report_.residual              = result.residual;
     if (!result.converged)
       throw_solver_failure(t_B, active, m, result);
+  }
+
+  void MoreauStepper::add_compliant_terms(const std::array<unsigned int, n_slider_corners> &active,
+                                          const unsigned int m,
+                                          const Eigen::Matrix<double, max_unknowns, 1> &gamma_B)
+  {
+    // g_θ = g_M + θ Δt_E γ_E − (1 − θ) Δt_B γ_B, γ_θ = θ γ_E + (1 − θ) γ_B
+    // (linear in the step, as the Moreau step itself); θ = ½ is the
+    // trapezoidal rule on the spring, which keeps its energy.
+    const double theta = beam_.theta();
+    const double dt_B = (1. - theta) * dt_, dt_E = theta * dt_;
+    const double k = law_.normal_stiffness, c_N = law_.normal_damping;
+    const Eigen::Index m2 = 2 * m;
+    G_compliant_.topLeftCorner(m2, m2) = G_.topLeftCorner(m2, m2);
+    for (unsigned int i = 0; i < m; ++i)
+      {
+        // The parts of g_θ and γ_θ the start already knows.
+        const double g_known = gap_M_[active[i]] - (1. - theta) * dt_B * gamma_B[2 * i];
+        const double a       = dt_ * theta * (k * dt_E + c_N);
+        const double b       = dt_ * (k * g_known + (1. - theta) * c_N * gamma_B[2 * i]);
+        G_compliant_(2 * i, 2 * i) += 1. / a;
+        c_[2 * i] += b / a;
+      }
   }
 
   void MoreauStepper::throw_solver_failure(const double t_B, const std::array<unsigned int, n_slider_corners> &active,

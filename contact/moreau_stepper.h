@@ -201,9 +201,10 @@ namespace beamslider
     // the contact solve; the reports of a failed contact solve and of a
     // non-finite end state; and taking the end state over.
     void check_corners_on_beam(double t_B, const Eigen::Vector3d &s_M, const SliderFrame &frame) const;
-    bool corner_is_closed(const unsigned int k, const double gap, const double thickness, const double t_B) const
+    bool corner_is_closed(const unsigned int k, const double gap, const double thickness, const double t_B)
     {
       // The common cases inline; the rare ones (through the beam, NaN) throw.
+      gap_M_[k] = gap; // the compliant law's force needs it
       if (gap > 0. && gap <= std::numeric_limits<double>::max())
         return false;
       if (gap >= thickness - slider_.window_height)
@@ -212,10 +213,18 @@ namespace beamslider
     }
     bool corner_is_closed_or_throw(unsigned int k, double gap, double thickness, double t_B) const;
     // The contact impulses P_ from the free relative velocities in c_ and
-    // the Delassus matrix G_ of the m active corners: c_ += ε γ_B, the warm
+    // the Delassus matrix G_ of the m active corners: c_ += ε γ_B (rigid
+    // corners) or the compliant law's terms (compliant_terms), the warm
     // start, the prox solver; a solve that fails throws.
     void solve_contact_impulses(double t_B, const std::array<unsigned int, n_slider_corners> &active, unsigned int m,
                                 const Eigen::Matrix<double, 2 * n_slider_corners, 1> &gamma_B);
+    // The compliant law on the same solver: the impulse over the step,
+    // P_N = max(0, −Δt (k_N g_θ + c_N γ_θ)), with g_θ and γ_θ the gap and
+    // its rate at the step's θ-point, linear in the end's γ_E, is the
+    // complementarity 0 ≤ P_N ⊥ γ_E + (P_N + b)/a ≥ 0: a = Δt θ (k_N Δt_E
+    // + c_N) on G's diagonal (as 1/a), b/a added to c.
+    void add_compliant_terms(const std::array<unsigned int, n_slider_corners> &active, unsigned int m,
+                             const Eigen::Matrix<double, 2 * n_slider_corners, 1> &gamma_B);
     [[noreturn]] static void throw_solver_failure(double t_B, const std::array<unsigned int, n_slider_corners> &active,
                                                   unsigned int m, const ProxSolverResult &result);
     [[noreturn]] void throw_non_finite_end(double t_B) const;
@@ -246,7 +255,8 @@ namespace beamslider
     Eigen::VectorXd q_M_, u_free_, u_E_, u_mean_, q_next_;              // n
     Eigen::MatrixXd W_b_, X_b_;                                         // n × 8
     Eigen::Matrix<double, 3, max_unknowns> W_s_;
-    Eigen::Matrix<double, max_unknowns, max_unknowns> G_;
+    Eigen::Matrix<double, max_unknowns, max_unknowns> G_, G_compliant_;
+    std::array<double, n_slider_corners> gap_M_{}; // g_N of each corner at the detection configuration [m]
     Eigen::Matrix<double, max_unknowns, 1> c_, P_, gamma_B_, gamma_mean_, imposed_;
     Eigen::Matrix<double, n_slider_corners, 1> mu_;
     CornerKinematics corner_;

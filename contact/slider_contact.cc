@@ -2,6 +2,8 @@
 // model (doc/physics.md §4).
 #include "contact/slider_contact.h"
 
+#include "numerics/spring_dashpot_restitution.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,6 +22,21 @@ namespace beamslider
     p.com_offset    = scene.slider.com_offset;
     p.gravity       = scene.contact.gravity;
     return p;
+  }
+
+  ContactLaw ContactLaw::from_scene(const Scene &scene)
+  {
+    ContactLaw law;
+    law.friction_coefficient = scene.contact.friction_coefficient;
+    law.restitution          = scene.contact.restitution;
+    law.normal_stiffness     = scene.contact.normal_stiffness;
+    if (law.compliant())
+      {
+        // Half the slider's mass on each of the two corners it lands on.
+        const double zeta   = pushing_spring_dashpot_damping_ratio(law.restitution);
+        law.normal_damping = 2. * zeta * std::sqrt(law.normal_stiffness * 0.5 * scene.slider_mass());
+      }
+    return law;
   }
 
   void SliderParameters::validate(const double beam_thickness) const

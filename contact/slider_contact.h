@@ -57,11 +57,16 @@ namespace beamslider
   {
     double friction_coefficient = 0; // μ [-]
     double restitution          = 0; // e_N [-], tangential restitution is 0
+    // The compliant normal law (doc/physics.md §4): k_N [N/m] and c_N
+    // [N s/m] per corner; k_N = 0 is the rigid corner with Newton's law.
+    double normal_stiffness = 0;
+    double normal_damping   = 0;
 
-    static ContactLaw from_scene(const Scene &scene)
-    {
-      return {scene.contact.friction_coefficient, scene.contact.restitution};
-    }
+    bool compliant() const { return normal_stiffness > 0.; }
+
+    // c_N from e_N, k_N and the slider's mass: the slider landing flat on
+    // two corners of a rigid surface leaves with e_N times its speed.
+    static ContactLaw from_scene(const Scene &scene);
   };
 
   constexpr unsigned int n_slider_corners = 4;

@@ -206,6 +206,9 @@ namespace beamslider
   {
     double friction_coefficient = 0.2;  // mu [-]
     double restitution          = 0.5;  // e_N [-]
+    // k_N [N/m] per corner: 0 is the rigid corner with Newton's impact law;
+    // > 0 a spring–dashpot whose damping gives e_N (doc/physics.md §4).
+    double normal_stiffness     = 0.;
     double gravity              = 9.81; // g [m/s^2], acts on the slider in -z
     // Contact solver: "projected" (Gauss–Seidel projections, as the authors'
     // code) or "exact-local" (each contact's 2×2 problem solved exactly).

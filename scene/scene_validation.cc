@@ -3,6 +3,8 @@
 // and a generated strip that fits in memory (validate_scene).
 #include "scene/printable.h"
 #include "scene/scene.h"
+
+#include "numerics/spring_dashpot_restitution.h"
 #include "scene/scene_parameters_internal.h"
 
 #include <algorithm>
@@ -355,6 +357,13 @@ namespace beamslider
             s.excitation.acceleration_amplitude, "must be finite");
     require(std::isfinite(s.contact.friction_coefficient), "Contact/Friction coefficient",
             s.contact.friction_coefficient, "must be finite");
+    require(s.contact.normal_stiffness >= 0. && std::isfinite(s.contact.normal_stiffness), "Contact/Normal stiffness",
+            s.contact.normal_stiffness, "must be finite and >= 0 N/m (0 for rigid corners)");
+    require(s.contact.normal_stiffness == 0. || s.contact.restitution > smallest_compliant_restitution(),
+            "Contact/Restitution", s.contact.restitution,
+            "must exceed " + std::to_string(smallest_compliant_restitution()) +
+              " with compliant corners (Contact/Normal stiffness > 0): a dashpot that only pushes returns at least "
+              "that much of the approach speed up to critical damping");
     require(std::isfinite(s.slider.com_offset), "Slider/Centre of mass offset", s.slider.com_offset, "must be finite");
     require(s.discretisation.n_elements >= s.discretisation.n_modes + 1, "Discretisation/Number of elements",
             s.discretisation.n_elements,

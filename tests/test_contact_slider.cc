@@ -6,16 +6,19 @@
 // The rigid beam is a BeamSystem with no coordinates: w(x) = x tan α relative
 // to a base that does not move, so the Delassus matrix is the slider's alone.
 #include "runs/adaptation_run.h"
+#include "numerics/spring_dashpot_restitution.h"
 #include "contact/contact_products.h"
 #include "contact/moreau_stepper.h"
 #include "contact/prox_solver.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
 #include <random>
+#include <utility>
 
 using namespace beamslider;
 
@@ -256,6 +259,111 @@ TEST(DroppedSlider, LosesOneMinusRestitutionSquaredOfNormalKineticEnergy)
       return;
     }
   FAIL() << "the slider never reached the beam";
+}
+
+namespace
+{
+  // The restitution of the force-limited spring–dashpot by an independent
+  // route: RK4 on ẍ = −x − 2ζẋ (unit mass and stiffness) from x = 0, ẋ = 1,
+  // until the force x + 2ζẋ changes sign, the crossing interpolated: the
+  // velocity ratio and the time of the crossing (in units of 1/ω).
+  std::pair<double, double> integrated_restitution(const double zeta)
+  {
+    const double h = 1e-4;
+    Eigen::Vector2d y(0., 1.);
+    auto f = [&](const Eigen::Vector2d &z) { return Eigen::Vector2d(z[1], -z[0] - 2. * zeta * z[1]); };
+    for (double t = 0; t < 10.; t += h)
+      {
+        const Eigen::Vector2d k1 = f(y), k2 = f(y + 0.5 * h * k1), k3 = f(y + 0.5 * h * k2), k4 = f(y + h * k3);
+        const Eigen::Vector2d next = y + h / 6. * (k1 + 2. * k2 + 2. * k3 + k4);
+        const double F0 = y[0] + 2. * zeta * y[1], F1 = next[0] + 2. * zeta * next[1];
+        if (F1 <= 0.)
+          return {-(y[1] + (next[1] - y[1]) * F0 / (F0 - F1)), t + h * F0 / (F0 - F1)};
+        y = next;
+      }
+    return {std::numeric_limits<double>::quiet_NaN(), 0.};
+  }
+
+  // The slider dropped flat on the rigid beam, without gravity, onto
+  // compliant corners: its velocity ratio after the contact and the number
+  // of steps the contact lasted.
+  std::pair<double, unsigned int> compliant_drop(const Scene &scene, const double dt)
+  {
+    RigidBeam beam(scene.beam.length, scene.beam.thickness);
+    MoreauStepper stepper(beam, SliderParameters::from_scene(scene), ContactLaw::from_scene(scene), BaseExcitation{},
+                          dt);
+    SystemState start = stepper.resting_state(0.07);
+    start.s[1] += 2e-5; // 20 µm above contact (the clearance R − h is 50 µm)
+    start.v[1] = -0.05; // [m/s]
+    stepper.set_state(start);
+    unsigned int in_contact = 0;
+    for (unsigned int k = 0; k < 1000000; ++k)
+      {
+        const StepReport &report = stepper.step();
+        if (report.n_active > 0 && report.slider_impulse.norm() > 0.)
+          ++in_contact;
+        else if (in_contact > 0)
+          return {stepper.state().v[1] / start.v[1], in_contact};
+      }
+    return {std::numeric_limits<double>::quiet_NaN(), 0};
+  }
+} // namespace
+
+TEST(CompliantNormalLaw, DampingRatioGivesTheRestitutionOfAnIndependentIntegration)
+{
+  for (const double e : {0.95, 0.7, 0.5, 0.3, 0.2})
+    {
+      const double zeta = pushing_spring_dashpot_damping_ratio(e);
+      EXPECT_NEAR(pushing_spring_dashpot_restitution(zeta), e, 1e-12);
+      EXPECT_NEAR(integrated_restitution(zeta).first, e, 1e-6) << "zeta = " << zeta;
+    }
+  // Light damping: the corner leaves when the spring is nearly relaxed, so
+  // the textbook exp(−ζπ/√(1 − ζ²)) holds to O(ζ²).
+  const double zeta = 0.01;
+  EXPECT_NEAR(pushing_spring_dashpot_restitution(zeta), std::exp(-zeta * M_PI / std::sqrt(1. - zeta * zeta)), 5e-4);
+  // A dashpot that only pushes cannot return less than ~13.5 %.
+  EXPECT_THROW(pushing_spring_dashpot_damping_ratio(0.1), std::invalid_argument);
+  Scene scene                    = static_scene();
+  scene.contact.normal_stiffness = 1e6;
+  scene.contact.restitution      = 0.;
+  try
+    {
+      ContactLaw::from_scene(scene);
+      FAIL() << "e_N = 0 with a compliant law was accepted";
+    }
+  catch (const std::invalid_argument &error)
+    {
+      EXPECT_NE(std::string(error.what()).find("e_N = 0"), std::string::npos) << error.what();
+    }
+}
+
+TEST(DroppedSlider, OnCompliantCornersLeavesWithRestitutionWithinTheStepsBound)
+{
+  // k_N = 1e6 N/m per corner, m/2 on each: ω = √(2 k_N / m), the contact
+  // lasts t_leave/ω ≈ 0.41 ms. The step is first order where a contact
+  // starts: the dashpot's force jumps to c_N v there, and the step applies
+  // it from the step's start, an impulse error of at most c_N v Δt, so the
+  // velocity ratio is e_N to within 2ζωΔt (relative); without the dashpot
+  // (e_N = 1) the spring alone errs by O((ωΔt)²) at its kink, and the
+  // trapezoidal rule keeps its energy in between.
+  Scene scene                    = static_scene();
+  scene.contact.gravity          = 0.;
+  scene.contact.normal_stiffness = 1e6;
+  const double omega = std::sqrt(2. * scene.contact.normal_stiffness / scene.slider_mass());
+  for (const double e : {0.5, 1.})
+    {
+      scene.contact.restitution = e;
+      const double zeta         = pushing_spring_dashpot_damping_ratio(e);
+      const double duration     = (e < 1. ? integrated_restitution(zeta).second : M_PI) / omega;
+      for (unsigned int i = 0; i < 5; ++i)
+        {
+          const double dt           = duration / (10 << i);
+          const auto [ratio, steps] = compliant_drop(scene, dt);
+          const double bound = e < 1. ? 2. * zeta * omega * dt : std::pow(omega * dt, 2);
+          EXPECT_LT(std::abs(-ratio / e - 1.), bound) << "e_N = " << e << ", dt = " << dt << " s";
+          EXPECT_NEAR(steps * dt, duration, 2. * dt) << "e_N = " << e << ", dt = " << dt << " s";
+        }
+    }
 }
 
 TEST(MoreauStepper, SolverIterationCapThrowsWithTimeAndContacts)

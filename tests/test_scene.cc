@@ -358,3 +358,14 @@ TEST(SceneErrors, FEThetaMustLieBetweenTheMidpointRuleAndImplicitEuler)
     }
   EXPECT_EQ(read_scene(scene_dir + "mueller2023.prm", {"Time stepping/FE theta=0.51"}).time_stepping.fe_theta, 0.51);
 }
+
+TEST(SceneErrors, CompliantCornersNeedAStiffnessAtLeastZeroAndARestitutionTheirDashpotReaches)
+{
+  expect_contains(error_for("Contact/Normal stiffness=-1"), "Contact/Normal stiffness");
+  EXPECT_EQ(error_for("Contact/Normal stiffness=1e7"), "");
+  // A dashpot that only pushes returns at least 13.5 % up to critical damping.
+  const std::string message = error_for("Contact/Normal stiffness=1e7", "mueller2023.prm", "Contact/Restitution=0.1");
+  expect_contains(message, "Contact/Restitution");
+  expect_contains(message, "0.135");
+  EXPECT_EQ(error_for("Contact/Restitution=0.1"), ""); // rigid corners take any e_N in [0, 1]
+}

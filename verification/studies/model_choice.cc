@@ -29,6 +29,10 @@ namespace beamslider
       << s.solvers.newton_iterations << ' ' << choice_ladder_members << ' ' << choice_ladder_end_time
       << ' ' << s.time_stepping.fe_time_step << ' ' << s.time_stepping.fe_theta
       << " ladder-6"; // the ladder's rungs: version 6 has the front's N = 15 and 6+4sc, each rung its Δt check
+    // The compliant normal law, written only where it is used so that the
+    // keys of rigid-corner scenes stay what they were.
+    if (s.contact.normal_stiffness > 0.)
+      c << " k_N " << s.contact.normal_stiffness;
     // A mesh beam by its elements and sections (not its file name alone:
     // the file may change), and the point bodies.
     for (const BeamMeshCell &cell : s.beam.mesh_cells)
