@@ -116,12 +116,13 @@ TEST(ExplicitModalStep, FollowsTheGeneralStepToRoundOff)
         fast.set_state(start);
         general.set_state(start);
 
-        // 0.1 s (12 periods) side by side; 0.005 s with compliant corners,
+        // 0.1 s (12 periods) side by side; 0.003 s with compliant corners,
         // whose rattling parts two states apart at about 440 /s (measured:
         // the forms' 1e-17 differences of summation order reach 1e-14 after
-        // 0.016 s), where rigid corners with e_N < 1 and sticking friction
-        // reset such differences at every impact.
-        const unsigned long n_steps = std::lround((k_N > 0. ? 0.005 : 0.1) / dt);
+        // 0.016 s, 1e-13 of the velocities after 0.005 s), where rigid
+        // corners with e_N < 1 and sticking friction reset such
+        // differences at every impact.
+        const unsigned long n_steps = std::lround((k_N > 0. ? 0.003 : 0.1) / dt);
         double max_dq = 0, max_q = 0, max_du = 0, max_u = 0, max_ds = 0, max_dv = 0, max_v = 0, max_dwork = 0, max_work = 0;
         unsigned long contact_steps = 0, two_corner_steps = 0, active_differs = 0;
         for (unsigned long k = 0; k < n_steps; ++k)
@@ -156,9 +157,9 @@ TEST(ExplicitModalStep, FollowsTheGeneralStepToRoundOff)
                   << max_dq << " of " << max_q << ", |du| " << max_du << " of " << max_u << ", |ds| " << max_ds
                   << " m, |dv| " << max_dv << " of " << max_v << " m/s, |dwork| " << max_dwork << " of " << max_work << " J; "
                   << active_differs << " steps with another active set" << std::endl;
-        // The slider must rattle for the comparison to mean anything (the
-        // short compliant window: a third of the steps).
-        EXPECT_GT(contact_steps, n_steps / (k_N > 0. ? 3 : 2));
+        // The slider must rattle for the comparison to mean anything (in
+        // the short compliant window: at least 20 steps with contact).
+        EXPECT_GT(contact_steps, k_N > 0. ? 20ul : n_steps / 2);
         two_corner_steps_by_law[k_N] += two_corner_steps;
         EXPECT_EQ(active_differs, 0u);
         EXPECT_LT(max_dq, 1e-12 * max_q);
