@@ -214,7 +214,7 @@ namespace beamslider
     bool corner_is_closed_or_throw(unsigned int k, double gap, double thickness, double t_B) const;
     // The contact impulses P_ from the free relative velocities in c_ and
     // the Delassus matrix G_ of the m active corners: c_ += ε γ_B (rigid
-    // corners) or the compliant law's terms (compliant_terms), the warm
+    // corners) or the compliant law's terms (add_compliant_terms), the warm
     // start, the prox solver; a solve that fails throws.
     void solve_contact_impulses(double t_B, const std::array<unsigned int, n_slider_corners> &active, unsigned int m,
                                 const Eigen::Matrix<double, 2 * n_slider_corners, 1> &gamma_B);
