@@ -282,7 +282,7 @@ namespace beamslider
       e.bind("Normal stiffness", s.contact.normal_stiffness, Double(0),
              "k_N per corner [N/m]: 0 is a rigid corner with Newton's impact law; > 0 a spring-dashpot "
              "contact whose impacts last about pi sqrt(m / (2 k_N)), its damping set so that the slider "
-             "landing flat on a rigid surface leaves with e_N times its speed (doc/physics.md section 7)");
+             "landing flat on a rigid surface leaves with e_N times its speed (doc/physics.md section 4)");
       e.bind("Gravity", s.contact.gravity, Double(0), "g, acting on the slider in -z [m/s^2]");
       e.bind("Solver", s.contact.solver, Selection("projected|exact-local"),
              "contact impulses per step: projected Gauss-Seidel (as the authors' code) or exact-local "

@@ -2,9 +2,8 @@
 // ranges, relations between parameters, text that parameters.prm can record
 // and a generated strip that fits in memory (validate_scene).
 #include "scene/printable.h"
-#include "scene/scene.h"
-
 #include "numerics/spring_dashpot_restitution.h"
+#include "scene/scene.h"
 #include "scene/scene_parameters_internal.h"
 
 #include <algorithm>
@@ -359,9 +358,10 @@ namespace beamslider
             s.contact.friction_coefficient, "must be finite");
     require(s.contact.normal_stiffness >= 0. && std::isfinite(s.contact.normal_stiffness), "Contact/Normal stiffness",
             s.contact.normal_stiffness, "must be finite and >= 0 N/m (0 for rigid corners)");
-    require(s.contact.normal_stiffness == 0. || s.contact.restitution > smallest_compliant_restitution(),
-            "Contact/Restitution", s.contact.restitution,
-            "must exceed " + std::to_string(smallest_compliant_restitution()) +
+    const double e_min = s.contact.normal_stiffness > 0. ? smallest_compliant_restitution() : 0.;
+    require(s.contact.normal_stiffness == 0. || s.contact.restitution > e_min, "Contact/Restitution",
+            s.contact.restitution,
+            "must exceed " + std::to_string(e_min) +
               " with compliant corners (Contact/Normal stiffness > 0): a dashpot that only pushes returns at least "
               "that much of the approach speed up to critical damping");
     require(std::isfinite(s.slider.com_offset), "Slider/Centre of mass offset", s.slider.com_offset, "must be finite");
